@@ -1,0 +1,16 @@
+// Per-frame uniforms shared by every scene pass (set 0, binding 0).
+// Filled by src/render/frame_uniforms.rs (`FrameUniforms`, std140). Rendering is camera-relative:
+// vertex positions are world positions minus camera_pos, so view_proj holds no translation.
+layout(set = 0, binding = 0, std140) uniform FrameUniforms {
+    mat4 view_proj;      // camera-relative world position -> clip space (reversed-Z, infinite far)
+    mat4 inv_view_proj;  // clip space -> camera-relative position (used to build view rays)
+    vec4 camera_pos;     // xyz: world camera position (m); w: simulation time (s)
+    vec4 sun_dir;        // xyz: unit vector toward the sun; w: sun radiance scale
+    vec4 viewport;       // xy: target size (px); zw: 1 / size
+} frame;
+
+// World-space view ray through a pixel, from the fragment's normalized device coordinates.
+vec3 view_ray(vec2 ndc) {
+    vec4 p = frame.inv_view_proj * vec4(ndc, 0.5, 1.0);
+    return normalize(p.xyz / p.w);
+}

@@ -1,0 +1,109 @@
+//! Headless frontend: renders `--frames` frames into an offscreen target, reads the last one back
+//! and writes `--screenshot` as PNG. Time advances by a fixed 1/60 s per frame, so a run is
+//! reproducible.
+
+use std::time::{Duration, Instant};
+
+use ash::vk;
+
+use super::session::{check_size, readback_buffer, Session};
+use super::{Outcome, RunSettings};
+use crate::gpu::image::full_range;
+use crate::gpu::{Access, Context, ContextDesc, Image, ImageBarrier, ImageDesc};
+use crate::output::{encode_png, PendingFile};
+use crate::render::{FrameInputs, OutputTarget};
+
+/// Format of the offscreen target: 8-bit sRGB, the bytes a PNG stores.
+const OUTPUT_FORMAT: vk::Format = vk::Format::R8G8B8A8_SRGB;
+/// Simulation time step per frame (s).
+pub const FIXED_DT_S: f32 = 1.0 / 60.0;
+
+pub fn run(s: &RunSettings) -> anyhow::Result<Outcome> {
+    let screenshot = s
+        .screenshot
+        .as_deref()
+        .map(|p| PendingFile::create("--screenshot", p))
+        .transpose()?;
+    let profile = s
+        .profile
+        .as_deref()
+        .map(|p| PendingFile::create("--profile", p))
+        .transpose()?;
+    let frames = s.frames.unwrap_or(1);
+
+    let ctx = Context::new(&ContextDesc {
+        validation: s.validation,
+        gpu_index: s.gpu,
+        window: None,
+    })?;
+    let counters = ctx.counters();
+    check_size(&ctx, s.size)?;
+    let extent = vk::Extent2D {
+        width: s.size.0,
+        height: s.size.1,
+    };
+    let target = Image::new(
+        &ctx,
+        &ImageDesc {
+            name: "headless output",
+            extent,
+            format: OUTPUT_FORMAT,
+            usage: vk::ImageUsageFlags::COLOR_ATTACHMENT | vk::ImageUsageFlags::TRANSFER_SRC,
+            layers: 1,
+        },
+    )?;
+    let readback = if screenshot.is_some() {
+        Some(readback_buffer(&ctx, extent)?)
+    } else {
+        None
+    };
+    let mut session = Session::new(&ctx, OUTPUT_FORMAT, extent, s)?;
+    let output = OutputTarget {
+        image: target.raw,
+        view: target.view,
+        extent,
+        // The previous frame wrote the target and may have copied from it.
+        prior: Access::COLOUR_WRITE.or(Access::COPY_READ),
+    };
+
+    let mut last_progress = Instant::now();
+    for i in 0..frames {
+        let capture = readback.as_ref().filter(|_| i + 1 == frames);
+        let inputs = FrameInputs {
+            time_s: i as f32 * FIXED_DT_S,
+        };
+        session.frame(&output, &inputs, &[], &[], |rec| {
+            let Some(buffer) = capture else { return };
+            rec.barrier(
+                &[ImageBarrier {
+                    image: target.raw,
+                    range: full_range(vk::ImageAspectFlags::COLOR, 1),
+                    old_layout: vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL,
+                    new_layout: vk::ImageLayout::TRANSFER_SRC_OPTIMAL,
+                    src: Access::COLOUR_WRITE,
+                    dst: Access::COPY_READ,
+                }],
+                &[],
+            );
+            rec.copy_image_to_buffer(target.raw, extent, buffer);
+            rec.barrier(&[], &[(buffer.raw, Access::COPY_WRITE, Access::HOST_READ)]);
+        })?;
+        if last_progress.elapsed() > Duration::from_secs(5) {
+            eprintln!(
+                "vkocean: frame {}/{frames} ({:.1} s)",
+                i + 1,
+                session.started.elapsed().as_secs_f64()
+            );
+            last_progress = Instant::now();
+        }
+    }
+    session.finish(profile, s.size)?;
+
+    if let (Some(file), Some(buffer)) = (screenshot, readback.as_ref()) {
+        // `finish` waited for every frame, so the copy is complete and visible to the host.
+        let pixels = buffer.mapped().expect("readback memory is host-visible");
+        file.commit(&encode_png(extent.width, extent.height, pixels)?)?;
+    }
+    eprintln!("{}", session.summary_line(s.size));
+    Ok(Outcome { counters })
+}

@@ -1,0 +1,42 @@
+//! Two frontends, one renderer: [`headless`] renders offscreen and reads the last frame back,
+//! [`windowed`] presents to a winit window. Both drive a [`session::Session`].
+
+pub mod headless;
+pub mod session;
+pub mod windowed;
+
+use std::path::PathBuf;
+use std::sync::Arc;
+
+use crate::gpu::{MessageCounters, PresentMode};
+
+/// Everything a run needs, validated by the command line.
+#[derive(Clone, Debug)]
+pub struct RunSettings {
+    pub headless: bool,
+    /// Stop after this many frames (`None`: until the window closes).
+    pub frames: Option<u64>,
+    pub size: (u32, u32),
+    pub screenshot: Option<PathBuf>,
+    pub profile: Option<PathBuf>,
+    pub validation: bool,
+    pub gpu: Option<usize>,
+    pub present_mode: PresentMode,
+    /// Test-only: record a deliberate synchronization hazard in the first frame.
+    pub inject_sync_hazard: bool,
+}
+
+/// What a finished run reports back to `main`.
+pub struct Outcome {
+    /// Validation message counts, complete (read after the context was destroyed).
+    pub counters: Arc<MessageCounters>,
+}
+
+/// Runs the frontend the settings ask for.
+pub fn run(settings: &RunSettings) -> anyhow::Result<Outcome> {
+    if settings.headless {
+        headless::run(settings)
+    } else {
+        windowed::run(settings)
+    }
+}

@@ -1,0 +1,154 @@
+//! The part of a run both frontends share: context objects, frame pacing, profiler, renderer and
+//! the frame recording sequence, plus the end-of-run profile and summary.
+
+use std::sync::Arc;
+use std::time::Instant;
+
+use ash::vk;
+
+use super::RunSettings;
+use crate::gpu::selftest::SyncHazard;
+use crate::gpu::{Buffer, Context, Frames, GpuResult, MemoryLocation, Profiler, Recorder};
+use crate::output::PendingFile;
+use crate::profile::{ProfileReport, WARMUP_FRAMES};
+use crate::render::{FrameInputs, OutputTarget, Renderer};
+
+pub struct Session {
+    pub ctx: Arc<Context>,
+    pub frames: Frames,
+    pub profiler: Profiler,
+    pub renderer: Renderer,
+    /// Test-only hazard, recorded once in the first frame.
+    hazard: Option<SyncHazard>,
+    /// Wall time between consecutive frame starts (ms), after warm-up.
+    cpu_frame_ms: Vec<f64>,
+    last_frame_start: Option<Instant>,
+    pub started: Instant,
+}
+
+impl Session {
+    pub fn new(
+        ctx: &Arc<Context>,
+        output_format: vk::Format,
+        extent: vk::Extent2D,
+        s: &RunSettings,
+    ) -> GpuResult<Self> {
+        let hazard = if s.inject_sync_hazard {
+            Some(SyncHazard::new(ctx)?)
+        } else {
+            None
+        };
+        Ok(Session {
+            ctx: ctx.clone(),
+            frames: Frames::new(ctx)?,
+            profiler: Profiler::new(ctx, WARMUP_FRAMES)?,
+            renderer: Renderer::new(ctx, output_format, extent)?,
+            hazard,
+            cpu_frame_ms: Vec::new(),
+            last_frame_start: None,
+            started: Instant::now(),
+        })
+    }
+
+    /// Records and submits one frame into `output`. `finish` records after the composite pass
+    /// (the frontend's transition for present or copy). Returns the frame's timeline value.
+    pub fn frame(
+        &mut self,
+        output: &OutputTarget,
+        inputs: &FrameInputs,
+        waits: &[vk::SemaphoreSubmitInfo],
+        signals: &[vk::SemaphoreSubmitInfo],
+        finish: impl FnOnce(&Recorder),
+    ) -> GpuResult<u64> {
+        let now = Instant::now();
+        if let Some(last) = self.last_frame_start {
+            if self.frames.submitted() > WARMUP_FRAMES {
+                self.cpu_frame_ms
+                    .push(now.duration_since(last).as_secs_f64() * 1e3);
+            }
+        }
+        self.last_frame_start = Some(now);
+
+        let frame = self.frames.begin()?;
+        let value = frame.signal_value();
+        {
+            let rec = frame.recorder(&self.ctx);
+            self.profiler.begin_frame(&rec, &frame)?;
+            if let Some(hazard) = self.hazard.take() {
+                hazard.record(&rec);
+                // Dropped now; the deletion queue keeps it alive until this frame is done.
+            }
+            self.renderer
+                .record(&rec, &frame, &mut self.profiler, output, inputs);
+            finish(&rec);
+            self.profiler.end_frame(&rec);
+        }
+        self.frames.submit(frame, waits, signals)?;
+        Ok(value)
+    }
+
+    /// Waits for all frames and writes the profile (if asked for); logs the pass table.
+    pub fn finish(&mut self, profile: Option<PendingFile>, size: (u32, u32)) -> anyhow::Result<()> {
+        self.frames.wait_all()?;
+        let timings = self.profiler.finish()?;
+        let report = ProfileReport {
+            device: &self.ctx.info,
+            frames: self.frames.submitted(),
+            size,
+            gpu: &timings,
+            cpu_frame_ms: &self.cpu_frame_ms,
+        };
+        if let Some(file) = profile {
+            if timings.frames.is_empty() {
+                anyhow::bail!(
+                    "--profile: no frame was measured ({} frames rendered, the first {WARMUP_FRAMES} are warm-up)",
+                    self.frames.submitted()
+                );
+            }
+            file.commit(report.to_json().as_bytes())?;
+            eprint!(
+                "vkocean: GPU time per pass (median of {} frames):\n{}",
+                timings.frames.len(),
+                report.summary()
+            );
+        }
+        Ok(())
+    }
+
+    /// The closing line of a run: frames, size, wall time, device.
+    pub fn summary_line(&self, size: (u32, u32)) -> String {
+        let n = self.frames.submitted();
+        let secs = self.started.elapsed().as_secs_f64();
+        format!(
+            "vkocean: {n} frames at {}x{} in {secs:.2} s ({:.1} ms/frame) on {}",
+            size.0,
+            size.1,
+            if n > 0 { secs * 1e3 / n as f64 } else { 0.0 },
+            self.ctx.info.name
+        )
+    }
+}
+
+/// A host-visible buffer for reading back a `width x height` RGBA8 image.
+pub fn readback_buffer(ctx: &Arc<Context>, extent: vk::Extent2D) -> GpuResult<Buffer> {
+    Buffer::new(
+        ctx,
+        "screenshot readback",
+        extent.width as u64 * extent.height as u64 * 4,
+        vk::BufferUsageFlags::TRANSFER_DST,
+        MemoryLocation::GpuToCpu,
+    )
+}
+
+/// Checks `--size` against the device's image limits.
+pub fn check_size(ctx: &Context, size: (u32, u32)) -> anyhow::Result<()> {
+    let max = ctx.info.limits.max_image_dimension2_d;
+    if size.0 > max || size.1 > max {
+        anyhow::bail!(
+            "--size {}x{} exceeds the largest image this device supports ({max}x{max})",
+            size.0,
+            size.1
+        );
+    }
+    Ok(())
+}

@@ -1,0 +1,406 @@
+//! Windowed frontend: a winit 0.30 `ApplicationHandler` presenting through a swapchain.
+//! The swapchain is recreated on resize and when it is out of date or suboptimal; a minimised
+//! window (zero extent) pauses rendering. Esc or the close button end the run, `--frames N`
+//! stops after N frames, F12 saves a screenshot (to `--screenshot` or `vkocean-<frame>.png`).
+
+use std::path::PathBuf;
+use std::sync::Arc;
+
+use ash::vk;
+use winit::application::ApplicationHandler;
+use winit::dpi::PhysicalSize;
+use winit::event::{ElementState, KeyEvent, WindowEvent};
+use winit::event_loop::{ActiveEventLoop, EventLoop};
+use winit::keyboard::{Key, NamedKey};
+use winit::raw_window_handle::{HasDisplayHandle, HasWindowHandle};
+use winit::window::{Window, WindowId};
+
+use super::session::{check_size, readback_buffer, Session};
+use super::{Outcome, RunSettings};
+use crate::gpu::image::full_range;
+use crate::gpu::{Access, Buffer, Context, ContextDesc, ImageBarrier, MessageCounters, Swapchain};
+use crate::output::{encode_png, PendingFile};
+use crate::render::{FrameInputs, OutputTarget};
+
+pub fn run(s: &RunSettings) -> anyhow::Result<Outcome> {
+    if std::env::var_os("DISPLAY").is_none() {
+        anyhow::bail!("no X display to open a window on (DISPLAY is not set); run with --headless, or under xvfb-run");
+    }
+    let profile = s
+        .profile
+        .as_deref()
+        .map(|p| PendingFile::create("--profile", p))
+        .transpose()?;
+    // Checked now so a bad path fails before the window opens; written at exit.
+    let screenshot = s
+        .screenshot
+        .as_deref()
+        .map(|p| PendingFile::create("--screenshot", p))
+        .transpose()?;
+    let event_loop = EventLoop::new().map_err(|e| {
+        anyhow::anyhow!("cannot open a window ({e}); run with --headless, or under xvfb-run")
+    })?;
+    let mut app = App {
+        settings: s.clone(),
+        profile,
+        screenshot,
+        state: None,
+        error: None,
+        counters: None,
+        frames_done: 0,
+        capture_next: false,
+        exit_after_capture: false,
+    };
+    event_loop
+        .run_app(&mut app)
+        .map_err(|e| anyhow::anyhow!("window event loop: {e}"))?;
+    if let Some(e) = app.error.take() {
+        return Err(e);
+    }
+    let counters = app
+        .counters
+        .take()
+        .ok_or_else(|| anyhow::anyhow!("the window never opened"))?;
+    Ok(Outcome { counters })
+}
+
+/// GPU state tied to the window. Field order is drop order: GPU objects (and with the last of
+/// them the context and its surface) go before the window they present to.
+struct WindowState {
+    session: Session,
+    swapchain: Swapchain,
+    /// Screenshot staging, sized to the swapchain.
+    readback: Option<Buffer>,
+    needs_recreate: bool,
+    window: Arc<Window>,
+}
+
+struct App {
+    settings: RunSettings,
+    profile: Option<PendingFile>,
+    /// `--screenshot`: written with the last frame at exit.
+    screenshot: Option<PendingFile>,
+    state: Option<WindowState>,
+    /// First error; the event loop exits and `run` returns it.
+    error: Option<anyhow::Error>,
+    counters: Option<Arc<MessageCounters>>,
+    frames_done: u64,
+    /// Copy the next frame to a PNG (F12, or the last frame with --screenshot).
+    capture_next: bool,
+    /// Exit once the captured frame is saved (Esc / close with --screenshot).
+    exit_after_capture: bool,
+}
+
+fn physical_size(size: PhysicalSize<u32>) -> vk::Extent2D {
+    vk::Extent2D {
+        width: size.width,
+        height: size.height,
+    }
+}
+
+impl App {
+    fn fail(&mut self, event_loop: &ActiveEventLoop, error: anyhow::Error) {
+        if self.error.is_none() {
+            self.error = Some(error);
+        }
+        self.shutdown(event_loop);
+    }
+
+    /// Finishes the run: waits for the GPU, writes the profile, prints the summary, exits.
+    fn shutdown(&mut self, event_loop: &ActiveEventLoop) {
+        if let Some(mut state) = self.state.take() {
+            let size = (state.swapchain.extent.width, state.swapchain.extent.height);
+            match state.session.finish(self.profile.take(), size) {
+                Ok(()) => eprintln!(
+                    "{}; swapchain created {} times",
+                    state.session.summary_line(size),
+                    state.swapchain.generation
+                ),
+                Err(e) if self.error.is_none() => self.error = Some(e),
+                Err(_) => {}
+            }
+        }
+        event_loop.exit();
+    }
+
+    fn create(&mut self, event_loop: &ActiveEventLoop) -> anyhow::Result<WindowState> {
+        let (w, h) = self.settings.size;
+        let attributes = Window::default_attributes()
+            .with_title("vkocean")
+            .with_inner_size(PhysicalSize::new(w, h))
+            .with_resizable(true);
+        let window = Arc::new(
+            event_loop
+                .create_window(attributes)
+                .map_err(|e| anyhow::anyhow!("cannot open a window: {e}"))?,
+        );
+        let display = window
+            .display_handle()
+            .map_err(|e| anyhow::anyhow!("window display handle: {e}"))?
+            .as_raw();
+        let handle = window
+            .window_handle()
+            .map_err(|e| anyhow::anyhow!("window handle: {e}"))?
+            .as_raw();
+        let ctx = Context::new(&ContextDesc {
+            validation: self.settings.validation,
+            gpu_index: self.settings.gpu,
+            window: Some((display, handle)),
+        })?;
+        self.counters = Some(ctx.counters());
+        check_size(&ctx, self.settings.size)?;
+        let swapchain = Swapchain::new(
+            &ctx,
+            physical_size(window.inner_size()),
+            self.settings.present_mode,
+        )?;
+        if self.screenshot.is_some() && !swapchain.can_copy {
+            anyhow::bail!("--screenshot: this window's swapchain images cannot be copied (no TRANSFER_SRC usage)");
+        }
+        let session = Session::new(&ctx, swapchain.format, swapchain.extent, &self.settings)?;
+        Ok(WindowState {
+            session,
+            swapchain,
+            readback: None,
+            needs_recreate: false,
+            window,
+        })
+    }
+
+    /// Renders and presents one frame, recreating the swapchain first when needed; does nothing
+    /// while the window is minimised.
+    fn draw(&mut self, event_loop: &ActiveEventLoop) -> anyhow::Result<()> {
+        let Some(state) = self.state.as_mut() else {
+            return Ok(());
+        };
+        let window_size = physical_size(state.window.inner_size());
+        let extent = state.swapchain.surface_extent(window_size)?;
+        if extent.width == 0 || extent.height == 0 {
+            return Ok(()); // minimised: pause until the next resize
+        }
+        if state.needs_recreate || extent != state.swapchain.extent {
+            state
+                .swapchain
+                .recreate(window_size, self.settings.present_mode)?;
+            state.session.renderer.resize(state.swapchain.extent)?;
+            state.needs_recreate = false;
+        }
+        let extent = state.swapchain.extent;
+
+        state.session.frames.wait_for_slot()?;
+        let slot = state.session.frames.next_slot();
+        let Some((image, suboptimal)) = state.swapchain.acquire(slot)? else {
+            state.needs_recreate = true;
+            return Ok(());
+        };
+        state.needs_recreate |= suboptimal;
+
+        let last = self
+            .settings
+            .frames
+            .is_some_and(|n| self.frames_done + 1 >= n);
+        let capture = self.capture_next || (last && self.screenshot.is_some());
+        if capture
+            && state
+                .readback
+                .as_ref()
+                .is_none_or(|b| b.size != extent.width as u64 * extent.height as u64 * 4)
+        {
+            state.readback = Some(readback_buffer(&state.session.ctx, extent)?);
+        }
+        let readback = if capture {
+            state.readback.as_ref()
+        } else {
+            None
+        };
+
+        let output = OutputTarget {
+            image: image.image,
+            view: image.view,
+            extent,
+            // Chained to the acquire semaphore wait at the same stage.
+            prior: Access {
+                stage: vk::PipelineStageFlags2::COLOR_ATTACHMENT_OUTPUT,
+                access: vk::AccessFlags2::NONE,
+            },
+        };
+        let waits = [vk::SemaphoreSubmitInfo::default()
+            .semaphore(image.acquired)
+            .stage_mask(vk::PipelineStageFlags2::COLOR_ATTACHMENT_OUTPUT)];
+        let signals = [vk::SemaphoreSubmitInfo::default()
+            .semaphore(image.ready)
+            .stage_mask(vk::PipelineStageFlags2::ALL_COMMANDS)];
+        let inputs = FrameInputs {
+            time_s: state.session.started.elapsed().as_secs_f32(),
+        };
+        let range = full_range(vk::ImageAspectFlags::COLOR, 1);
+        let value = state
+            .session
+            .frame(&output, &inputs, &waits, &signals, |rec| {
+                let to_present = |old, src| ImageBarrier {
+                    image: image.image,
+                    range,
+                    old_layout: old,
+                    new_layout: vk::ImageLayout::PRESENT_SRC_KHR,
+                    src,
+                    dst: Access::NONE,
+                };
+                match readback {
+                    None => rec.barrier(
+                        &[to_present(
+                            vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL,
+                            Access::COLOUR_WRITE,
+                        )],
+                        &[],
+                    ),
+                    Some(buffer) => {
+                        rec.barrier(
+                            &[ImageBarrier {
+                                image: image.image,
+                                range,
+                                old_layout: vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL,
+                                new_layout: vk::ImageLayout::TRANSFER_SRC_OPTIMAL,
+                                src: Access::COLOUR_WRITE,
+                                dst: Access::COPY_READ,
+                            }],
+                            &[],
+                        );
+                        rec.copy_image_to_buffer(image.image, extent, buffer);
+                        rec.barrier(
+                            &[to_present(
+                                vk::ImageLayout::TRANSFER_SRC_OPTIMAL,
+                                Access::COPY_READ,
+                            )],
+                            &[(buffer.raw, Access::COPY_WRITE, Access::HOST_READ)],
+                        );
+                    }
+                }
+            })?;
+        state.needs_recreate |= state.swapchain.present(&image)?;
+        self.frames_done += 1;
+
+        if let Some(buffer) = readback {
+            state.session.frames.wait_for(value)?;
+            let pixels = bgra_to_rgba(
+                buffer.mapped().expect("readback memory is host-visible"),
+                state.swapchain.format,
+            );
+            let png = encode_png(extent.width, extent.height, &pixels)?;
+            let file = match self.screenshot.take() {
+                Some(file) => file,
+                None => PendingFile::create(
+                    "screenshot",
+                    &PathBuf::from(format!("vkocean-{}.png", self.frames_done)),
+                )?,
+            };
+            let path = file.path().to_path_buf();
+            file.commit(&png)?;
+            eprintln!("vkocean: saved {}", path.display());
+            // F12 with --screenshot: the exit screenshot still goes to the same path.
+            if self.capture_next && !last && !self.exit_after_capture {
+                self.screenshot = self
+                    .settings
+                    .screenshot
+                    .as_deref()
+                    .map(|p| PendingFile::create("--screenshot", p))
+                    .transpose()?;
+            }
+            self.capture_next = false;
+        }
+        if last || (self.exit_after_capture && !self.capture_next) {
+            self.shutdown(event_loop);
+        }
+        Ok(())
+    }
+
+    /// Esc or close: with --screenshot, render one more frame to capture it, then exit.
+    fn request_exit(&mut self, event_loop: &ActiveEventLoop) {
+        let minimised = self.state.as_ref().is_some_and(|s| {
+            let size = s.window.inner_size();
+            size.width == 0 || size.height == 0
+        });
+        if self.screenshot.is_some() && !minimised {
+            self.capture_next = true;
+            self.exit_after_capture = true;
+            if let Some(state) = &self.state {
+                state.window.request_redraw();
+            }
+        } else {
+            if self.screenshot.is_some() {
+                eprintln!("vkocean: window minimised at exit; no screenshot written");
+            }
+            self.shutdown(event_loop);
+        }
+    }
+}
+
+/// Swapchain bytes to RGBA (B8G8R8A8 formats swap red and blue).
+fn bgra_to_rgba(bytes: &[u8], format: vk::Format) -> Vec<u8> {
+    let mut pixels = bytes.to_vec();
+    if matches!(
+        format,
+        vk::Format::B8G8R8A8_SRGB | vk::Format::B8G8R8A8_UNORM
+    ) {
+        for px in pixels.chunks_exact_mut(4) {
+            px.swap(0, 2);
+        }
+    }
+    pixels
+}
+
+impl ApplicationHandler for App {
+    fn resumed(&mut self, event_loop: &ActiveEventLoop) {
+        if self.state.is_some() || self.error.is_some() {
+            return;
+        }
+        match self.create(event_loop) {
+            Ok(state) => self.state = Some(state),
+            Err(e) => self.fail(event_loop, e),
+        }
+    }
+
+    fn window_event(&mut self, event_loop: &ActiveEventLoop, _id: WindowId, event: WindowEvent) {
+        match event {
+            WindowEvent::CloseRequested => self.request_exit(event_loop),
+            WindowEvent::KeyboardInput {
+                event:
+                    KeyEvent {
+                        logical_key,
+                        state: ElementState::Pressed,
+                        repeat: false,
+                        ..
+                    },
+                ..
+            } => match logical_key {
+                Key::Named(NamedKey::Escape) => self.request_exit(event_loop),
+                Key::Named(NamedKey::F12) => self.capture_next = true,
+                _ => {}
+            },
+            WindowEvent::Resized(_) => {
+                if let Some(state) = self.state.as_mut() {
+                    state.needs_recreate = true;
+                }
+            }
+            WindowEvent::RedrawRequested => {
+                if let Err(e) = self.draw(event_loop) {
+                    self.fail(event_loop, e);
+                }
+            }
+            _ => {}
+        }
+    }
+
+    fn about_to_wait(&mut self, _event_loop: &ActiveEventLoop) {
+        if let Some(state) = &self.state {
+            let size = state.window.inner_size();
+            if size.width > 0 && size.height > 0 {
+                state.window.request_redraw();
+            }
+        }
+    }
+
+    fn exiting(&mut self, event_loop: &ActiveEventLoop) {
+        // Covers exits the handler did not start itself; a no-op after `shutdown`.
+        self.shutdown(event_loop);
+    }
+}

@@ -1,0 +1,106 @@
+//! `Buffer`: a `VkBuffer` with its memory, destroyed through the deletion queue.
+
+use std::sync::Arc;
+
+use ash::vk;
+use gpu_allocator::vulkan::{Allocation, AllocationCreateDesc, AllocationScheme};
+use gpu_allocator::MemoryLocation;
+
+use super::context::Context;
+use super::error::{GpuError, GpuResult, VkResultExt};
+use super::garbage::Garbage;
+
+/// A buffer and its memory.
+pub struct Buffer {
+    ctx: Arc<Context>,
+    pub raw: vk::Buffer,
+    /// Always `Some` until `Drop` moves it into the deletion queue.
+    allocation: Option<Allocation>,
+    pub size: vk::DeviceSize,
+}
+
+impl Buffer {
+    /// Creates a named buffer. `location` picks the memory: `GpuOnly`, `CpuToGpu` (mapped, for
+    /// uploads and uniforms) or `GpuToCpu` (mapped, for readback).
+    pub fn new(
+        ctx: &Arc<Context>,
+        name: &str,
+        size: vk::DeviceSize,
+        usage: vk::BufferUsageFlags,
+        location: MemoryLocation,
+    ) -> GpuResult<Buffer> {
+        let info = vk::BufferCreateInfo::default()
+            .size(size)
+            .usage(usage)
+            .sharing_mode(vk::SharingMode::EXCLUSIVE);
+        // SAFETY: valid create info on a live device.
+        let raw = unsafe { ctx.device.create_buffer(&info, None) }.vk("vkCreateBuffer")?;
+        // SAFETY: `raw` is a live buffer of this device.
+        let requirements = unsafe { ctx.device.get_buffer_memory_requirements(raw) };
+        let allocation = ctx.allocator().allocate(&AllocationCreateDesc {
+            name,
+            requirements,
+            location,
+            linear: true,
+            allocation_scheme: AllocationScheme::GpuAllocatorManaged,
+        });
+        let allocation = match allocation {
+            Ok(a) => a,
+            Err(source) => {
+                // SAFETY: the buffer was never used or bound.
+                unsafe { ctx.device.destroy_buffer(raw, None) };
+                return Err(GpuError::Alloc {
+                    name: name.to_string(),
+                    source,
+                });
+            }
+        };
+        // SAFETY: the allocation satisfies the buffer's requirements and is bound once.
+        let bound = unsafe {
+            ctx.device
+                .bind_buffer_memory(raw, allocation.memory(), allocation.offset())
+        };
+        let buffer = Buffer {
+            ctx: ctx.clone(),
+            raw,
+            allocation: Some(allocation),
+            size,
+        };
+        bound.vk("vkBindBufferMemory")?;
+        ctx.name(raw, name);
+        Ok(buffer)
+    }
+
+    /// The mapped bytes of a host-visible buffer (`None` for `GpuOnly`).
+    pub fn mapped(&self) -> Option<&[u8]> {
+        self.allocation
+            .as_ref()
+            .and_then(|a| a.mapped_slice())
+            .map(|s| &s[..self.size as usize])
+    }
+
+    /// Copies `bytes` to the start of a host-visible buffer. Panics if the buffer is not mapped
+    /// or too small (both are programming errors).
+    pub fn write(&mut self, bytes: &[u8]) {
+        let size = self.size as usize;
+        let slice = self
+            .allocation
+            .as_mut()
+            .and_then(|a| a.mapped_slice_mut())
+            .expect("buffer is host-visible");
+        assert!(
+            bytes.len() <= size,
+            "write of {} bytes into a {size}-byte buffer",
+            bytes.len()
+        );
+        slice[..bytes.len()].copy_from_slice(bytes);
+    }
+}
+
+impl Drop for Buffer {
+    fn drop(&mut self) {
+        if let Some(allocation) = self.allocation.take() {
+            self.ctx.defer(Garbage::Buffer(self.raw, allocation));
+        }
+    }
+}

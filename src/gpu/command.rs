@@ -1,0 +1,346 @@
+//! `Recorder`: the safe face of a command buffer in the recording state. Passes outside the GPU
+//! layer record through it (no `unsafe` above src/gpu). Barriers are synchronization2 only.
+
+use ash::vk;
+
+use super::buffer::Buffer;
+use super::context::Context;
+use super::pipeline::{Pipeline, PipelineLayout};
+
+/// One side of a dependency: pipeline stages and the memory accesses made there.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Access {
+    pub stage: vk::PipelineStageFlags2,
+    pub access: vk::AccessFlags2,
+}
+
+impl Access {
+    pub const NONE: Access = Access {
+        stage: vk::PipelineStageFlags2::NONE,
+        access: vk::AccessFlags2::NONE,
+    };
+    pub const COLOUR_WRITE: Access = Access {
+        stage: vk::PipelineStageFlags2::COLOR_ATTACHMENT_OUTPUT,
+        access: vk::AccessFlags2::COLOR_ATTACHMENT_WRITE,
+    };
+    pub const COLOUR_RW: Access = Access {
+        stage: vk::PipelineStageFlags2::COLOR_ATTACHMENT_OUTPUT,
+        access: vk::AccessFlags2::from_raw(
+            vk::AccessFlags2::COLOR_ATTACHMENT_WRITE.as_raw()
+                | vk::AccessFlags2::COLOR_ATTACHMENT_READ.as_raw(),
+        ),
+    };
+    pub const DEPTH_RW: Access = Access {
+        stage: vk::PipelineStageFlags2::from_raw(
+            vk::PipelineStageFlags2::EARLY_FRAGMENT_TESTS.as_raw()
+                | vk::PipelineStageFlags2::LATE_FRAGMENT_TESTS.as_raw(),
+        ),
+        access: vk::AccessFlags2::from_raw(
+            vk::AccessFlags2::DEPTH_STENCIL_ATTACHMENT_WRITE.as_raw()
+                | vk::AccessFlags2::DEPTH_STENCIL_ATTACHMENT_READ.as_raw(),
+        ),
+    };
+    pub const FRAGMENT_SAMPLED: Access = Access {
+        stage: vk::PipelineStageFlags2::FRAGMENT_SHADER,
+        access: vk::AccessFlags2::SHADER_SAMPLED_READ,
+    };
+    pub const COPY_READ: Access = Access {
+        stage: vk::PipelineStageFlags2::COPY,
+        access: vk::AccessFlags2::TRANSFER_READ,
+    };
+    pub const COPY_WRITE: Access = Access {
+        stage: vk::PipelineStageFlags2::COPY,
+        access: vk::AccessFlags2::TRANSFER_WRITE,
+    };
+    pub const HOST_READ: Access = Access {
+        stage: vk::PipelineStageFlags2::HOST,
+        access: vk::AccessFlags2::HOST_READ,
+    };
+
+    /// Union of two scopes.
+    pub const fn or(self, other: Access) -> Access {
+        Access {
+            stage: vk::PipelineStageFlags2::from_raw(self.stage.as_raw() | other.stage.as_raw()),
+            access: vk::AccessFlags2::from_raw(self.access.as_raw() | other.access.as_raw()),
+        }
+    }
+}
+
+/// An image layout transition / dependency.
+#[derive(Clone, Copy, Debug)]
+pub struct ImageBarrier {
+    pub image: vk::Image,
+    pub range: vk::ImageSubresourceRange,
+    pub old_layout: vk::ImageLayout,
+    pub new_layout: vk::ImageLayout,
+    pub src: Access,
+    pub dst: Access,
+}
+
+/// A colour or depth attachment of a rendering scope.
+#[derive(Clone, Copy)]
+pub struct Attachment {
+    pub view: vk::ImageView,
+    pub layout: vk::ImageLayout,
+    /// `Some(clear value)` clears, `None` loads the previous contents.
+    pub clear: Option<vk::ClearValue>,
+}
+
+/// A command buffer in the recording state.
+pub struct Recorder<'a> {
+    ctx: &'a Context,
+    cmd: vk::CommandBuffer,
+}
+
+impl<'a> Recorder<'a> {
+    /// Wraps `cmd`. Invariant: `cmd` is in the recording state for the recorder's lifetime
+    /// (only `Frames` and one-shot helpers in this layer create recorders).
+    pub(crate) fn new(ctx: &'a Context, cmd: vk::CommandBuffer) -> Self {
+        Recorder { ctx, cmd }
+    }
+
+    pub fn ctx(&self) -> &Context {
+        self.ctx
+    }
+
+    pub fn raw(&self) -> vk::CommandBuffer {
+        self.cmd
+    }
+
+    /// Opens a debug label (RenderDoc, validation messages).
+    pub fn begin_label(&self, name: &str) {
+        self.ctx.debug.begin_label(self.cmd, name);
+    }
+
+    pub fn end_label(&self) {
+        self.ctx.debug.end_label(self.cmd);
+    }
+
+    /// Records one `vkCmdPipelineBarrier2` with the given image and buffer barriers.
+    pub fn barrier(&self, images: &[ImageBarrier], buffers: &[(vk::Buffer, Access, Access)]) {
+        let image_barriers: Vec<_> = images
+            .iter()
+            .map(|b| {
+                vk::ImageMemoryBarrier2::default()
+                    .src_stage_mask(b.src.stage)
+                    .src_access_mask(b.src.access)
+                    .dst_stage_mask(b.dst.stage)
+                    .dst_access_mask(b.dst.access)
+                    .old_layout(b.old_layout)
+                    .new_layout(b.new_layout)
+                    .src_queue_family_index(vk::QUEUE_FAMILY_IGNORED)
+                    .dst_queue_family_index(vk::QUEUE_FAMILY_IGNORED)
+                    .image(b.image)
+                    .subresource_range(b.range)
+            })
+            .collect();
+        let buffer_barriers: Vec<_> = buffers
+            .iter()
+            .map(|(buffer, src, dst)| {
+                vk::BufferMemoryBarrier2::default()
+                    .src_stage_mask(src.stage)
+                    .src_access_mask(src.access)
+                    .dst_stage_mask(dst.stage)
+                    .dst_access_mask(dst.access)
+                    .src_queue_family_index(vk::QUEUE_FAMILY_IGNORED)
+                    .dst_queue_family_index(vk::QUEUE_FAMILY_IGNORED)
+                    .buffer(*buffer)
+                    .offset(0)
+                    .size(vk::WHOLE_SIZE)
+            })
+            .collect();
+        let info = vk::DependencyInfo::default()
+            .image_memory_barriers(&image_barriers)
+            .buffer_memory_barriers(&buffer_barriers);
+        // SAFETY: recording-state invariant; the handles are live (owned by the caller's passes).
+        unsafe { self.ctx.device.cmd_pipeline_barrier2(self.cmd, &info) };
+    }
+
+    /// Begins dynamic rendering over `extent` and sets the viewport and scissor to it.
+    pub fn begin_rendering(
+        &self,
+        extent: vk::Extent2D,
+        colour: &[Attachment],
+        depth: Option<Attachment>,
+    ) {
+        let to_info = |a: &Attachment| {
+            vk::RenderingAttachmentInfo::default()
+                .image_view(a.view)
+                .image_layout(a.layout)
+                .load_op(if a.clear.is_some() {
+                    vk::AttachmentLoadOp::CLEAR
+                } else {
+                    vk::AttachmentLoadOp::LOAD
+                })
+                .store_op(vk::AttachmentStoreOp::STORE)
+                .clear_value(a.clear.unwrap_or_default())
+        };
+        let colour_infos: Vec<_> = colour.iter().map(to_info).collect();
+        let depth_info = depth.as_ref().map(to_info);
+        let area = vk::Rect2D {
+            offset: vk::Offset2D::default(),
+            extent,
+        };
+        let mut info = vk::RenderingInfo::default()
+            .render_area(area)
+            .layer_count(1)
+            .color_attachments(&colour_infos);
+        if let Some(d) = depth_info.as_ref() {
+            info = info.depth_attachment(d);
+        }
+        let viewport = vk::Viewport {
+            x: 0.0,
+            y: 0.0,
+            width: extent.width as f32,
+            height: extent.height as f32,
+            min_depth: 0.0,
+            max_depth: 1.0,
+        };
+        // SAFETY: recording-state invariant; the views are live and in the given layouts.
+        unsafe {
+            self.ctx.device.cmd_begin_rendering(self.cmd, &info);
+            self.ctx.device.cmd_set_viewport(self.cmd, 0, &[viewport]);
+            self.ctx.device.cmd_set_scissor(self.cmd, 0, &[area]);
+        }
+    }
+
+    pub fn end_rendering(&self) {
+        // SAFETY: recording-state invariant; paired with `begin_rendering`.
+        unsafe { self.ctx.device.cmd_end_rendering(self.cmd) };
+    }
+
+    pub fn bind_pipeline(&self, pipeline: &Pipeline) {
+        // SAFETY: recording-state invariant; the pipeline is live.
+        unsafe {
+            self.ctx
+                .device
+                .cmd_bind_pipeline(self.cmd, pipeline.bind_point, pipeline.raw)
+        };
+    }
+
+    /// Binds `sets` starting at set 0 for `pipeline`'s bind point.
+    pub fn bind_sets(
+        &self,
+        pipeline: &Pipeline,
+        layout: &PipelineLayout,
+        sets: &[vk::DescriptorSet],
+    ) {
+        // SAFETY: recording-state invariant; the sets were written before recording.
+        unsafe {
+            self.ctx.device.cmd_bind_descriptor_sets(
+                self.cmd,
+                pipeline.bind_point,
+                layout.raw,
+                0,
+                sets,
+                &[],
+            )
+        };
+    }
+
+    /// Pushes `data` at offset 0 of `layout`'s push-constant range.
+    pub fn push_constants<T: bytemuck::Pod>(&self, layout: &PipelineLayout, data: &T) {
+        // SAFETY: recording-state invariant; the layout declares a range of at least this size.
+        unsafe {
+            self.ctx.device.cmd_push_constants(
+                self.cmd,
+                layout.raw,
+                layout.push_stages,
+                0,
+                bytemuck::bytes_of(data),
+            )
+        };
+    }
+
+    pub fn draw(&self, vertices: u32, instances: u32) {
+        // SAFETY: recording-state invariant; inside a rendering scope with a bound pipeline.
+        unsafe {
+            self.ctx
+                .device
+                .cmd_draw(self.cmd, vertices, instances, 0, 0)
+        };
+    }
+
+    pub fn dispatch(&self, x: u32, y: u32, z: u32) {
+        // SAFETY: recording-state invariant; a compute pipeline is bound.
+        unsafe { self.ctx.device.cmd_dispatch(self.cmd, x, y, z) };
+    }
+
+    /// Copies layer 0 of a colour image (in TRANSFER_SRC_OPTIMAL) into a tightly packed buffer.
+    pub fn copy_image_to_buffer(&self, image: vk::Image, extent: vk::Extent2D, buffer: &Buffer) {
+        let region = vk::BufferImageCopy {
+            buffer_offset: 0,
+            buffer_row_length: 0,
+            buffer_image_height: 0,
+            image_subresource: vk::ImageSubresourceLayers {
+                aspect_mask: vk::ImageAspectFlags::COLOR,
+                mip_level: 0,
+                base_array_layer: 0,
+                layer_count: 1,
+            },
+            image_offset: vk::Offset3D::default(),
+            image_extent: vk::Extent3D {
+                width: extent.width,
+                height: extent.height,
+                depth: 1,
+            },
+        };
+        // SAFETY: recording-state invariant; the image is in TRANSFER_SRC_OPTIMAL (caller's
+        // barrier) and the buffer is large enough (checked by the caller's sizing).
+        unsafe {
+            self.ctx.device.cmd_copy_image_to_buffer(
+                self.cmd,
+                image,
+                vk::ImageLayout::TRANSFER_SRC_OPTIMAL,
+                buffer.raw,
+                &[region],
+            )
+        };
+    }
+
+    /// Fills a whole buffer with a 32-bit value.
+    pub fn fill_buffer(&self, buffer: &Buffer, value: u32) {
+        // SAFETY: recording-state invariant; the buffer has TRANSFER_DST usage.
+        unsafe {
+            self.ctx
+                .device
+                .cmd_fill_buffer(self.cmd, buffer.raw, 0, vk::WHOLE_SIZE, value)
+        };
+    }
+
+    /// Copies `size` bytes from the start of `src` to the start of `dst`.
+    pub fn copy_buffer(&self, src: &Buffer, dst: &Buffer, size: vk::DeviceSize) {
+        let region = vk::BufferCopy {
+            src_offset: 0,
+            dst_offset: 0,
+            size,
+        };
+        // SAFETY: recording-state invariant; both buffers hold at least `size` bytes.
+        unsafe {
+            self.ctx
+                .device
+                .cmd_copy_buffer(self.cmd, src.raw, dst.raw, &[region])
+        };
+    }
+
+    pub(crate) fn reset_queries(&self, pool: vk::QueryPool, count: u32) {
+        // SAFETY: recording-state invariant; outside any rendering scope.
+        unsafe {
+            self.ctx
+                .device
+                .cmd_reset_query_pool(self.cmd, pool, 0, count)
+        };
+    }
+
+    pub(crate) fn write_timestamp(&self, pool: vk::QueryPool, query: u32) {
+        // SAFETY: recording-state invariant; the query was reset earlier in this command buffer.
+        unsafe {
+            self.ctx.device.cmd_write_timestamp2(
+                self.cmd,
+                vk::PipelineStageFlags2::ALL_COMMANDS,
+                pool,
+                query,
+            )
+        };
+    }
+}

@@ -1,0 +1,721 @@
+//! The Vulkan context: loader, instance (+ validation and the debug messenger), physical-device
+//! choice, the logical device with the features vkocean needs, the graphics and compute queues,
+//! the memory allocator, the frame timeline semaphore and the deferred-deletion queue.
+//!
+//! Every other GPU object holds an `Arc<Context>`; the context is destroyed last.
+
+use std::ffi::{c_char, CStr};
+use std::mem::ManuallyDrop;
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::{Arc, Mutex};
+
+use ash::vk;
+use gpu_allocator::vulkan::{Allocator, AllocatorCreateDesc};
+use gpu_allocator::{AllocationSizes, AllocatorDebugSettings};
+use raw_window_handle::{RawDisplayHandle, RawWindowHandle};
+
+use super::debug::{self, DebugNames, MessageCounters};
+use super::error::{GpuError, GpuResult, VkResultExt};
+use super::garbage::Garbage;
+
+const VALIDATION_LAYER: &CStr = c"VK_LAYER_KHRONOS_validation";
+/// Environment variable naming the Vulkan loader library to load instead of `libvulkan.so.1`.
+pub const LOADER_ENV: &str = "VKOCEAN_VULKAN_LIBRARY";
+
+/// What the caller wants from the context.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct ContextDesc {
+    /// Enable VK_LAYER_KHRONOS_validation with synchronization validation.
+    pub validation: bool,
+    /// `--gpu N`: index into the device list (`--list-gpus`); `None` picks the best device.
+    pub gpu_index: Option<usize>,
+    /// Window to present to (windowed frontend); `None` for headless.
+    pub window: Option<(RawDisplayHandle, RawWindowHandle)>,
+}
+
+/// A queue and the family it belongs to.
+#[derive(Clone, Copy, Debug)]
+pub struct Queue {
+    pub family: u32,
+    pub raw: vk::Queue,
+}
+
+/// Facts about the chosen device that the rest of the program reports or respects.
+#[derive(Clone, Debug)]
+pub struct DeviceInfo {
+    pub name: String,
+    /// Driver name and version, e.g. "llvmpipe: Mesa 22.3.6 (LLVM 15.0.6)".
+    pub driver: String,
+    pub device_type: vk::PhysicalDeviceType,
+    pub api_version: u32,
+    pub limits: vk::PhysicalDeviceLimits,
+    /// Valid bits of timestamps on the graphics queue family (0: no timestamps).
+    pub timestamp_valid_bits: u32,
+    pub fill_mode_non_solid: bool,
+    pub sampler_anisotropy: bool,
+}
+
+/// One line of `--list-gpus`.
+#[derive(Clone, Debug)]
+pub struct DeviceSummary {
+    pub index: usize,
+    pub name: String,
+    pub device_type: vk::PhysicalDeviceType,
+    pub api_version: u32,
+    pub driver: String,
+    /// `None` when usable, else why not.
+    pub unusable: Option<String>,
+}
+
+impl std::fmt::Display for DeviceSummary {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "{}: {} ({}, Vulkan {}.{}.{}, {})",
+            self.index,
+            self.name,
+            type_name(self.device_type),
+            vk::api_version_major(self.api_version),
+            vk::api_version_minor(self.api_version),
+            vk::api_version_patch(self.api_version),
+            self.driver
+        )?;
+        match &self.unusable {
+            None => Ok(()),
+            Some(why) => write!(f, " [unusable: {why}]"),
+        }
+    }
+}
+
+/// The device-wide state every GPU object refers to.
+pub struct Context {
+    /// Keeps the loader library loaded; never used after creation.
+    _entry: ash::Entry,
+    pub instance: ash::Instance,
+    messenger: Option<(ash::ext::debug_utils::Instance, vk::DebugUtilsMessengerEXT)>,
+    /// Object names and labels.
+    pub debug: DebugNames,
+    /// Surface functions and the window's surface (windowed frontend only).
+    pub surface: Option<(ash::khr::surface::Instance, vk::SurfaceKHR)>,
+    pub physical: vk::PhysicalDevice,
+    pub device: ash::Device,
+    pub info: DeviceInfo,
+    /// Graphics queue; also presents in the windowed frontend.
+    pub graphics: Queue,
+    /// Compute queue: a family of its own where the device has one, else the graphics queue.
+    pub compute: Queue,
+    /// The graphics timeline: frame f's graphics submission signals f + 1.
+    pub frame_timeline: vk::Semaphore,
+    allocator: ManuallyDrop<Mutex<Allocator>>,
+    /// Objects dropped by their owners, destroyed once `frame_timeline` passes their tag.
+    garbage: Mutex<Vec<(u64, Garbage)>>,
+    /// Timeline value the next graphics submission will signal (tag for new garbage).
+    pending_value: AtomicU64,
+    /// Validation message counts; dropped after the instance.
+    counters: Arc<MessageCounters>,
+}
+
+/// Loads the Vulkan loader (or the library named by `VKOCEAN_VULKAN_LIBRARY`).
+fn load_entry() -> GpuResult<ash::Entry> {
+    let library = std::env::var(LOADER_ENV).unwrap_or_else(|_| "libvulkan.so.1".to_string());
+    // SAFETY: loading the Vulkan loader runs its initialisers; it is the library's documented use.
+    let entry = unsafe {
+        if std::env::var_os(LOADER_ENV).is_some() {
+            ash::Entry::load_from(&library)
+        } else {
+            ash::Entry::load()
+        }
+    };
+    entry.map_err(|e| GpuError::LoaderMissing {
+        library,
+        reason: e.to_string(),
+    })
+}
+
+/// Creates an instance; returns it with the debug-utils availability.
+fn create_instance(
+    entry: &ash::Entry,
+    validation: bool,
+    display: Option<RawDisplayHandle>,
+    counters: &Arc<MessageCounters>,
+) -> GpuResult<(ash::Instance, bool)> {
+    // SAFETY: enumerating properties only reads loader state.
+    let available_ext = unsafe { entry.enumerate_instance_extension_properties(None) }
+        .vk("vkEnumerateInstanceExtensionProperties")?;
+    let has_ext = |name: &CStr| {
+        available_ext
+            .iter()
+            .any(|e| e.extension_name_as_c_str() == Ok(name))
+    };
+
+    let mut layers: Vec<*const c_char> = Vec::new();
+    let mut extensions: Vec<*const c_char> = Vec::new();
+    if validation {
+        // SAFETY: as above.
+        let available_layers = unsafe { entry.enumerate_instance_layer_properties() }
+            .vk("vkEnumerateInstanceLayerProperties")?;
+        if !available_layers
+            .iter()
+            .any(|l| l.layer_name_as_c_str() == Ok(VALIDATION_LAYER))
+        {
+            return Err(GpuError::ValidationLayerMissing);
+        }
+        layers.push(VALIDATION_LAYER.as_ptr());
+        extensions.push(ash::ext::validation_features::NAME.as_ptr());
+    }
+    let debug_utils = validation || has_ext(ash::ext::debug_utils::NAME);
+    if debug_utils {
+        extensions.push(ash::ext::debug_utils::NAME.as_ptr());
+    }
+    if let Some(display) = display {
+        let required =
+            ash_window::enumerate_required_extensions(display).map_err(|result| GpuError::Vk {
+                call: "ash_window::enumerate_required_extensions",
+                result,
+            })?;
+        extensions.extend_from_slice(required);
+    }
+
+    let app_name = c"vkocean";
+    let app = vk::ApplicationInfo::default()
+        .application_name(app_name)
+        .application_version(vk::make_api_version(0, 0, 1, 0))
+        .engine_name(app_name)
+        .api_version(vk::API_VERSION_1_3);
+    let enabled_validation = [vk::ValidationFeatureEnableEXT::SYNCHRONIZATION_VALIDATION];
+    let mut validation_features =
+        vk::ValidationFeaturesEXT::default().enabled_validation_features(&enabled_validation);
+    let mut messenger_info = debug::messenger_info(counters);
+    let mut info = vk::InstanceCreateInfo::default()
+        .application_info(&app)
+        .enabled_layer_names(&layers)
+        .enabled_extension_names(&extensions);
+    if debug_utils {
+        info = info.push_next(&mut messenger_info);
+    }
+    if validation {
+        info = info.push_next(&mut validation_features);
+    }
+    // SAFETY: every pointer in `info` refers to locals that outlive the call.
+    let instance =
+        unsafe { entry.create_instance(&info, None) }.map_err(|result| match result {
+            vk::Result::ERROR_INCOMPATIBLE_DRIVER => GpuError::NoDevice,
+            vk::Result::ERROR_LAYER_NOT_PRESENT => GpuError::ValidationLayerMissing,
+            result => GpuError::Vk {
+                call: "vkCreateInstance",
+                result,
+            },
+        })?;
+    Ok((instance, debug_utils))
+}
+
+fn type_name(t: vk::PhysicalDeviceType) -> &'static str {
+    match t {
+        vk::PhysicalDeviceType::DISCRETE_GPU => "discrete",
+        vk::PhysicalDeviceType::INTEGRATED_GPU => "integrated",
+        vk::PhysicalDeviceType::VIRTUAL_GPU => "virtual",
+        vk::PhysicalDeviceType::CPU => "cpu",
+        _ => "other",
+    }
+}
+
+/// discrete > integrated > virtual > cpu > other.
+fn type_rank(t: vk::PhysicalDeviceType) -> u32 {
+    match t {
+        vk::PhysicalDeviceType::DISCRETE_GPU => 4,
+        vk::PhysicalDeviceType::INTEGRATED_GPU => 3,
+        vk::PhysicalDeviceType::VIRTUAL_GPU => 2,
+        vk::PhysicalDeviceType::CPU => 1,
+        _ => 0,
+    }
+}
+
+/// What one physical device offers, as far as vkocean cares.
+struct Candidate {
+    physical: vk::PhysicalDevice,
+    info: DeviceInfo,
+    graphics_family: u32,
+    compute_family: u32,
+}
+
+fn driver_string(instance: &ash::Instance, physical: vk::PhysicalDevice) -> String {
+    let mut driver = vk::PhysicalDeviceDriverProperties::default();
+    let mut props2 = vk::PhysicalDeviceProperties2::default().push_next(&mut driver);
+    // SAFETY: `physical` belongs to `instance`; the chain points to locals.
+    unsafe { instance.get_physical_device_properties2(physical, &mut props2) };
+    let name = driver
+        .driver_name_as_c_str()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let detail = driver
+        .driver_info_as_c_str()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    match (name.is_empty(), detail.is_empty()) {
+        (false, false) => format!("{name}: {detail}"),
+        (false, true) => name,
+        _ => "unknown driver".to_string(),
+    }
+}
+
+/// Inspects a device; `Err(reason)` when vkocean cannot run on it.
+fn inspect(
+    instance: &ash::Instance,
+    physical: vk::PhysicalDevice,
+    surface: Option<&(ash::khr::surface::Instance, vk::SurfaceKHR)>,
+) -> (DeviceSummaryParts, Result<Candidate, String>) {
+    // SAFETY: `physical` was enumerated from `instance`.
+    let props = unsafe { instance.get_physical_device_properties(physical) };
+    let name = props
+        .device_name_as_c_str()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let driver = driver_string(instance, physical);
+    let parts = DeviceSummaryParts {
+        name: name.clone(),
+        device_type: props.device_type,
+        api_version: props.api_version,
+        driver: driver.clone(),
+    };
+    if props.api_version < vk::API_VERSION_1_3 {
+        return (parts, Err("needs Vulkan 1.3".to_string()));
+    }
+
+    let mut f12 = vk::PhysicalDeviceVulkan12Features::default();
+    let mut f13 = vk::PhysicalDeviceVulkan13Features::default();
+    let mut f2 = vk::PhysicalDeviceFeatures2::default()
+        .push_next(&mut f12)
+        .push_next(&mut f13);
+    // SAFETY: as above; the chain points to locals.
+    unsafe { instance.get_physical_device_features2(physical, &mut f2) };
+    let f = f2.features;
+    let required = [
+        ("timelineSemaphore", f12.timeline_semaphore),
+        ("synchronization2", f13.synchronization2),
+        ("dynamicRendering", f13.dynamic_rendering),
+        ("maintenance4", f13.maintenance4),
+        ("tessellationShader", f.tessellation_shader),
+        ("shaderClipDistance", f.shader_clip_distance),
+    ];
+    let missing: Vec<&str> = required
+        .iter()
+        .filter(|(_, v)| *v == vk::FALSE)
+        .map(|(n, _)| *n)
+        .collect();
+    if !missing.is_empty() {
+        return (
+            parts,
+            Err(format!("missing Vulkan feature {}", missing.join(", "))),
+        );
+    }
+
+    // SAFETY: as above.
+    let families = unsafe { instance.get_physical_device_queue_family_properties(physical) };
+    let presents = |i: u32| match surface {
+        None => true,
+        // SAFETY: the surface belongs to this instance; `i` is a valid family index.
+        Some((fns, surface)) => {
+            unsafe { fns.get_physical_device_surface_support(physical, i, *surface) }
+                .unwrap_or(false)
+        }
+    };
+    let graphics_family = families
+        .iter()
+        .enumerate()
+        .position(|(i, q)| q.queue_flags.contains(vk::QueueFlags::GRAPHICS) && presents(i as u32));
+    let Some(graphics_family) = graphics_family.map(|i| i as u32) else {
+        let what = if surface.is_some() {
+            "graphics queue that can present to the window"
+        } else {
+            "graphics queue"
+        };
+        return (parts, Err(format!("no {what}")));
+    };
+    let compute_family = families
+        .iter()
+        .position(|q| {
+            q.queue_flags.contains(vk::QueueFlags::COMPUTE)
+                && !q.queue_flags.contains(vk::QueueFlags::GRAPHICS)
+        })
+        .map(|i| i as u32)
+        .unwrap_or(graphics_family);
+
+    let info = DeviceInfo {
+        name,
+        driver,
+        device_type: props.device_type,
+        api_version: props.api_version,
+        limits: props.limits,
+        timestamp_valid_bits: families[graphics_family as usize].timestamp_valid_bits,
+        fill_mode_non_solid: f.fill_mode_non_solid == vk::TRUE,
+        sampler_anisotropy: f.sampler_anisotropy == vk::TRUE,
+    };
+    (
+        parts,
+        Ok(Candidate {
+            physical,
+            info,
+            graphics_family,
+            compute_family,
+        }),
+    )
+}
+
+struct DeviceSummaryParts {
+    name: String,
+    device_type: vk::PhysicalDeviceType,
+    api_version: u32,
+    driver: String,
+}
+
+/// Lists every Vulkan device for `--list-gpus`, marking the ones vkocean cannot use.
+pub fn list_devices() -> GpuResult<Vec<DeviceSummary>> {
+    let entry = load_entry()?;
+    let counters = Arc::new(MessageCounters::default());
+    let (instance, _) = create_instance(&entry, false, None, &counters)?;
+    // SAFETY: the instance is live; it is destroyed below, after its last use.
+    let physicals = unsafe { instance.enumerate_physical_devices() };
+    let list = physicals.map(|physicals| {
+        physicals
+            .into_iter()
+            .enumerate()
+            .map(|(index, p)| {
+                let (parts, usable) = inspect(&instance, p, None);
+                DeviceSummary {
+                    index,
+                    name: parts.name,
+                    device_type: parts.device_type,
+                    api_version: parts.api_version,
+                    driver: parts.driver,
+                    unusable: usable.err(),
+                }
+            })
+            .collect()
+    });
+    // SAFETY: no object created from this instance is alive.
+    unsafe { instance.destroy_instance(None) };
+    list.vk("vkEnumeratePhysicalDevices")
+}
+
+impl Context {
+    /// Creates the instance, picks the device (`desc.gpu_index` or the best one), creates the
+    /// device, queues, allocator and frame timeline.
+    pub fn new(desc: &ContextDesc) -> GpuResult<Arc<Context>> {
+        let entry = load_entry()?;
+        let counters = Arc::new(MessageCounters::default());
+        let (instance, debug_utils) =
+            create_instance(&entry, desc.validation, desc.window.map(|w| w.0), &counters)?;
+        // From here on, partial state is torn down by `Partial`'s Drop on early return.
+        let mut partial = Partial {
+            instance: Some(instance.clone()),
+            messenger: None,
+            surface: None,
+            device: None,
+        };
+
+        if debug_utils {
+            let fns = ash::ext::debug_utils::Instance::new(&entry, &instance);
+            let info = debug::messenger_info(&counters);
+            // SAFETY: `info` is valid; `counters` outlives the messenger (owned by Context).
+            let messenger = unsafe { fns.create_debug_utils_messenger(&info, None) }
+                .vk("vkCreateDebugUtilsMessengerEXT")?;
+            partial.messenger = Some((fns, messenger));
+        }
+        if let Some((display, window)) = desc.window {
+            // SAFETY: the handles come from a live winit window that outlives the context
+            // (the windowed frontend drops the context first).
+            let surface =
+                unsafe { ash_window::create_surface(&entry, &instance, display, window, None) }
+                    .vk("vkCreateXlibSurfaceKHR")?;
+            partial.surface = Some((ash::khr::surface::Instance::new(&entry, &instance), surface));
+        }
+
+        // SAFETY: the instance is live.
+        let physicals =
+            unsafe { instance.enumerate_physical_devices() }.vk("vkEnumeratePhysicalDevices")?;
+        if physicals.is_empty() {
+            return Err(GpuError::NoDevice);
+        }
+        let inspected: Vec<_> = physicals
+            .iter()
+            .map(|&p| inspect(&instance, p, partial.surface.as_ref()))
+            .collect();
+        let chosen = match desc.gpu_index {
+            Some(index) => {
+                let count = inspected.len();
+                let (parts, usable) = inspected
+                    .into_iter()
+                    .nth(index)
+                    .ok_or(GpuError::BadGpuIndex { index, count })?;
+                usable.map_err(|why| {
+                    GpuError::NoSuitableDevice(format!("device {index} ({}): {why}", parts.name))
+                })?
+            }
+            None => {
+                let mut reasons = Vec::new();
+                let mut best: Option<Candidate> = None;
+                for (i, (parts, usable)) in inspected.into_iter().enumerate() {
+                    match usable {
+                        Ok(c) => {
+                            if best.as_ref().is_none_or(|b| {
+                                type_rank(c.info.device_type) > type_rank(b.info.device_type)
+                            }) {
+                                best = Some(c);
+                            }
+                        }
+                        Err(why) => reasons.push(format!("device {i} ({}): {why}", parts.name)),
+                    }
+                }
+                best.ok_or_else(|| GpuError::NoSuitableDevice(reasons.join("; ")))?
+            }
+        };
+        log::info!(
+            "device: {} ({}, {})",
+            chosen.info.name,
+            type_name(chosen.info.device_type),
+            chosen.info.driver
+        );
+
+        let device = create_device(&instance, &chosen, desc.window.is_some())?;
+        partial.device = Some(device.clone());
+
+        // SAFETY: the families and index 0 were requested in `create_device`.
+        let graphics = Queue {
+            family: chosen.graphics_family,
+            raw: unsafe { device.get_device_queue(chosen.graphics_family, 0) },
+        };
+        let compute = if chosen.compute_family == chosen.graphics_family {
+            graphics
+        } else {
+            // SAFETY: as above.
+            Queue {
+                family: chosen.compute_family,
+                raw: unsafe { device.get_device_queue(chosen.compute_family, 0) },
+            }
+        };
+
+        let allocator = Allocator::new(&AllocatorCreateDesc {
+            instance: instance.clone(),
+            device: device.clone(),
+            physical_device: chosen.physical,
+            debug_settings: AllocatorDebugSettings::default(),
+            buffer_device_address: false,
+            // Smaller blocks than the 256 MiB default: lavapipe's "device memory" is host RAM.
+            allocation_sizes: AllocationSizes::new(64 << 20, 64 << 20),
+        })
+        .map_err(|source| GpuError::Alloc {
+            name: "allocator".into(),
+            source,
+        })?;
+
+        let mut timeline_type = vk::SemaphoreTypeCreateInfo::default()
+            .semaphore_type(vk::SemaphoreType::TIMELINE)
+            .initial_value(0);
+        let sem_info = vk::SemaphoreCreateInfo::default().push_next(&mut timeline_type);
+        // SAFETY: the device is live; the info chain points to locals.
+        let frame_timeline =
+            unsafe { device.create_semaphore(&sem_info, None) }.vk("vkCreateSemaphore")?;
+
+        let debug = DebugNames {
+            device_fns: debug_utils.then(|| ash::ext::debug_utils::Device::new(&instance, &device)),
+        };
+        // Everything is owned by the context now.
+        let messenger = partial.messenger.take();
+        let surface = partial.surface.take();
+        partial.device = None;
+        partial.instance = None;
+
+        let ctx = Context {
+            _entry: entry,
+            instance,
+            messenger,
+            debug,
+            surface,
+            physical: chosen.physical,
+            device,
+            info: chosen.info,
+            graphics,
+            compute,
+            frame_timeline,
+            allocator: ManuallyDrop::new(Mutex::new(allocator)),
+            garbage: Mutex::new(Vec::new()),
+            pending_value: AtomicU64::new(1),
+            counters,
+        };
+        ctx.name(ctx.frame_timeline, "frame timeline (graphics)");
+        ctx.name(ctx.graphics.raw, "graphics queue");
+        if ctx.compute.family != ctx.graphics.family {
+            ctx.name(ctx.compute.raw, "compute queue");
+        }
+        Ok(Arc::new(ctx))
+    }
+
+    /// Names a Vulkan object (see [`DebugNames::name`]).
+    pub fn name<H: vk::Handle>(&self, handle: H, name: &str) {
+        self.debug.name(handle, name);
+    }
+
+    /// Validation message counters (shared; still readable after the context is dropped).
+    pub fn counters(&self) -> Arc<MessageCounters> {
+        self.counters.clone()
+    }
+
+    /// The memory allocator.
+    pub(crate) fn allocator(&self) -> std::sync::MutexGuard<'_, Allocator> {
+        self.allocator
+            .lock()
+            .unwrap_or_else(|poisoned| poisoned.into_inner())
+    }
+
+    /// Hands an object to the deletion queue: it is destroyed once the GPU has finished every
+    /// submission up to the one being recorded now.
+    pub(crate) fn defer(&self, garbage: Garbage) {
+        let tag = self.pending_value.load(Ordering::Acquire);
+        self.garbage
+            .lock()
+            .unwrap_or_else(|p| p.into_inner())
+            .push((tag, garbage));
+    }
+
+    /// Sets the timeline value the next graphics submission signals (called by `Frames`).
+    pub(crate) fn set_pending_value(&self, value: u64) {
+        self.pending_value.store(value, Ordering::Release);
+    }
+
+    /// Current value of the frame timeline.
+    pub fn completed_value(&self) -> GpuResult<u64> {
+        // SAFETY: the semaphore is a live timeline semaphore of this device.
+        unsafe { self.device.get_semaphore_counter_value(self.frame_timeline) }
+            .vk("vkGetSemaphoreCounterValue")
+    }
+
+    /// Destroys the garbage whose frames the GPU has finished.
+    pub(crate) fn collect_garbage(&self) -> GpuResult<()> {
+        let done = self.completed_value()?;
+        let ready: Vec<Garbage> = {
+            let mut list = self.garbage.lock().unwrap_or_else(|p| p.into_inner());
+            let (ready, keep): (Vec<_>, Vec<_>) = list.drain(..).partition(|(tag, _)| *tag <= done);
+            *list = keep;
+            ready.into_iter().map(|(_, g)| g).collect()
+        };
+        for g in ready {
+            g.destroy(self);
+        }
+        Ok(())
+    }
+
+    /// Waits until the device is idle (resize, shutdown).
+    pub fn wait_idle(&self) -> GpuResult<()> {
+        // SAFETY: the device is live; no other thread submits.
+        unsafe { self.device.device_wait_idle() }.vk("vkDeviceWaitIdle")
+    }
+}
+
+fn create_device(
+    instance: &ash::Instance,
+    chosen: &Candidate,
+    swapchain: bool,
+) -> GpuResult<ash::Device> {
+    let priorities = [1.0f32];
+    let mut queue_infos = vec![vk::DeviceQueueCreateInfo::default()
+        .queue_family_index(chosen.graphics_family)
+        .queue_priorities(&priorities)];
+    if chosen.compute_family != chosen.graphics_family {
+        queue_infos.push(
+            vk::DeviceQueueCreateInfo::default()
+                .queue_family_index(chosen.compute_family)
+                .queue_priorities(&priorities),
+        );
+    }
+    let features = vk::PhysicalDeviceFeatures::default()
+        .tessellation_shader(true)
+        .shader_clip_distance(true)
+        .fill_mode_non_solid(chosen.info.fill_mode_non_solid)
+        .sampler_anisotropy(chosen.info.sampler_anisotropy);
+    let mut f12 = vk::PhysicalDeviceVulkan12Features::default().timeline_semaphore(true);
+    let mut f13 = vk::PhysicalDeviceVulkan13Features::default()
+        .synchronization2(true)
+        .dynamic_rendering(true)
+        .maintenance4(true);
+    let extensions: Vec<*const c_char> = if swapchain {
+        vec![ash::khr::swapchain::NAME.as_ptr()]
+    } else {
+        vec![]
+    };
+    let info = vk::DeviceCreateInfo::default()
+        .queue_create_infos(&queue_infos)
+        .enabled_features(&features)
+        .enabled_extension_names(&extensions)
+        .push_next(&mut f12)
+        .push_next(&mut f13);
+    // SAFETY: the features were checked as supported in `inspect`; pointers refer to locals.
+    unsafe { instance.create_device(chosen.physical, &info, None) }.map_err(|result| match result {
+        vk::Result::ERROR_FEATURE_NOT_PRESENT => GpuError::NoSuitableDevice(format!(
+            "{}: a required feature is not present",
+            chosen.info.name
+        )),
+        result => GpuError::Vk {
+            call: "vkCreateDevice",
+            result,
+        },
+    })
+}
+
+/// Instance-level objects created before the context exists; destroyed if creation fails.
+struct Partial {
+    instance: Option<ash::Instance>,
+    messenger: Option<(ash::ext::debug_utils::Instance, vk::DebugUtilsMessengerEXT)>,
+    surface: Option<(ash::khr::surface::Instance, vk::SurfaceKHR)>,
+    device: Option<ash::Device>,
+}
+
+impl Drop for Partial {
+    fn drop(&mut self) {
+        // SAFETY: only objects still owned here (not moved into a Context) are destroyed, children first.
+        unsafe {
+            if let Some(device) = self.device.take() {
+                device.destroy_device(None);
+            }
+            if let Some((fns, surface)) = self.surface.take() {
+                fns.destroy_surface(surface, None);
+            }
+            if let Some((fns, messenger)) = self.messenger.take() {
+                fns.destroy_debug_utils_messenger(messenger, None);
+            }
+            if let Some(instance) = self.instance.take() {
+                instance.destroy_instance(None);
+            }
+        }
+    }
+}
+
+impl Drop for Context {
+    fn drop(&mut self) {
+        if let Err(e) = self.wait_idle() {
+            log::error!("at shutdown: {e}");
+        }
+        let garbage: Vec<_> = self
+            .garbage
+            .get_mut()
+            .unwrap_or_else(|p| p.into_inner())
+            .drain(..)
+            .collect();
+        for (_, g) in garbage {
+            g.destroy(self);
+        }
+        // SAFETY: the device is idle and every object created from it has been destroyed (all
+        // owners hold an Arc<Context>, so they are gone); destruction runs children first.
+        unsafe {
+            self.device.destroy_semaphore(self.frame_timeline, None);
+            ManuallyDrop::drop(&mut self.allocator);
+            self.device.destroy_device(None);
+            if let Some((fns, surface)) = self.surface.take() {
+                fns.destroy_surface(surface, None);
+            }
+            if let Some((fns, messenger)) = self.messenger.take() {
+                fns.destroy_debug_utils_messenger(messenger, None);
+            }
+            self.instance.destroy_instance(None);
+        }
+    }
+}

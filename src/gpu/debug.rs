@@ -1,0 +1,122 @@
+//! VK_EXT_debug_utils: the messenger that counts validation WARNING and ERROR messages, object
+//! names and command-buffer labels. INFO and VERBOSE messages are not requested (the loader sends
+//! ~90 INFO lines at start-up that say nothing about our use of the API).
+
+use std::ffi::{c_void, CStr, CString};
+use std::sync::atomic::{AtomicU32, Ordering};
+use std::sync::Arc;
+
+use ash::vk;
+
+/// Counts of messages the debug messenger received. Shared with the messenger callback through
+/// its user-data pointer, so it outlives the instance (the `Context` drops it last).
+#[derive(Debug, Default)]
+pub struct MessageCounters {
+    warnings: AtomicU32,
+    errors: AtomicU32,
+}
+
+impl MessageCounters {
+    /// WARNING-severity messages so far.
+    pub fn warnings(&self) -> u32 {
+        self.warnings.load(Ordering::Relaxed)
+    }
+    /// ERROR-severity messages so far.
+    pub fn errors(&self) -> u32 {
+        self.errors.load(Ordering::Relaxed)
+    }
+    /// The line printed at exit: `validation: N warnings, M errors`.
+    pub fn summary(&self) -> String {
+        format!(
+            "validation: {} warnings, {} errors",
+            self.warnings(),
+            self.errors()
+        )
+    }
+}
+
+/// Severities we subscribe to: the ones that mean our API use is wrong or questionable.
+pub(crate) fn severities() -> vk::DebugUtilsMessageSeverityFlagsEXT {
+    vk::DebugUtilsMessageSeverityFlagsEXT::WARNING | vk::DebugUtilsMessageSeverityFlagsEXT::ERROR
+}
+
+pub(crate) fn message_types() -> vk::DebugUtilsMessageTypeFlagsEXT {
+    vk::DebugUtilsMessageTypeFlagsEXT::GENERAL
+        | vk::DebugUtilsMessageTypeFlagsEXT::VALIDATION
+        | vk::DebugUtilsMessageTypeFlagsEXT::PERFORMANCE
+}
+
+/// Create info for a messenger reporting into `counters`; also chained into `VkInstanceCreateInfo`
+/// so that instance creation and destruction are covered.
+pub(crate) fn messenger_info(
+    counters: &Arc<MessageCounters>,
+) -> vk::DebugUtilsMessengerCreateInfoEXT<'static> {
+    vk::DebugUtilsMessengerCreateInfoEXT::default()
+        .message_severity(severities())
+        .message_type(message_types())
+        .pfn_user_callback(Some(on_message))
+        .user_data(Arc::as_ptr(counters) as *mut c_void)
+}
+
+unsafe extern "system" fn on_message(
+    severity: vk::DebugUtilsMessageSeverityFlagsEXT,
+    _types: vk::DebugUtilsMessageTypeFlagsEXT,
+    data: *const vk::DebugUtilsMessengerCallbackDataEXT<'_>,
+    user: *mut c_void,
+) -> vk::Bool32 {
+    // SAFETY: `user` is the pointer of an `Arc<MessageCounters>` the Context keeps alive until
+    // after the instance (and with it this messenger) is destroyed; `data` and its message are
+    // valid for the duration of the callback per the Vulkan spec.
+    let (counters, message) = unsafe {
+        let counters = &*(user as *const MessageCounters);
+        let message = if data.is_null() || (*data).p_message.is_null() {
+            "(no message)".into()
+        } else {
+            CStr::from_ptr((*data).p_message).to_string_lossy()
+        };
+        (counters, message)
+    };
+    if severity.contains(vk::DebugUtilsMessageSeverityFlagsEXT::ERROR) {
+        counters.errors.fetch_add(1, Ordering::Relaxed);
+        log::error!("vulkan: {message}");
+    } else if severity.contains(vk::DebugUtilsMessageSeverityFlagsEXT::WARNING) {
+        counters.warnings.fetch_add(1, Ordering::Relaxed);
+        log::warn!("vulkan: {message}");
+    }
+    vk::FALSE
+}
+
+/// Object names and command-buffer labels (no-ops when VK_EXT_debug_utils is absent).
+pub struct DebugNames {
+    pub(crate) device_fns: Option<ash::ext::debug_utils::Device>,
+}
+
+impl DebugNames {
+    /// Names any Vulkan object, so validation messages and captures say which one.
+    pub fn name<H: vk::Handle>(&self, handle: H, name: &str) {
+        let Some(fns) = &self.device_fns else { return };
+        let name = CString::new(name.replace('\0', " ")).expect("NULs were replaced");
+        let info = vk::DebugUtilsObjectNameInfoEXT::default()
+            .object_handle(handle)
+            .object_name(&name);
+        // SAFETY: `handle` is a live object of this device and `info` points to valid strings.
+        // Naming is best-effort: a failure only loses a debug name.
+        let _ = unsafe { fns.set_debug_utils_object_name(&info) };
+    }
+
+    /// Opens a labelled region in a command buffer in the recording state.
+    pub(crate) fn begin_label(&self, cmd: vk::CommandBuffer, name: &str) {
+        let Some(fns) = &self.device_fns else { return };
+        let name = CString::new(name.replace('\0', " ")).expect("NULs were replaced");
+        let label = vk::DebugUtilsLabelEXT::default().label_name(&name);
+        // SAFETY: `cmd` is in the recording state (the caller's `Recorder` invariant).
+        unsafe { fns.cmd_begin_debug_utils_label(cmd, &label) };
+    }
+
+    /// Closes the innermost labelled region.
+    pub(crate) fn end_label(&self, cmd: vk::CommandBuffer) {
+        let Some(fns) = &self.device_fns else { return };
+        // SAFETY: `cmd` is recording and has an open label (paired with `begin_label`).
+        unsafe { fns.cmd_end_debug_utils_label(cmd) };
+    }
+}

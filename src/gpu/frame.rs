@@ -1,0 +1,213 @@
+//! Frames in flight, paced by the context's graphics timeline semaphore (no fences).
+//!
+//! Frame f (counting from 0) records into slot f % 2 and its graphics submission signals the
+//! timeline with f + 1. Before slot s is reused for frame f, the CPU waits for the value f - 1,
+//! i.e. for frame f - 2, the previous user of the slot. The deletion queue is emptied there too.
+
+use std::sync::Arc;
+
+use ash::vk;
+
+use super::command::Recorder;
+use super::context::Context;
+use super::error::{GpuError, GpuResult, VkResultExt};
+use super::garbage::Garbage;
+
+/// Number of frames the CPU may record ahead of the GPU.
+pub const FRAMES_IN_FLIGHT: usize = 2;
+
+/// How long a timeline wait may take before the device is declared hung.
+const WAIT_TIMEOUT_S: u64 = 60;
+
+/// A command pool and its one primary command buffer.
+struct Slot {
+    pool: vk::CommandPool,
+    cmd: vk::CommandBuffer,
+}
+
+/// The frame loop's command buffers and pacing.
+pub struct Frames {
+    ctx: Arc<Context>,
+    slots: Vec<Slot>,
+    /// Index of the next frame to begin.
+    next: u64,
+}
+
+/// The frame being recorded.
+pub struct Frame {
+    /// Frame number, from 0.
+    pub index: u64,
+    /// Frame-in-flight slot (`index % FRAMES_IN_FLIGHT`).
+    pub slot: usize,
+    cmd: vk::CommandBuffer,
+}
+
+impl Frame {
+    /// The timeline value this frame's graphics submission signals.
+    pub fn signal_value(&self) -> u64 {
+        self.index + 1
+    }
+
+    /// A recorder for this frame's command buffer. It borrows the frame, so it cannot outlive
+    /// the recording state (`Frames::submit` consumes the frame).
+    pub fn recorder<'a>(&'a self, ctx: &'a Context) -> Recorder<'a> {
+        Recorder::new(ctx, self.cmd)
+    }
+}
+
+impl Frames {
+    pub fn new(ctx: &Arc<Context>) -> GpuResult<Frames> {
+        let mut slots = Vec::new();
+        for i in 0..FRAMES_IN_FLIGHT {
+            let info = vk::CommandPoolCreateInfo::default()
+                .queue_family_index(ctx.graphics.family)
+                .flags(vk::CommandPoolCreateFlags::TRANSIENT);
+            // SAFETY: valid create info on a live device.
+            let pool =
+                unsafe { ctx.device.create_command_pool(&info, None) }.vk("vkCreateCommandPool")?;
+            let alloc = vk::CommandBufferAllocateInfo::default()
+                .command_pool(pool)
+                .level(vk::CommandBufferLevel::PRIMARY)
+                .command_buffer_count(1);
+            // SAFETY: the pool is live.
+            let cmd = match unsafe { ctx.device.allocate_command_buffers(&alloc) } {
+                Ok(c) => c[0],
+                Err(result) => {
+                    ctx.defer(Garbage::CommandPool(pool));
+                    return Err(GpuError::Vk {
+                        call: "vkAllocateCommandBuffers",
+                        result,
+                    });
+                }
+            };
+            ctx.name(pool, &format!("frame slot {i} command pool"));
+            ctx.name(cmd, &format!("frame slot {i} commands"));
+            slots.push(Slot { pool, cmd });
+        }
+        Ok(Frames {
+            ctx: ctx.clone(),
+            slots,
+            next: 0,
+        })
+    }
+
+    /// Slot the next frame will use.
+    pub fn next_slot(&self) -> usize {
+        (self.next % FRAMES_IN_FLIGHT as u64) as usize
+    }
+
+    /// Waits until the GPU finished the previous frame of the next frame's slot (so per-slot
+    /// resources, e.g. a swapchain acquire semaphore, are free). `begin` does this too.
+    pub fn wait_for_slot(&self) -> GpuResult<()> {
+        if self.next >= FRAMES_IN_FLIGHT as u64 {
+            self.wait_for(self.next + 1 - FRAMES_IN_FLIGHT as u64)?;
+        }
+        Ok(())
+    }
+
+    /// Waits until the slot of the next frame is free, collects garbage and begins recording.
+    pub fn begin(&mut self) -> GpuResult<Frame> {
+        let index = self.next;
+        let slot = self.next_slot();
+        self.wait_for_slot()?;
+        self.ctx.set_pending_value(index + 1);
+        self.ctx.collect_garbage()?;
+        let s = &self.slots[slot];
+        // SAFETY: the slot's previous submission has completed (waited above), so its pool
+        // and command buffer are no longer in use.
+        unsafe {
+            self.ctx
+                .device
+                .reset_command_pool(s.pool, vk::CommandPoolResetFlags::empty())
+                .vk("vkResetCommandPool")?;
+            let begin = vk::CommandBufferBeginInfo::default()
+                .flags(vk::CommandBufferUsageFlags::ONE_TIME_SUBMIT);
+            self.ctx
+                .device
+                .begin_command_buffer(s.cmd, &begin)
+                .vk("vkBeginCommandBuffer")?;
+        }
+        Ok(Frame {
+            index,
+            slot,
+            cmd: s.cmd,
+        })
+    }
+
+    /// Ends recording and submits the frame to the graphics queue, waiting on `waits` and
+    /// signalling the frame timeline with `frame.signal_value()` plus `signals`.
+    pub fn submit(
+        &mut self,
+        frame: Frame,
+        waits: &[vk::SemaphoreSubmitInfo],
+        signals: &[vk::SemaphoreSubmitInfo],
+    ) -> GpuResult<()> {
+        // The frame counts as submitted even if submission fails, so later waits stay consistent.
+        self.next = frame.index + 1;
+        // SAFETY: `frame.cmd` is in the recording state (begun in `begin`).
+        unsafe { self.ctx.device.end_command_buffer(frame.cmd) }.vk("vkEndCommandBuffer")?;
+        let mut all_signals = vec![vk::SemaphoreSubmitInfo::default()
+            .semaphore(self.ctx.frame_timeline)
+            .value(frame.signal_value())
+            .stage_mask(vk::PipelineStageFlags2::ALL_COMMANDS)];
+        all_signals.extend_from_slice(signals);
+        let cmd_infos = [vk::CommandBufferSubmitInfo::default().command_buffer(frame.cmd)];
+        let submit = vk::SubmitInfo2::default()
+            .wait_semaphore_infos(waits)
+            .command_buffer_infos(&cmd_infos)
+            .signal_semaphore_infos(&all_signals);
+        // SAFETY: the command buffer is executable; semaphores are live; only this thread submits.
+        unsafe {
+            self.ctx
+                .device
+                .queue_submit2(self.ctx.graphics.raw, &[submit], vk::Fence::null())
+        }
+        .vk("vkQueueSubmit2")
+    }
+
+    /// Blocks until the frame timeline reaches `value`.
+    pub fn wait_for(&self, value: u64) -> GpuResult<()> {
+        let semaphores = [self.ctx.frame_timeline];
+        let values = [value];
+        let info = vk::SemaphoreWaitInfo::default()
+            .semaphores(&semaphores)
+            .values(&values);
+        // SAFETY: the timeline semaphore is live.
+        match unsafe {
+            self.ctx
+                .device
+                .wait_semaphores(&info, WAIT_TIMEOUT_S * 1_000_000_000)
+        } {
+            Ok(()) => Ok(()),
+            Err(vk::Result::TIMEOUT) => Err(GpuError::Timeout {
+                seconds: WAIT_TIMEOUT_S,
+            }),
+            Err(result) => Err(GpuError::Vk {
+                call: "vkWaitSemaphores",
+                result,
+            }),
+        }
+    }
+
+    /// Waits for every submitted frame.
+    pub fn wait_all(&self) -> GpuResult<()> {
+        if self.next > 0 {
+            self.wait_for(self.next)?;
+        }
+        Ok(())
+    }
+
+    /// Number of frames submitted so far.
+    pub fn submitted(&self) -> u64 {
+        self.next
+    }
+}
+
+impl Drop for Frames {
+    fn drop(&mut self) {
+        for slot in self.slots.drain(..) {
+            // Freed with the pool, after the GPU is done with it.
+            self.ctx.defer(Garbage::CommandPool(slot.pool));
+        }
+    }
+}

@@ -1,0 +1,65 @@
+//! The deferred-deletion queue's items. An owner's `Drop` turns its handles into a [`Garbage`]
+//! and hands it to [`Context::defer`]; the context destroys it after the GPU finished the frames
+//! that may still use it (see `Context::collect_garbage`).
+
+use ash::vk;
+use gpu_allocator::vulkan::Allocation;
+
+use super::context::Context;
+
+/// A Vulkan object waiting for the GPU to finish with it.
+pub(crate) enum Garbage {
+    Buffer(vk::Buffer, Allocation),
+    Image {
+        image: vk::Image,
+        views: Vec<vk::ImageView>,
+        allocation: Allocation,
+    },
+    Sampler(vk::Sampler),
+    Pipeline(vk::Pipeline),
+    PipelineLayout(vk::PipelineLayout),
+    DescriptorSetLayout(vk::DescriptorSetLayout),
+    DescriptorPool(vk::DescriptorPool),
+    CommandPool(vk::CommandPool),
+    QueryPool(vk::QueryPool),
+}
+
+impl Garbage {
+    pub(crate) fn destroy(self, ctx: &Context) {
+        let d = &ctx.device;
+        // SAFETY: the object was created from `ctx.device`, its owner is gone, and the frame
+        // timeline says the GPU finished every submission that could reference it.
+        unsafe {
+            match self {
+                Garbage::Buffer(buffer, allocation) => {
+                    d.destroy_buffer(buffer, None);
+                    free(ctx, allocation);
+                }
+                Garbage::Image {
+                    image,
+                    views,
+                    allocation,
+                } => {
+                    for view in views {
+                        d.destroy_image_view(view, None);
+                    }
+                    d.destroy_image(image, None);
+                    free(ctx, allocation);
+                }
+                Garbage::Sampler(s) => d.destroy_sampler(s, None),
+                Garbage::Pipeline(p) => d.destroy_pipeline(p, None),
+                Garbage::PipelineLayout(l) => d.destroy_pipeline_layout(l, None),
+                Garbage::DescriptorSetLayout(l) => d.destroy_descriptor_set_layout(l, None),
+                Garbage::DescriptorPool(p) => d.destroy_descriptor_pool(p, None),
+                Garbage::CommandPool(p) => d.destroy_command_pool(p, None),
+                Garbage::QueryPool(q) => d.destroy_query_pool(q, None),
+            }
+        }
+    }
+}
+
+fn free(ctx: &Context, allocation: Allocation) {
+    if let Err(e) = ctx.allocator().free(allocation) {
+        log::error!("freeing GPU memory: {e}");
+    }
+}

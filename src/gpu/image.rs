@@ -1,0 +1,196 @@
+//! `Image` (a `VkImage`, its memory and a default view) and `Sampler`, both destroyed through the
+//! deletion queue.
+
+use std::sync::Arc;
+
+use ash::vk;
+use gpu_allocator::vulkan::{Allocation, AllocationCreateDesc, AllocationScheme};
+use gpu_allocator::MemoryLocation;
+
+use super::context::Context;
+use super::error::{GpuError, GpuResult, VkResultExt};
+use super::garbage::Garbage;
+
+/// How to create an [`Image`].
+#[derive(Clone, Copy, Debug)]
+pub struct ImageDesc<'a> {
+    pub name: &'a str,
+    pub extent: vk::Extent2D,
+    pub format: vk::Format,
+    pub usage: vk::ImageUsageFlags,
+    /// Array layers (1 for a plain 2D image; the view is a 2D array when > 1).
+    pub layers: u32,
+}
+
+/// A 2D (array) image in device memory with a view of all its layers.
+pub struct Image {
+    ctx: Arc<Context>,
+    pub raw: vk::Image,
+    pub view: vk::ImageView,
+    allocation: Option<Allocation>,
+    pub format: vk::Format,
+    pub extent: vk::Extent2D,
+    pub layers: u32,
+    pub aspect: vk::ImageAspectFlags,
+}
+
+/// The aspect a format's views and barriers use.
+pub fn aspect_of(format: vk::Format) -> vk::ImageAspectFlags {
+    match format {
+        vk::Format::D16_UNORM | vk::Format::D32_SFLOAT | vk::Format::X8_D24_UNORM_PACK32 => {
+            vk::ImageAspectFlags::DEPTH
+        }
+        vk::Format::D24_UNORM_S8_UINT
+        | vk::Format::D32_SFLOAT_S8_UINT
+        | vk::Format::D16_UNORM_S8_UINT => {
+            vk::ImageAspectFlags::DEPTH | vk::ImageAspectFlags::STENCIL
+        }
+        _ => vk::ImageAspectFlags::COLOR,
+    }
+}
+
+impl Image {
+    /// Creates a named image (optimal tiling, device-local) and its view.
+    pub fn new(ctx: &Arc<Context>, desc: &ImageDesc) -> GpuResult<Image> {
+        let layers = desc.layers.max(1);
+        let info = vk::ImageCreateInfo::default()
+            .image_type(vk::ImageType::TYPE_2D)
+            .format(desc.format)
+            .extent(vk::Extent3D {
+                width: desc.extent.width,
+                height: desc.extent.height,
+                depth: 1,
+            })
+            .mip_levels(1)
+            .array_layers(layers)
+            .samples(vk::SampleCountFlags::TYPE_1)
+            .tiling(vk::ImageTiling::OPTIMAL)
+            .usage(desc.usage)
+            .sharing_mode(vk::SharingMode::EXCLUSIVE)
+            .initial_layout(vk::ImageLayout::UNDEFINED);
+        // SAFETY: valid create info on a live device.
+        let raw = unsafe { ctx.device.create_image(&info, None) }.vk("vkCreateImage")?;
+        // SAFETY: `raw` is a live image of this device.
+        let requirements = unsafe { ctx.device.get_image_memory_requirements(raw) };
+        let allocation = match ctx.allocator().allocate(&AllocationCreateDesc {
+            name: desc.name,
+            requirements,
+            location: MemoryLocation::GpuOnly,
+            linear: false,
+            allocation_scheme: AllocationScheme::GpuAllocatorManaged,
+        }) {
+            Ok(a) => a,
+            Err(source) => {
+                // SAFETY: the image was never used or bound.
+                unsafe { ctx.device.destroy_image(raw, None) };
+                return Err(GpuError::Alloc {
+                    name: desc.name.to_string(),
+                    source,
+                });
+            }
+        };
+        let aspect = aspect_of(desc.format);
+        let mut image = Image {
+            ctx: ctx.clone(),
+            raw,
+            view: vk::ImageView::null(),
+            allocation: Some(allocation),
+            format: desc.format,
+            extent: desc.extent,
+            layers,
+            aspect,
+        };
+        let allocation = image.allocation.as_ref().expect("just set");
+        // SAFETY: the allocation satisfies the image's requirements and is bound once.
+        unsafe {
+            ctx.device
+                .bind_image_memory(raw, allocation.memory(), allocation.offset())
+        }
+        .vk("vkBindImageMemory")?;
+        let view_info = vk::ImageViewCreateInfo::default()
+            .image(raw)
+            .view_type(if layers > 1 {
+                vk::ImageViewType::TYPE_2D_ARRAY
+            } else {
+                vk::ImageViewType::TYPE_2D
+            })
+            .format(desc.format)
+            .subresource_range(full_range(aspect, layers));
+        // SAFETY: the image is live and bound; the range is within it.
+        image.view =
+            unsafe { ctx.device.create_image_view(&view_info, None) }.vk("vkCreateImageView")?;
+        ctx.name(raw, desc.name);
+        ctx.name(image.view, &format!("{} view", desc.name));
+        Ok(image)
+    }
+
+    /// The whole subresource range (all layers, one mip).
+    pub fn range(&self) -> vk::ImageSubresourceRange {
+        full_range(self.aspect, self.layers)
+    }
+}
+
+/// Every layer of the single mip level.
+pub fn full_range(aspect: vk::ImageAspectFlags, layers: u32) -> vk::ImageSubresourceRange {
+    vk::ImageSubresourceRange {
+        aspect_mask: aspect,
+        base_mip_level: 0,
+        level_count: 1,
+        base_array_layer: 0,
+        layer_count: layers,
+    }
+}
+
+impl Drop for Image {
+    fn drop(&mut self) {
+        if let Some(allocation) = self.allocation.take() {
+            let views = if self.view == vk::ImageView::null() {
+                vec![]
+            } else {
+                vec![self.view]
+            };
+            self.ctx.defer(Garbage::Image {
+                image: self.raw,
+                views,
+                allocation,
+            });
+        }
+    }
+}
+
+/// A sampler.
+pub struct Sampler {
+    ctx: Arc<Context>,
+    pub raw: vk::Sampler,
+}
+
+impl Sampler {
+    /// Linear filtering with the given addressing (clamp for render targets, repeat for tiles).
+    pub fn linear(
+        ctx: &Arc<Context>,
+        name: &str,
+        address: vk::SamplerAddressMode,
+    ) -> GpuResult<Sampler> {
+        let info = vk::SamplerCreateInfo::default()
+            .mag_filter(vk::Filter::LINEAR)
+            .min_filter(vk::Filter::LINEAR)
+            .mipmap_mode(vk::SamplerMipmapMode::LINEAR)
+            .address_mode_u(address)
+            .address_mode_v(address)
+            .address_mode_w(address)
+            .max_lod(vk::LOD_CLAMP_NONE);
+        // SAFETY: valid create info on a live device.
+        let raw = unsafe { ctx.device.create_sampler(&info, None) }.vk("vkCreateSampler")?;
+        ctx.name(raw, name);
+        Ok(Sampler {
+            ctx: ctx.clone(),
+            raw,
+        })
+    }
+}
+
+impl Drop for Sampler {
+    fn drop(&mut self) {
+        self.ctx.defer(Garbage::Sampler(self.raw));
+    }
+}

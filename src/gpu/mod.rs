@@ -1,0 +1,31 @@
+//! The GPU layer: the only place with `unsafe`. Small RAII wrappers over Vulkan objects (ash);
+//! their `Drop` hands the handles to the context's deletion queue, which destroys them once the
+//! frame timeline says the GPU finished every frame that could use them.
+
+pub mod buffer;
+pub mod command;
+pub mod context;
+pub mod debug;
+pub mod descriptors;
+pub mod error;
+pub mod frame;
+mod garbage;
+pub mod image;
+pub mod pipeline;
+pub mod selftest;
+pub mod swapchain;
+pub mod timestamps;
+
+pub use ash::vk;
+pub use buffer::Buffer;
+pub use command::{Access, Attachment, ImageBarrier, Recorder};
+pub use context::{Context, ContextDesc, DeviceInfo, DeviceSummary};
+pub use debug::MessageCounters;
+pub use descriptors::{DescriptorPool, DescriptorSetLayout};
+pub use error::{GpuError, GpuResult};
+pub use frame::{Frame, Frames, FRAMES_IN_FLIGHT};
+pub use gpu_allocator::MemoryLocation;
+pub use image::{Image, ImageDesc, Sampler};
+pub use pipeline::{GraphicsDesc, Pipeline, PipelineLayout};
+pub use swapchain::{PresentMode, Swapchain};
+pub use timestamps::{GpuTimings, Profiler};

@@ -1,0 +1,255 @@
+//! Pipeline layouts and pipelines (graphics for dynamic rendering, compute), built from the
+//! SPIR-V that build.rs embeds (`crate::shaders`).
+
+use std::sync::Arc;
+
+use ash::vk;
+
+use super::context::Context;
+use super::descriptors::DescriptorSetLayout;
+use super::error::{GpuError, GpuResult, VkResultExt};
+use super::garbage::Garbage;
+
+/// A pipeline layout: descriptor set layouts + one push-constant range.
+pub struct PipelineLayout {
+    ctx: Arc<Context>,
+    pub raw: vk::PipelineLayout,
+    /// Stages and size of the push-constant range (size 0: none).
+    pub push_stages: vk::ShaderStageFlags,
+}
+
+impl PipelineLayout {
+    pub fn new(
+        ctx: &Arc<Context>,
+        name: &str,
+        sets: &[&DescriptorSetLayout],
+        push_constants: Option<(vk::ShaderStageFlags, u32)>,
+    ) -> GpuResult<Self> {
+        let set_layouts: Vec<_> = sets.iter().map(|s| s.raw).collect();
+        let ranges: Vec<_> = push_constants
+            .map(|(stages, size)| vk::PushConstantRange {
+                stage_flags: stages,
+                offset: 0,
+                size,
+            })
+            .into_iter()
+            .collect();
+        let info = vk::PipelineLayoutCreateInfo::default()
+            .set_layouts(&set_layouts)
+            .push_constant_ranges(&ranges);
+        // SAFETY: valid create info on a live device; the set layouts are live.
+        let raw = unsafe { ctx.device.create_pipeline_layout(&info, None) }
+            .vk("vkCreatePipelineLayout")?;
+        ctx.name(raw, name);
+        let push_stages = push_constants.map(|(s, _)| s).unwrap_or_default();
+        Ok(Self {
+            ctx: ctx.clone(),
+            raw,
+            push_stages,
+        })
+    }
+}
+
+impl Drop for PipelineLayout {
+    fn drop(&mut self) {
+        self.ctx.defer(Garbage::PipelineLayout(self.raw));
+    }
+}
+
+/// A shader module, alive only while pipelines are created from it.
+struct ShaderModule<'a> {
+    ctx: &'a Context,
+    raw: vk::ShaderModule,
+}
+
+impl<'a> ShaderModule<'a> {
+    fn new(ctx: &'a Context, name: &str, spirv: &[u8]) -> GpuResult<Self> {
+        let words = ash::util::read_spv(&mut std::io::Cursor::new(spirv))
+            .map_err(|e| GpuError::Unsupported(format!("shader {name}: invalid SPIR-V: {e}")))?;
+        let info = vk::ShaderModuleCreateInfo::default().code(&words);
+        // SAFETY: `words` is SPIR-V produced by glslc at build time.
+        let raw =
+            unsafe { ctx.device.create_shader_module(&info, None) }.vk("vkCreateShaderModule")?;
+        ctx.name(raw, name);
+        Ok(Self { ctx, raw })
+    }
+}
+
+impl Drop for ShaderModule<'_> {
+    fn drop(&mut self) {
+        // SAFETY: modules are only referenced during pipeline creation, which has returned.
+        unsafe { self.ctx.device.destroy_shader_module(self.raw, None) };
+    }
+}
+
+/// Fixed-function state of a graphics pipeline (viewport and scissor are dynamic).
+#[derive(Clone, Debug)]
+pub struct GraphicsDesc<'a> {
+    pub name: &'a str,
+    /// (stage, SPIR-V) for each shader stage.
+    pub stages: &'a [(vk::ShaderStageFlags, &'a [u8])],
+    pub colour_formats: &'a [vk::Format],
+    pub depth_format: Option<vk::Format>,
+    /// Depth test with this compare op (`None`: no test).
+    pub depth_compare: Option<vk::CompareOp>,
+    pub depth_write: bool,
+    pub cull: vk::CullModeFlags,
+    pub topology: vk::PrimitiveTopology,
+    /// Control points per patch (tessellation pipelines).
+    pub patch_control_points: u32,
+    pub polygon_mode: vk::PolygonMode,
+}
+
+impl Default for GraphicsDesc<'_> {
+    fn default() -> Self {
+        GraphicsDesc {
+            name: "unnamed pipeline",
+            stages: &[],
+            colour_formats: &[],
+            depth_format: None,
+            depth_compare: None,
+            depth_write: false,
+            cull: vk::CullModeFlags::NONE,
+            topology: vk::PrimitiveTopology::TRIANGLE_LIST,
+            patch_control_points: 0,
+            polygon_mode: vk::PolygonMode::FILL,
+        }
+    }
+}
+
+/// A graphics or compute pipeline.
+pub struct Pipeline {
+    ctx: Arc<Context>,
+    pub raw: vk::Pipeline,
+    pub bind_point: vk::PipelineBindPoint,
+}
+
+impl Pipeline {
+    /// A graphics pipeline for dynamic rendering into `desc.colour_formats` / `desc.depth_format`.
+    pub fn graphics(
+        ctx: &Arc<Context>,
+        layout: &PipelineLayout,
+        desc: &GraphicsDesc,
+    ) -> GpuResult<Pipeline> {
+        let modules = desc
+            .stages
+            .iter()
+            .map(|(stage, spirv)| {
+                ShaderModule::new(ctx, &format!("{} {stage:?}", desc.name), spirv)
+            })
+            .collect::<GpuResult<Vec<_>>>()?;
+        let stages: Vec<_> = desc
+            .stages
+            .iter()
+            .zip(&modules)
+            .map(|((stage, _), module)| {
+                vk::PipelineShaderStageCreateInfo::default()
+                    .stage(*stage)
+                    .module(module.raw)
+                    .name(c"main")
+            })
+            .collect();
+        let vertex_input = vk::PipelineVertexInputStateCreateInfo::default();
+        let input_assembly =
+            vk::PipelineInputAssemblyStateCreateInfo::default().topology(desc.topology);
+        let tessellation = vk::PipelineTessellationStateCreateInfo::default()
+            .patch_control_points(desc.patch_control_points);
+        let viewport = vk::PipelineViewportStateCreateInfo::default()
+            .viewport_count(1)
+            .scissor_count(1);
+        let raster = vk::PipelineRasterizationStateCreateInfo::default()
+            .polygon_mode(desc.polygon_mode)
+            .cull_mode(desc.cull)
+            .front_face(vk::FrontFace::COUNTER_CLOCKWISE)
+            .line_width(1.0);
+        let multisample = vk::PipelineMultisampleStateCreateInfo::default()
+            .rasterization_samples(vk::SampleCountFlags::TYPE_1);
+        let depth = vk::PipelineDepthStencilStateCreateInfo::default()
+            .depth_test_enable(desc.depth_compare.is_some())
+            .depth_write_enable(desc.depth_write)
+            .depth_compare_op(desc.depth_compare.unwrap_or(vk::CompareOp::ALWAYS));
+        let blend_attachments: Vec<_> = desc
+            .colour_formats
+            .iter()
+            .map(|_| {
+                vk::PipelineColorBlendAttachmentState::default()
+                    .color_write_mask(vk::ColorComponentFlags::RGBA)
+            })
+            .collect();
+        let blend =
+            vk::PipelineColorBlendStateCreateInfo::default().attachments(&blend_attachments);
+        let dynamic_states = [vk::DynamicState::VIEWPORT, vk::DynamicState::SCISSOR];
+        let dynamic = vk::PipelineDynamicStateCreateInfo::default().dynamic_states(&dynamic_states);
+        let mut rendering = vk::PipelineRenderingCreateInfo::default()
+            .color_attachment_formats(desc.colour_formats)
+            .depth_attachment_format(desc.depth_format.unwrap_or(vk::Format::UNDEFINED));
+        let mut info = vk::GraphicsPipelineCreateInfo::default()
+            .stages(&stages)
+            .vertex_input_state(&vertex_input)
+            .input_assembly_state(&input_assembly)
+            .viewport_state(&viewport)
+            .rasterization_state(&raster)
+            .multisample_state(&multisample)
+            .depth_stencil_state(&depth)
+            .color_blend_state(&blend)
+            .dynamic_state(&dynamic)
+            .layout(layout.raw)
+            .push_next(&mut rendering);
+        if desc.patch_control_points > 0 {
+            info = info.tessellation_state(&tessellation);
+        }
+        // SAFETY: every pointer in `info` refers to locals alive for the call; modules are live.
+        let raw = unsafe {
+            ctx.device
+                .create_graphics_pipelines(vk::PipelineCache::null(), &[info], None)
+        }
+        .map_err(|(_, result)| GpuError::Vk {
+            call: "vkCreateGraphicsPipelines",
+            result,
+        })?[0];
+        ctx.name(raw, desc.name);
+        Ok(Pipeline {
+            ctx: ctx.clone(),
+            raw,
+            bind_point: vk::PipelineBindPoint::GRAPHICS,
+        })
+    }
+
+    /// A compute pipeline from one compute shader.
+    pub fn compute(
+        ctx: &Arc<Context>,
+        layout: &PipelineLayout,
+        name: &str,
+        spirv: &[u8],
+    ) -> GpuResult<Pipeline> {
+        let module = ShaderModule::new(ctx, name, spirv)?;
+        let stage = vk::PipelineShaderStageCreateInfo::default()
+            .stage(vk::ShaderStageFlags::COMPUTE)
+            .module(module.raw)
+            .name(c"main");
+        let info = vk::ComputePipelineCreateInfo::default()
+            .stage(stage)
+            .layout(layout.raw);
+        // SAFETY: as for graphics pipelines.
+        let raw = unsafe {
+            ctx.device
+                .create_compute_pipelines(vk::PipelineCache::null(), &[info], None)
+        }
+        .map_err(|(_, result)| GpuError::Vk {
+            call: "vkCreateComputePipelines",
+            result,
+        })?[0];
+        ctx.name(raw, name);
+        Ok(Pipeline {
+            ctx: ctx.clone(),
+            raw,
+            bind_point: vk::PipelineBindPoint::COMPUTE,
+        })
+    }
+}
+
+impl Drop for Pipeline {
+    fn drop(&mut self) {
+        self.ctx.defer(Garbage::Pipeline(self.raw));
+    }
+}

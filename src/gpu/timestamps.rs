@@ -1,0 +1,213 @@
+//! GPU timestamp profiler. One pass name drives the debug label and a timestamp scope. Each frame
+//! slot has its own query pool; a slot's results are read when the slot comes round again (its
+//! frame has finished by then, see `Frames::begin`), so reading never stalls the GPU.
+
+use std::sync::Arc;
+
+use ash::vk;
+
+use super::command::Recorder;
+use super::context::Context;
+use super::error::{GpuResult, VkResultExt};
+use super::frame::{Frame, FRAMES_IN_FLIGHT};
+use super::garbage::Garbage;
+
+/// Timestamps per frame: frame begin/end plus two per pass.
+const QUERIES_PER_FRAME: u32 = 128;
+
+/// What a slot recorded in its last frame: (pass name, begin query, end query).
+#[derive(Default)]
+struct SlotRecord {
+    frame_index: Option<u64>,
+    passes: Vec<(&'static str, u32, u32)>,
+    used: u32,
+}
+
+/// GPU times per pass and per frame, in milliseconds, in the order passes first appeared.
+#[derive(Clone, Debug, Default)]
+pub struct GpuTimings {
+    pub passes: Vec<(&'static str, Vec<f64>)>,
+    pub frames: Vec<f64>,
+}
+
+/// Timestamp queries around passes; disabled (labels only) when the queue has no timestamps.
+pub struct Profiler {
+    ctx: Arc<Context>,
+    /// One pool per frame slot (empty when timestamps are unsupported).
+    pools: Vec<vk::QueryPool>,
+    records: Vec<SlotRecord>,
+    /// Slot of the frame being recorded.
+    current: usize,
+    /// Open pass scopes: (name, begin query).
+    open: Vec<(&'static str, u32)>,
+    /// Frames with an index below this are warm-up and not recorded.
+    warmup_frames: u64,
+    period_ns: f64,
+    valid_mask: u64,
+    timings: GpuTimings,
+}
+
+impl Profiler {
+    /// `warmup_frames`: leading frames whose timings are discarded (pipeline JIT, first uploads).
+    pub fn new(ctx: &Arc<Context>, warmup_frames: u64) -> GpuResult<Profiler> {
+        let bits = ctx.info.timestamp_valid_bits;
+        let mut pools = Vec::new();
+        if bits > 0 {
+            for i in 0..FRAMES_IN_FLIGHT {
+                let info = vk::QueryPoolCreateInfo::default()
+                    .query_type(vk::QueryType::TIMESTAMP)
+                    .query_count(QUERIES_PER_FRAME);
+                // SAFETY: valid create info on a live device.
+                let pool =
+                    unsafe { ctx.device.create_query_pool(&info, None) }.vk("vkCreateQueryPool")?;
+                ctx.name(pool, &format!("timestamps slot {i}"));
+                pools.push(pool);
+            }
+        }
+        Ok(Profiler {
+            ctx: ctx.clone(),
+            pools,
+            records: (0..FRAMES_IN_FLIGHT)
+                .map(|_| SlotRecord::default())
+                .collect(),
+            current: 0,
+            open: Vec::new(),
+            warmup_frames,
+            period_ns: ctx.info.limits.timestamp_period as f64,
+            valid_mask: if bits >= 64 {
+                u64::MAX
+            } else {
+                (1u64 << bits) - 1
+            },
+            timings: GpuTimings::default(),
+        })
+    }
+
+    /// Whether the device can time passes.
+    pub fn enabled(&self) -> bool {
+        !self.pools.is_empty()
+    }
+
+    /// Starts a frame: collects the finished results of this slot's previous frame, resets the
+    /// slot's queries and writes the frame-begin timestamp (query 0).
+    pub fn begin_frame(&mut self, rec: &Recorder, frame: &Frame) -> GpuResult<()> {
+        self.current = frame.slot;
+        self.collect(frame.slot)?;
+        let record = &mut self.records[frame.slot];
+        record.frame_index = Some(frame.index);
+        record.passes.clear();
+        record.used = 0;
+        if let Some(&pool) = self.pools.get(frame.slot) {
+            rec.reset_queries(pool, QUERIES_PER_FRAME);
+            rec.write_timestamp(pool, 0);
+            record.used = 2; // query 1 is the frame end
+        }
+        Ok(())
+    }
+
+    /// Ends a frame with the frame-end timestamp (query 1).
+    pub fn end_frame(&mut self, rec: &Recorder) {
+        assert!(
+            self.open.is_empty(),
+            "pass {:?} was not ended",
+            self.open.last().map(|p| p.0)
+        );
+        if let Some(&pool) = self.pools.get(self.current) {
+            rec.write_timestamp(pool, 1);
+        }
+    }
+
+    /// Opens a named pass: a debug label and, when there is room, a timestamp.
+    pub fn begin_pass(&mut self, rec: &Recorder, name: &'static str) {
+        rec.begin_label(name);
+        let record = &mut self.records[self.current];
+        if let Some(&pool) = self.pools.get(self.current) {
+            if record.used + 2 <= QUERIES_PER_FRAME {
+                rec.write_timestamp(pool, record.used);
+                self.open.push((name, record.used));
+                record.used += 2;
+                return;
+            }
+        }
+        self.open.push((name, u32::MAX));
+    }
+
+    /// Closes the innermost pass.
+    pub fn end_pass(&mut self, rec: &Recorder) {
+        let (name, begin) = self.open.pop().expect("end_pass without begin_pass");
+        if begin != u32::MAX {
+            let pool = self.pools[self.current];
+            rec.write_timestamp(pool, begin + 1);
+            self.records[self.current]
+                .passes
+                .push((name, begin, begin + 1));
+        }
+        rec.end_label();
+    }
+
+    /// Runs `body` inside a named pass.
+    pub fn pass<R>(&mut self, rec: &Recorder, name: &'static str, body: impl FnOnce() -> R) -> R {
+        self.begin_pass(rec, name);
+        let result = body();
+        self.end_pass(rec);
+        result
+    }
+
+    /// Reads the finished results of `slot` (its frame must have completed on the GPU).
+    fn collect(&mut self, slot: usize) -> GpuResult<()> {
+        let record = &mut self.records[slot];
+        let Some(index) = record.frame_index.take() else {
+            return Ok(());
+        };
+        let Some(&pool) = self.pools.get(slot) else {
+            return Ok(());
+        };
+        if index < self.warmup_frames || record.used == 0 {
+            return Ok(());
+        }
+        let mut ticks = vec![0u64; record.used as usize];
+        // SAFETY: the frame that wrote these queries has completed (the caller waited on the
+        // timeline), every query in 0..used was written, and `ticks` holds `used` u64 values.
+        unsafe {
+            self.ctx.device.get_query_pool_results(
+                pool,
+                0,
+                &mut ticks,
+                vk::QueryResultFlags::TYPE_64 | vk::QueryResultFlags::WAIT,
+            )
+        }
+        .vk("vkGetQueryPoolResults")?;
+        let ms = |a: u32, b: u32| {
+            let delta = ticks[b as usize].wrapping_sub(ticks[a as usize]) & self.valid_mask;
+            delta as f64 * self.period_ns / 1.0e6
+        };
+        self.timings.frames.push(ms(0, 1));
+        for &(name, a, b) in &record.passes {
+            let value = ms(a, b);
+            match self.timings.passes.iter_mut().find(|(n, _)| *n == name) {
+                Some((_, samples)) => samples.push(value),
+                None => self.timings.passes.push((name, vec![value])),
+            }
+        }
+        Ok(())
+    }
+
+    /// Collects every outstanding result (call after waiting for all frames) and returns them.
+    pub fn finish(&mut self) -> GpuResult<GpuTimings> {
+        // Oldest slot first so samples stay in frame order.
+        let mut slots: Vec<usize> = (0..FRAMES_IN_FLIGHT).collect();
+        slots.sort_by_key(|&s| self.records[s].frame_index.unwrap_or(u64::MAX));
+        for s in slots {
+            self.collect(s)?;
+        }
+        Ok(std::mem::take(&mut self.timings))
+    }
+}
+
+impl Drop for Profiler {
+    fn drop(&mut self) {
+        for pool in self.pools.drain(..) {
+            self.ctx.defer(Garbage::QueryPool(pool));
+        }
+    }
+}

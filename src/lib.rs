@@ -1,0 +1,17 @@
+//! vkocean: a real-time FFT ocean on hand-written Vulkan.
+//!
+//! Layers, bottom up: [`gpu`] (the only `unsafe`: Vulkan objects, frames, profiler),
+//! [`render`] (passes that record the frame), [`frontend`] (window or headless output) and the
+//! command line in `main.rs` / [`cli`].
+
+pub mod cli;
+pub mod frontend;
+pub mod gpu;
+pub mod output;
+pub mod profile;
+pub mod render;
+
+/// SPIR-V of every shader under `shaders/`, compiled by build.rs with glslc.
+pub mod shaders {
+    include!(concat!(env!("OUT_DIR"), "/shaders.rs"));
+}

@@ -1,0 +1,78 @@
+//! `vkocean`: parses the command line, runs a frontend, and maps the outcome to an exit code:
+//! 0 ok, 1 runtime error, 2 bad usage, 3 validation reported warnings or errors.
+//! Every failure is one line on stderr; no panics or backtraces reach the user.
+
+use std::process::ExitCode;
+
+use clap::Parser;
+use vkocean::cli::{Cli, UsageError};
+use vkocean::frontend;
+use vkocean::gpu::{context, GpuError};
+
+fn main() -> ExitCode {
+    env_logger::Builder::from_env(env_logger::Env::default().default_filter_or("warn"))
+        .format_timestamp(None)
+        .init();
+
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) => {
+            use clap::error::ErrorKind;
+            if matches!(e.kind(), ErrorKind::DisplayHelp | ErrorKind::DisplayVersion) {
+                let _ = e.print();
+                return ExitCode::SUCCESS;
+            }
+            // clap's first line ("error: invalid value ... for '--frames <N>': ...") is the message.
+            let text = e.to_string();
+            let first = text
+                .lines()
+                .next()
+                .unwrap_or("invalid arguments")
+                .trim_start_matches("error: ");
+            eprintln!("vkocean: {first} (see --help)");
+            return ExitCode::from(2);
+        }
+    };
+
+    if cli.list_gpus {
+        return match context::list_devices() {
+            Ok(devices) if devices.is_empty() => {
+                eprintln!("vkocean: {}", GpuError::NoDevice);
+                ExitCode::from(1)
+            }
+            Ok(devices) => {
+                for d in devices {
+                    println!("{d}");
+                }
+                ExitCode::SUCCESS
+            }
+            Err(e) => fail(&e.into()),
+        };
+    }
+
+    let settings = match cli.settings() {
+        Ok(s) => s,
+        Err(e) => return fail(&e.into()),
+    };
+    match frontend::run(&settings) {
+        Ok(outcome) => {
+            if settings.validation {
+                eprintln!("{}", outcome.counters.summary());
+                if outcome.counters.warnings() + outcome.counters.errors() > 0 {
+                    return ExitCode::from(3);
+                }
+            }
+            ExitCode::SUCCESS
+        }
+        Err(e) => fail(&e),
+    }
+}
+
+/// Prints the error (with its causes) on one line; exit 2 for usage errors, 1 otherwise.
+fn fail(e: &anyhow::Error) -> ExitCode {
+    let usage = e.downcast_ref::<UsageError>().is_some()
+        || e.downcast_ref::<GpuError>().is_some_and(GpuError::is_usage);
+    let message: Vec<String> = e.chain().map(|c| c.to_string()).collect();
+    eprintln!("vkocean: {}", message.join(": ").replace('\n', " "));
+    ExitCode::from(if usage { 2 } else { 1 })
+}

@@ -1,0 +1,122 @@
+//! `--profile PATH`: GPU timestamps per pass and per frame, CPU frame times, as JSON:
+//! `{"device","driver","frames","warmup_frames","size":[w,h],"passes":[{"name","gpu_ms":{min,median,mean,p95,max},"samples"}],
+//!   "frame_gpu_ms":{..},"frame_cpu_ms":{..}}`. The first `WARMUP_FRAMES` frames are excluded.
+
+use serde_json::{json, Value};
+
+use crate::gpu::{DeviceInfo, GpuTimings};
+
+/// Frames excluded from statistics (pipeline JIT, first-use allocations).
+pub const WARMUP_FRAMES: u64 = 5;
+
+/// min, median, mean, p95, max of a sample set.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Stats {
+    pub min: f64,
+    pub median: f64,
+    pub mean: f64,
+    pub p95: f64,
+    pub max: f64,
+}
+
+impl Stats {
+    /// `None` for an empty sample set. Percentiles by linear interpolation between ranks.
+    pub fn of(samples: &[f64]) -> Option<Stats> {
+        if samples.is_empty() {
+            return None;
+        }
+        let mut sorted = samples.to_vec();
+        sorted.sort_by(f64::total_cmp);
+        let pct = |p: f64| {
+            let rank = p * (sorted.len() - 1) as f64;
+            let (lo, hi) = (rank.floor() as usize, rank.ceil() as usize);
+            sorted[lo] + (sorted[hi] - sorted[lo]) * (rank - lo as f64)
+        };
+        Some(Stats {
+            min: sorted[0],
+            median: pct(0.5),
+            mean: sorted.iter().sum::<f64>() / sorted.len() as f64,
+            p95: pct(0.95),
+            max: sorted[sorted.len() - 1],
+        })
+    }
+
+    fn json(samples: &[f64]) -> Value {
+        match Stats::of(samples) {
+            Some(s) => {
+                json!({"min": s.min, "median": s.median, "mean": s.mean, "p95": s.p95, "max": s.max})
+            }
+            None => Value::Null,
+        }
+    }
+}
+
+/// Everything a profile report says.
+pub struct ProfileReport<'a> {
+    pub device: &'a DeviceInfo,
+    pub frames: u64,
+    pub size: (u32, u32),
+    pub gpu: &'a GpuTimings,
+    /// CPU frame times (ms) after warm-up: wall time from one frame's start to the next.
+    pub cpu_frame_ms: &'a [f64],
+}
+
+impl ProfileReport<'_> {
+    pub fn to_json(&self) -> String {
+        let passes: Vec<Value> = self
+            .gpu
+            .passes
+            .iter()
+            .map(|(name, samples)| json!({"name": name, "gpu_ms": Stats::json(samples), "samples": samples.len()}))
+            .collect();
+        let report = json!({
+            "device": self.device.name,
+            "driver": self.device.driver,
+            "frames": self.frames,
+            "warmup_frames": WARMUP_FRAMES,
+            "size": [self.size.0, self.size.1],
+            "passes": passes,
+            "frame_gpu_ms": Stats::json(&self.gpu.frames),
+            "frame_cpu_ms": Stats::json(self.cpu_frame_ms),
+        });
+        serde_json::to_string_pretty(&report).expect("a JSON value always serializes") + "\n"
+    }
+
+    /// A short human-readable table (logged at the end of a profiled run).
+    pub fn summary(&self) -> String {
+        let mut out = String::new();
+        for (name, samples) in &self.gpu.passes {
+            if let Some(s) = Stats::of(samples) {
+                out += &format!(
+                    "  {name:<12} median {:7.3} ms  p95 {:7.3} ms\n",
+                    s.median, s.p95
+                );
+            }
+        }
+        if let Some(s) = Stats::of(&self.gpu.frames) {
+            out += &format!(
+                "  {:<12} median {:7.3} ms  p95 {:7.3} ms\n",
+                "frame (GPU)", s.median, s.p95
+            );
+        }
+        out
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn stats_of_known_samples() {
+        let s = Stats::of(&[5.0, 1.0, 3.0, 2.0, 4.0]).unwrap();
+        assert_eq!((s.min, s.median, s.mean, s.max), (1.0, 3.0, 3.0, 5.0));
+        assert!((s.p95 - 4.8).abs() < 1e-12, "p95 {}", s.p95);
+        assert_eq!(Stats::of(&[]), None);
+        let one = Stats::of(&[2.5]).unwrap();
+        assert_eq!(
+            (one.min, one.median, one.p95, one.max),
+            (2.5, 2.5, 2.5, 2.5)
+        );
+    }
+}
