@@ -12,6 +12,7 @@ use vkocean::gpu::{context, GpuError};
 fn main() -> ExitCode {
     env_logger::Builder::from_env(env_logger::Env::default().default_filter_or("warn"))
         .format_timestamp(None)
+        .format_target(false)
         .init();
 
     let cli = match Cli::try_parse() {
@@ -22,14 +23,18 @@ fn main() -> ExitCode {
                 let _ = e.print();
                 return ExitCode::SUCCESS;
             }
-            // clap's first line ("error: invalid value ... for '--frames <N>': ...") is the message.
+            // clap's first line ("error: invalid value ... for '--frames <N>': ...") is the
+            // message; the list of possible values, when clap gives one, joins it.
             let text = e.to_string();
             let first = text
                 .lines()
                 .next()
                 .unwrap_or("invalid arguments")
                 .trim_start_matches("error: ");
-            eprintln!("vkocean: {first} (see --help)");
+            match text.lines().find(|l| l.contains("[possible values:")) {
+                Some(values) => eprintln!("vkocean: {first} {} (see --help)", values.trim()),
+                None => eprintln!("vkocean: {first} (see --help)"),
+            }
             return ExitCode::from(2);
         }
     };

@@ -371,7 +371,7 @@ struct DeviceSummaryParts {
 /// Lists every Vulkan device for `--list-gpus`, marking the ones vkocean cannot use.
 pub fn list_devices() -> GpuResult<Vec<DeviceSummary>> {
     let entry = load_entry()?;
-    let counters = Arc::new(MessageCounters::default());
+    let counters = Arc::new(MessageCounters::new(false));
     let (instance, _) = create_instance(&entry, false, None, &counters)?;
     // SAFETY: the instance is live; it is destroyed below, after its last use.
     let physicals = unsafe { instance.enumerate_physical_devices() };
@@ -402,7 +402,7 @@ impl Context {
     /// device, queues, allocator and frame timeline.
     pub fn new(desc: &ContextDesc) -> GpuResult<Arc<Context>> {
         let entry = load_entry()?;
-        let counters = Arc::new(MessageCounters::default());
+        let counters = Arc::new(MessageCounters::new(desc.validation));
         let (instance, debug_utils) =
             create_instance(&entry, desc.validation, desc.window.map(|w| w.0), &counters)?;
         // From here on, partial state is torn down by `Partial`'s Drop on early return.

@@ -14,9 +14,20 @@ use ash::vk;
 pub struct MessageCounters {
     warnings: AtomicU32,
     errors: AtomicU32,
+    /// Log messages at warn/error level (with --validation). Otherwise only loader and driver
+    /// chatter arrives (e.g. "Found no drivers!" before our own one-line error), logged at debug.
+    loud: bool,
 }
 
 impl MessageCounters {
+    /// Counters whose messages are logged loudly when `validation` is on.
+    pub fn new(validation: bool) -> Self {
+        MessageCounters {
+            loud: validation,
+            ..Default::default()
+        }
+    }
+
     /// WARNING-severity messages so far.
     pub fn warnings(&self) -> u32 {
         self.warnings.load(Ordering::Relaxed)
@@ -76,13 +87,20 @@ unsafe extern "system" fn on_message(
         };
         (counters, message)
     };
-    if severity.contains(vk::DebugUtilsMessageSeverityFlagsEXT::ERROR) {
-        counters.errors.fetch_add(1, Ordering::Relaxed);
-        log::error!("vulkan: {message}");
-    } else if severity.contains(vk::DebugUtilsMessageSeverityFlagsEXT::WARNING) {
-        counters.warnings.fetch_add(1, Ordering::Relaxed);
-        log::warn!("vulkan: {message}");
-    }
+    let (counter, level) = if severity.contains(vk::DebugUtilsMessageSeverityFlagsEXT::ERROR) {
+        (&counters.errors, log::Level::Error)
+    } else {
+        (&counters.warnings, log::Level::Warn)
+    };
+    counter.fetch_add(1, Ordering::Relaxed);
+    log::log!(
+        if counters.loud {
+            level
+        } else {
+            log::Level::Debug
+        },
+        "vulkan: {message}"
+    );
     vk::FALSE
 }
 

@@ -1,0 +1,182 @@
+//! The command-line contract: every bad input gives one clear line on stderr and its exit code
+//! (2 bad usage, 1 runtime failure), never a panic, and no output file is left behind.
+
+mod common;
+
+use common::{entries, run, run_with_env, scratch, stderr};
+
+/// Asserts exit `code`, exactly one stderr line starting `vkocean: ` that contains `needle`.
+fn assert_fails(args: &[&str], env: &[(&str, &str)], code: i32, needle: &str) {
+    let out = run_with_env(args, env);
+    let err = stderr(&out);
+    assert_eq!(
+        out.status.code(),
+        Some(code),
+        "{args:?}: exit code; stderr:\n{err}"
+    );
+    let lines: Vec<&str> = err.lines().collect();
+    assert_eq!(
+        lines.len(),
+        1,
+        "{args:?}: expected one stderr line, got:\n{err}"
+    );
+    assert!(lines[0].starts_with("vkocean: "), "{args:?}: {err}");
+    assert!(
+        lines[0].contains(needle),
+        "{args:?}: {err:?} lacks {needle:?}"
+    );
+    assert!(
+        !err.contains("panicked") && !err.contains("RUST_BACKTRACE"),
+        "{args:?}: {err}"
+    );
+    assert!(out.stdout.is_empty(), "{args:?}: stdout should be empty");
+}
+
+#[test]
+fn bad_usage_exits_2_with_one_line() {
+    let cases: &[(&[&str], &str)] = &[
+        (&["--headless", "--frames", "0"], "--frames"),
+        (&["--headless", "--frames", "-1"], "--frames"),
+        (&["--headless", "--frames", "1e3"], "not a whole number"),
+        (&["--headless", "--frames", "abc"], "not a whole number"),
+        (&["--headless", "--size", "0x0"], "--size"),
+        (&["--headless", "--size", "100000x10"], "from 1 to 16384"),
+        (&["--headless", "--size", "1280"], "WIDTHxHEIGHT"),
+        (&["--headless", "--size", "wxh"], "WIDTHxHEIGHT"),
+        (
+            &["--headless", "--present-mode", "bogus"],
+            "possible values: fifo, mailbox, immediate",
+        ),
+        (&["--headless", "--gpu", "x"], "--gpu"),
+        (&["--headless", "--no-such-flag"], "--no-such-flag"),
+        (
+            &["--headless", "--screenshot", "shot.jpg"],
+            "must end in .png",
+        ),
+        (&["--headless", "--profile", "p.txt"], "must end in .json"),
+        (
+            &["--headless", "--profile", "p.json", "--frames", "5"],
+            "warm-up",
+        ),
+    ];
+    for (args, needle) in cases {
+        assert_fails(args, &[], 2, needle);
+    }
+}
+
+#[test]
+fn gpu_index_out_of_range_is_usage_error() {
+    assert_fails(&["--headless", "--gpu", "99"], &[], 2, "--gpu 99");
+}
+
+#[test]
+fn unwritable_outputs_fail_before_rendering() {
+    assert_fails(
+        &["--headless", "--screenshot", "/nonexistent-dir/s.png"],
+        &[],
+        1,
+        "cannot write --screenshot",
+    );
+    assert_fails(
+        &["--headless", "--profile", "/nonexistent-dir/p.json"],
+        &[],
+        1,
+        "cannot write --profile",
+    );
+}
+
+#[test]
+fn failed_run_leaves_no_partial_file() {
+    let dir = scratch("no-partial");
+    let shot = dir.join("shot.png");
+    let profile = dir.join("p.json");
+    // The output paths are fine, the run fails later (device choice).
+    let args = [
+        "--headless",
+        "--screenshot",
+        shot.to_str().unwrap(),
+        "--profile",
+        profile.to_str().unwrap(),
+        "--gpu",
+        "99",
+    ];
+    assert_fails(&args, &[], 2, "--gpu 99");
+    assert!(entries(&dir).is_empty(), "left behind: {:?}", entries(&dir));
+}
+
+#[test]
+fn missing_loader_is_reported() {
+    assert_fails(
+        &["--headless"],
+        &[("VKOCEAN_VULKAN_LIBRARY", "/nonexistent/libvulkan.so.1")],
+        1,
+        "Vulkan loader",
+    );
+}
+
+#[test]
+fn missing_device_is_reported() {
+    let env = [
+        ("VK_ICD_FILENAMES", "/nonexistent/icd.json"),
+        ("VK_DRIVER_FILES", "/nonexistent/icd.json"),
+    ];
+    assert_fails(&["--headless"], &env, 1, "no Vulkan device found");
+}
+
+#[test]
+fn missing_validation_layer_is_reported() {
+    let empty = scratch("no-layers");
+    let env = [("VK_LAYER_PATH", empty.to_str().unwrap())];
+    assert_fails(
+        &["--headless", "--validation"],
+        &env,
+        1,
+        "VK_LAYER_KHRONOS_validation is not installed",
+    );
+}
+
+#[test]
+fn window_without_display_says_use_headless() {
+    let out = std::process::Command::new(common::bin())
+        .args(["--frames", "1"])
+        .env_remove("DISPLAY")
+        .env_remove("WAYLAND_DISPLAY")
+        .output()
+        .expect("runs");
+    let err = stderr(&out);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(err.contains("--headless"), "{err}");
+}
+
+#[test]
+fn help_and_device_list() {
+    let out = run(&["--help"]);
+    assert_eq!(out.status.code(), Some(0));
+    let help = String::from_utf8_lossy(&out.stdout);
+    for flag in [
+        "--headless",
+        "--frames",
+        "--size",
+        "--screenshot",
+        "--validation",
+        "--profile",
+        "--gpu",
+        "--list-gpus",
+        "--present-mode",
+    ] {
+        assert!(help.contains(flag), "help lacks {flag}");
+    }
+    assert!(
+        !help.contains("inject-sync-hazard"),
+        "test-only flag must stay hidden"
+    );
+
+    let out = run(&["--list-gpus"]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    let list = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        list.lines().next().is_some_and(|l| l.starts_with("0: ")),
+        "{list}"
+    );
+}

@@ -1,0 +1,83 @@
+//! Helpers shared by the integration tests: run the `vkocean` binary, make scratch directories,
+//! read the exit summary lines.
+#![allow(dead_code)] // each test binary uses a different subset
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+/// The binary under test.
+pub fn bin() -> &'static str {
+    env!("CARGO_BIN_EXE_vkocean")
+}
+
+/// `vkocean ARGS` with the given extra environment; DISPLAY removed unless `keep_display`.
+pub fn run_with_env(args: &[&str], env: &[(&str, &str)]) -> Output {
+    let mut cmd = Command::new(bin());
+    cmd.args(args)
+        .env_remove("RUST_LOG")
+        .env_remove("VK_INSTANCE_LAYERS");
+    for (k, v) in env {
+        cmd.env(k, v);
+    }
+    cmd.output().expect("the vkocean binary runs")
+}
+
+pub fn run(args: &[&str]) -> Output {
+    run_with_env(args, &[])
+}
+
+pub fn stderr(out: &Output) -> String {
+    String::from_utf8_lossy(&out.stderr).into_owned()
+}
+
+/// A fresh, empty scratch directory for one test.
+pub fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("vkocean-test-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).expect("temp dir is writable");
+    dir
+}
+
+/// File names in `dir` (hidden ones included).
+pub fn entries(dir: &Path) -> Vec<String> {
+    let mut names: Vec<String> = std::fs::read_dir(dir)
+        .expect("dir exists")
+        .map(|e| e.expect("entry").file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    names
+}
+
+/// Parses `validation: N warnings, M errors` from stderr.
+pub fn validation_counts(stderr: &str) -> Option<(u32, u32)> {
+    let line = stderr.lines().find(|l| l.starts_with("validation: "))?;
+    let nums: Vec<u32> = line
+        .split(|c: char| !c.is_ascii_digit())
+        .filter(|s| !s.is_empty())
+        .map(|s| s.parse().expect("digits"))
+        .collect();
+    match nums.as_slice() {
+        [w, e] => Some((*w, *e)),
+        _ => None,
+    }
+}
+
+/// Parses the frame count from the exit summary `vkocean: N frames at WxH ...`.
+pub fn frames_rendered(stderr: &str) -> Option<u64> {
+    let line = stderr
+        .lines()
+        .find(|l| l.starts_with("vkocean: ") && l.contains(" frames at "))?;
+    line.trim_start_matches("vkocean: ")
+        .split_whitespace()
+        .next()?
+        .parse()
+        .ok()
+}
+
+/// Decodes a PNG into (width, height, RGBA8 pixels).
+pub fn read_png(path: &Path) -> (u32, u32, Vec<u8>) {
+    let img = image::open(path)
+        .unwrap_or_else(|e| panic!("{} is a PNG: {e}", path.display()))
+        .to_rgba8();
+    (img.width(), img.height(), img.into_raw())
+}

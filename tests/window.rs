@@ -1,0 +1,99 @@
+//! The windowed frontend under Xvfb (xvfb-run, xdotool from tools/setup): a window opens, is
+//! resized twice (the swapchain is recreated each time), runs validation-clean and exits on Esc;
+//! `--frames N` stops by itself; `--screenshot` saves the last frame at the window's size.
+
+mod common;
+
+use std::process::Command;
+use std::sync::Mutex;
+
+use common::{frames_rendered, read_png, scratch, stderr, validation_counts};
+
+/// Two `xvfb-run -a` started together may pick the same display: run window tests one at a time.
+static XVFB: Mutex<()> = Mutex::new(());
+
+/// Runs `script` (bash) under xvfb-run with $VKOCEAN set to the binary; 120 s cap.
+fn under_xvfb(script: &str) -> std::process::Output {
+    let _guard = XVFB.lock().unwrap_or_else(|p| p.into_inner());
+    Command::new("timeout")
+        .args([
+            "120",
+            "xvfb-run",
+            "-a",
+            "-s",
+            "-screen 0 1600x1000x24",
+            "bash",
+            "-euc",
+            script,
+        ])
+        .env("VKOCEAN", common::bin())
+        .env_remove("RUST_LOG")
+        .output()
+        .expect("xvfb-run is installed (tools/setup)")
+}
+
+#[test]
+fn window_resizes_twice_and_stays_validation_clean() {
+    let dir = scratch("window-resize");
+    let shot = dir.join("last.png");
+    let script = format!(
+        r#"
+        "$VKOCEAN" --validation --size 640x360 --screenshot '{shot}' &
+        pid=$!
+        wid=$(xdotool search --sync --onlyvisible --name '^vkocean$' | head -n1)
+        sleep 1.5
+        xdotool windowsize "$wid" 800 500
+        sleep 1.5
+        xdotool windowsize "$wid" 480 300
+        sleep 1.5
+        # Without a window manager nothing focuses the window; key events need focus.
+        xdotool windowfocus --sync "$wid" 2>/dev/null || true
+        xdotool key --window "$wid" Escape 2>/dev/null
+        # Esc must end the run; if it does not within 20 s, kill it (the test then fails).
+        for _ in $(seq 200); do kill -0 "$pid" 2>/dev/null || break; sleep 0.1; done
+        kill "$pid" 2>/dev/null && echo "vkocean did not exit on Esc" >&2
+        wait "$pid"
+        "#,
+        shot = shot.display()
+    );
+    let out = under_xvfb(&script);
+    let err = stderr(&out);
+    assert_eq!(out.status.code(), Some(0), "{err}");
+    assert_eq!(validation_counts(&err), Some((0, 0)), "{err}");
+    let frames = frames_rendered(&err).expect("summary line");
+    assert!(frames >= 30, "ran {frames} frames: {err}");
+    assert!(
+        err.contains("swapchain created 3 times"),
+        "initial + two resizes: {err}"
+    );
+    let (w, h, _) = read_png(&shot);
+    assert_eq!(
+        (w, h),
+        (480, 300),
+        "the last frame has the final window size"
+    );
+}
+
+#[test]
+fn window_stops_after_frames() {
+    let dir = scratch("window-frames");
+    let shot = dir.join("shot.png");
+    let script = format!(
+        r#""$VKOCEAN" --validation --frames 30 --size 320x200 --screenshot '{}'"#,
+        shot.display()
+    );
+    let out = under_xvfb(&script);
+    let err = stderr(&out);
+    assert_eq!(out.status.code(), Some(0), "{err}");
+    assert_eq!(validation_counts(&err), Some((0, 0)), "{err}");
+    assert_eq!(frames_rendered(&err), Some(30), "{err}");
+    let (w, h, px) = read_png(&shot);
+    assert_eq!((w, h), (320, 200));
+    // Swapchain images are BGRA: the saved PNG must still be blue sky on top (red/blue swapped
+    // back), so the top-left pixel has more blue than red.
+    assert!(
+        px[2] > px[0],
+        "top-left pixel {:?} should be sky blue",
+        &px[..4]
+    );
+}
