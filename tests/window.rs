@@ -1,5 +1,6 @@
 //! The windowed frontend under Xvfb (xvfb-run, xdotool from tools/setup): a window opens, is
-//! resized twice (the swapchain is recreated each time), runs validation-clean and exits on Esc;
+//! resized twice (the swapchain is recreated each time), saves a screenshot on F12, runs
+//! validation-clean and exits on Esc;
 //! `--frames N` stops by itself; `--screenshot` saves the last frame at the window's size.
 
 mod common;
@@ -40,7 +41,15 @@ fn window_resizes_twice_and_stays_validation_clean() {
         r#"
         "$VKOCEAN" --validation --size 640x360 --screenshot '{shot}' &
         pid=$!
-        wid=$(xdotool search --sync --onlyvisible --name '^vkocean$' | head -n1)
+        # Wait for the window, but give up as soon as vkocean exits (a crash must fail fast).
+        wid=""
+        for _ in $(seq 300); do
+            wid=$(xdotool search --onlyvisible --name '^vkocean$' 2>/dev/null | head -n1) || true
+            [ -n "$wid" ] && break
+            kill -0 "$pid" 2>/dev/null || break
+            sleep 0.1
+        done
+        if [ -z "$wid" ]; then echo "no vkocean window appeared" >&2; wait "$pid"; exit 1; fi
         sleep 1.5
         xdotool windowsize "$wid" 800 500
         sleep 1.5
@@ -48,6 +57,8 @@ fn window_resizes_twice_and_stays_validation_clean() {
         sleep 1.5
         # Without a window manager nothing focuses the window; key events need focus.
         xdotool windowfocus --sync "$wid" 2>/dev/null || true
+        xdotool key --window "$wid" F12 2>/dev/null
+        sleep 1
         xdotool key --window "$wid" Escape 2>/dev/null
         # Esc must end the run; if it does not within 20 s, kill it (the test then fails).
         for _ in $(seq 200); do kill -0 "$pid" 2>/dev/null || break; sleep 0.1; done
@@ -65,6 +76,12 @@ fn window_resizes_twice_and_stays_validation_clean() {
     assert!(
         err.contains("swapchain created 3 times"),
         "initial + two resizes: {err}"
+    );
+    // F12 saved one screenshot, Esc with --screenshot another (the last frame).
+    assert_eq!(
+        err.matches("vkocean: saved ").count(),
+        2,
+        "F12 and exit screenshots: {err}"
     );
     let (w, h, _) = read_png(&shot);
     assert_eq!(

@@ -73,6 +73,7 @@ impl Session {
         let value = frame.signal_value();
         {
             let rec = frame.recorder(&self.ctx);
+            rec.begin_label(&format!("frame {}", frame.index));
             self.profiler.begin_frame(&rec, &frame)?;
             if let Some(hazard) = self.hazard.take() {
                 hazard.record(&rec);
@@ -82,6 +83,7 @@ impl Session {
                 .record(&rec, &frame, &mut self.profiler, output, inputs);
             finish(&rec);
             self.profiler.end_frame(&rec);
+            rec.end_label();
         }
         self.frames.submit(frame, waits, signals)?;
         Ok(value)

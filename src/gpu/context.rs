@@ -542,6 +542,12 @@ impl Context {
             pending_value: AtomicU64::new(1),
             counters,
         };
+        ctx.name(
+            ctx.device.handle(),
+            &format!("vkocean device ({})", ctx.info.name),
+        );
+        // The surface stays unnamed: naming a VkSurfaceKHR through the device crashes
+        // Mesa 22.3's lavapipe with the Vulkan 1.3.239 loader (segfault seen here).
         ctx.name(ctx.frame_timeline, "frame timeline (graphics)");
         ctx.name(ctx.graphics.raw, "graphics queue");
         if ctx.compute.family != ctx.graphics.family {
