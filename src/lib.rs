@@ -7,6 +7,7 @@
 pub mod cli;
 pub mod frontend;
 pub mod gpu;
+pub mod ocean;
 pub mod output;
 pub mod profile;
 pub mod render;

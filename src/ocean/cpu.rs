@@ -1,0 +1,388 @@
+//! CPU reference simulation (rustfft, f64): the same fields the GPU computes, from the same h0,
+//! and height queries without any GPU readback.
+//!
+//! Spectral fields of one cascade, with h̃ = h(k, t) (see `spectrum` for the conventions):
+//!
+//! ```text
+//! displacement  D_x = −i k_x/k h̃,  D_z = −i k_z/k h̃          (Tessendorf 2001, eq. 44: x + λ D)
+//! slopes        ∂h/∂x = i k_x h̃,   ∂h/∂z = i k_z h̃            (eq. 37)
+//! Jacobian      ∂D_x/∂x = k_x²/k h̃, ∂D_z/∂z = k_z²/k h̃, ∂D_x/∂z = k_x k_z/k h̃
+//!               J = (1 + λ ∂D_x/∂x)(1 + λ ∂D_z/∂z) − (λ ∂D_x/∂z)²   (eq. 45)
+//! ```
+//! Each inverse transform is unnormalized, f(x_n) = Σ F e^{+i k·x}. Because element n holds the
+//! wave number n − N/2, the physical field is (−1)^(n+m) times the plain inverse DFT (the "sign
+//! correction").
+//!
+//! Output per cascade, row-major `[m][n]` at x = n·L/N, z = m·L/N:
+//! displacement = (λ D_x, h, λ D_z, 0), normals = (∂h/∂x, ∂h/∂z, J, 0).
+
+use rustfft::num_complex::Complex64;
+use rustfft::FftPlanner;
+
+use super::params::OceanSettings;
+use super::spectrum::{dispersion, h0, wave_vector, Cascade};
+
+/// Fields of one cascade at one time.
+#[derive(Clone, Debug)]
+pub struct CascadeFields {
+    pub displacement: Vec<[f64; 4]>,
+    pub normals: Vec<[f64; 4]>,
+}
+
+/// The reference simulation.
+pub struct CpuOcean {
+    settings: OceanSettings,
+    cascades: Vec<Cascade>,
+    /// h0 per cascade, `[m][n]`, exactly the values uploaded to the GPU (f32).
+    h0: Vec<Vec<[f32; 2]>>,
+    /// Fields cached for one time, for height queries.
+    cache: Option<(f64, Vec<CascadeFields>)>,
+}
+
+impl CpuOcean {
+    pub fn new(settings: &OceanSettings) -> CpuOcean {
+        let cascades = settings.cascade_list();
+        let h0 = cascades
+            .iter()
+            .enumerate()
+            .map(|(c, cascade)| {
+                h0(
+                    &settings.sea,
+                    settings.fft_size,
+                    cascade,
+                    c as u32,
+                    settings.seed,
+                )
+            })
+            .collect();
+        CpuOcean {
+            settings: settings.clone(),
+            cascades,
+            h0,
+            cache: None,
+        }
+    }
+
+    pub fn settings(&self) -> &OceanSettings {
+        &self.settings
+    }
+
+    pub fn cascades(&self) -> &[Cascade] {
+        &self.cascades
+    }
+
+    /// h0 of cascade `c`, `[m][n]` (re, im).
+    pub fn h0(&self, c: usize) -> &[[f32; 2]] {
+        &self.h0[c]
+    }
+
+    /// h(k, t) of cascade `c`, `[m][n]`.
+    pub fn spectrum_at(&self, c: usize, t: f64) -> Vec<Complex64> {
+        let n = self.settings.fft_size;
+        let patch = self.cascades[c].patch_m;
+        let h0 = &self.h0[c];
+        let at = |m: usize, col: usize| {
+            Complex64::new(h0[m * n + col][0] as f64, h0[m * n + col][1] as f64)
+        };
+        let mut out = vec![Complex64::new(0.0, 0.0); n * n];
+        for m in 0..n {
+            for col in 0..n {
+                let k = wave_vector(col, m, n, patch);
+                let (omega, _) = dispersion(
+                    (k[0] * k[0] + k[1] * k[1]).sqrt(),
+                    self.settings.sea.depth_m,
+                );
+                let phase = Complex64::from_polar(1.0, omega * t);
+                // −k lives at ((N − n) mod N, (N − m) mod N); the Nyquist row/column has no partner
+                // and holds zero.
+                let minus = if m == 0 || col == 0 {
+                    Complex64::new(0.0, 0.0)
+                } else {
+                    at(n - m, n - col).conj()
+                };
+                out[m * n + col] = at(m, col) * phase + minus * phase.conj();
+            }
+        }
+        out
+    }
+
+    /// Displacement and normal fields of every cascade at time `t`.
+    pub fn fields(&self, t: f64) -> Vec<CascadeFields> {
+        (0..self.cascades.len())
+            .map(|c| self.cascade_fields(c, t))
+            .collect()
+    }
+
+    fn cascade_fields(&self, c: usize, t: f64) -> CascadeFields {
+        let n = self.settings.fft_size;
+        let lambda = self.settings.choppiness;
+        let patch = self.cascades[c].patch_m;
+        let ht = self.spectrum_at(c, t);
+        let i = Complex64::new(0.0, 1.0);
+        // The eight spectral fields, packed two real fields per complex transform: A + iB.
+        let mut packed: Vec<Vec<Complex64>> = vec![vec![Complex64::new(0.0, 0.0); n * n]; 4];
+        for m in 0..n {
+            for col in 0..n {
+                let idx = m * n + col;
+                let k = wave_vector(col, m, n, patch);
+                let k_len = (k[0] * k[0] + k[1] * k[1]).sqrt();
+                let h = ht[idx];
+                let (ux, uz) = if k_len > 0.0 {
+                    (k[0] / k_len, k[1] / k_len)
+                } else {
+                    (0.0, 0.0)
+                };
+                let dx = -i * ux * h;
+                let dz = -i * uz * h;
+                let sx = i * k[0] * h;
+                let sz = i * k[1] * h;
+                let dxx = ux * k[0] * h;
+                let dzz = uz * k[1] * h;
+                let dxz = ux * k[1] * h;
+                packed[0][idx] = dx + i * h;
+                packed[1][idx] = dz + i * sx;
+                packed[2][idx] = sz + i * dxx;
+                packed[3][idx] = dzz + i * dxz;
+            }
+        }
+        for field in &mut packed {
+            inverse_2d(field, n);
+        }
+        let mut displacement = vec![[0.0; 4]; n * n];
+        let mut normals = vec![[0.0; 4]; n * n];
+        for m in 0..n {
+            for col in 0..n {
+                let idx = m * n + col;
+                let sign = if (m + col) % 2 == 0 { 1.0 } else { -1.0 };
+                let (dx, h) = (packed[0][idx].re * sign, packed[0][idx].im * sign);
+                let (dz, sx) = (packed[1][idx].re * sign, packed[1][idx].im * sign);
+                let (sz, dxx) = (packed[2][idx].re * sign, packed[2][idx].im * sign);
+                let (dzz, dxz) = (packed[3][idx].re * sign, packed[3][idx].im * sign);
+                let jacobian = (1.0 + lambda * dxx) * (1.0 + lambda * dzz) - (lambda * dxz).powi(2);
+                displacement[idx] = [lambda * dx, h, lambda * dz, 0.0];
+                normals[idx] = [sx, sz, jacobian, 0.0];
+            }
+        }
+        CascadeFields {
+            displacement,
+            normals,
+        }
+    }
+
+    /// Where the surface point with rest position (α, β) is at time t: (x, y, z), summed over
+    /// cascades, bilinear between grid points. Fields are cached per t, so many queries at one
+    /// time cost one set of FFTs.
+    pub fn displaced(&mut self, alpha: f64, beta: f64, t: f64) -> [f64; 3] {
+        if self.cache.as_ref().is_none_or(|(ct, _)| *ct != t) {
+            self.cache = Some((t, self.fields(t)));
+        }
+        let fields = &self.cache.as_ref().expect("just filled").1;
+        let n = self.settings.fft_size;
+        let mut d = [0.0; 3];
+        for (f, c) in fields.iter().zip(&self.cascades) {
+            for (i, comp) in d.iter_mut().enumerate() {
+                *comp += bilinear(&f.displacement, n, c.patch_m, alpha, beta, i);
+            }
+        }
+        [alpha + d[0], d[1], beta + d[2]]
+    }
+
+    /// Rest position (α, β) of the surface point that the choppy displacement carries to (x, z)
+    /// at time t (fixed-point iteration α ← x − D_x(α, β)).
+    pub fn rest_position(&mut self, x: f64, z: f64, t: f64) -> [f64; 2] {
+        let (mut a, mut b) = (x, z);
+        for _ in 0..16 {
+            let p = self.displaced(a, b, t);
+            a += x - p[0];
+            b += z - p[2];
+        }
+        [a, b]
+    }
+
+    /// Height of the water surface above the world point (x, z) at time t (buoyancy queries).
+    pub fn height_at(&mut self, x: f64, z: f64, t: f64) -> f64 {
+        let [a, b] = self.rest_position(x, z, t);
+        self.displaced(a, b, t)[1]
+    }
+}
+
+/// Periodic bilinear interpolation of component `comp` of a `[m][n]` grid over a patch.
+fn bilinear(grid: &[[f64; 4]], n: usize, patch: f64, x: f64, z: f64, comp: usize) -> f64 {
+    let fx = (x / patch * n as f64).rem_euclid(n as f64);
+    let fz = (z / patch * n as f64).rem_euclid(n as f64);
+    let (x0, z0) = (fx.floor() as usize % n, fz.floor() as usize % n);
+    let (x1, z1) = ((x0 + 1) % n, (z0 + 1) % n);
+    let (tx, tz) = (fx - fx.floor(), fz - fz.floor());
+    let v = |xi: usize, zi: usize| grid[zi * n + xi][comp];
+    (v(x0, z0) * (1.0 - tx) + v(x1, z0) * tx) * (1.0 - tz)
+        + (v(x0, z1) * (1.0 - tx) + v(x1, z1) * tx) * tz
+}
+
+/// Unnormalized 2D inverse DFT in place (rows, then columns).
+pub fn inverse_2d(data: &mut [Complex64], n: usize) {
+    let mut planner = FftPlanner::<f64>::new();
+    let fft = planner.plan_fft_inverse(n);
+    for row in data.chunks_exact_mut(n) {
+        fft.process(row);
+    }
+    let mut column = vec![Complex64::new(0.0, 0.0); n];
+    for col in 0..n {
+        for m in 0..n {
+            column[m] = data[m * n + col];
+        }
+        fft.process(&mut column);
+        for m in 0..n {
+            data[m * n + col] = column[m];
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::ocean::spectrum::{integrate_density, SeaState, SpectrumKind};
+
+    fn settings(spectrum: SpectrumKind, seed: u64) -> OceanSettings {
+        OceanSettings {
+            sea: SeaState {
+                spectrum,
+                ..SeaState::default()
+            },
+            fft_size: 128,
+            patch_size_m: 600.0,
+            cascades: 3,
+            choppiness: 1.0,
+            seed,
+        }
+    }
+
+    /// Direct evaluation of h(x, t) = Σ_k h(k,t) e^{ik·x} at one point of cascade c.
+    fn direct_height(ocean: &CpuOcean, c: usize, x: f64, z: f64, t: f64) -> f64 {
+        let n = ocean.settings.fft_size;
+        let ht = ocean.spectrum_at(c, t);
+        let mut sum = Complex64::new(0.0, 0.0);
+        for m in 0..n {
+            for col in 0..n {
+                let k = wave_vector(col, m, n, ocean.cascades[c].patch_m);
+                sum += ht[m * n + col] * Complex64::from_polar(1.0, k[0] * x + k[1] * z);
+            }
+        }
+        assert!(
+            sum.im.abs() < 1e-9 * (1.0 + sum.re.abs()),
+            "h(k,t) is Hermitian: imaginary part {}",
+            sum.im
+        );
+        sum.re
+    }
+
+    #[test]
+    fn fft_fields_match_direct_summation() {
+        let ocean = CpuOcean::new(&settings(SpectrumKind::Jonswap, 3));
+        let fields = ocean.fields(2.5);
+        let n = 128;
+        for (c, cascade_fields) in fields.iter().enumerate() {
+            let patch = ocean.cascades[c].patch_m;
+            for &(col, m) in &[(0usize, 0usize), (5, 77), (127, 64)] {
+                let direct = direct_height(
+                    &ocean,
+                    c,
+                    col as f64 * patch / n as f64,
+                    m as f64 * patch / n as f64,
+                    2.5,
+                );
+                let fft = cascade_fields.displacement[m * n + col][1];
+                assert!(
+                    (direct - fft).abs() < 1e-9,
+                    "cascade {c} ({col},{m}): {direct} vs {fft}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn height_variance_matches_the_spectrum_integral() {
+        for spectrum in [
+            SpectrumKind::Jonswap,
+            SpectrumKind::PiersonMoskowitz,
+            SpectrumKind::Phillips,
+        ] {
+            let s = settings(spectrum, 1);
+            let cascades = s.cascade_list();
+            let last = cascades.last().unwrap();
+            let k_nyquist = std::f64::consts::PI * s.fft_size as f64 / last.patch_m;
+            let integral = integrate_density(&s.sea, 1e-4, k_nyquist);
+            // Expected variance of the generated field: 2 Σ_k P(k), from the grid (no randomness).
+            let mut expected = 0.0;
+            for c in &cascades {
+                let dk = 2.0 * std::f64::consts::PI / c.patch_m;
+                for m in 1..s.fft_size {
+                    for col in 1..s.fft_size {
+                        let k = wave_vector(col, m, s.fft_size, c.patch_m);
+                        let kl = (k[0] * k[0] + k[1] * k[1]).sqrt();
+                        if kl >= c.k_min && kl < c.k_max && kl > 0.0 {
+                            expected +=
+                                crate::ocean::spectrum::directional_density(&s.sea, [-k[0], -k[1]])
+                                    * dk
+                                    * dk;
+                        }
+                    }
+                }
+            }
+            assert!(
+                (expected / integral - 1.0).abs() < 0.03,
+                "{spectrum:?}: grid {expected} vs ∫S {integral}"
+            );
+
+            // Sample variance of the heights (Parseval per cascade; cascades are independent),
+            // averaged over seeds: within sampling error of the expectation.
+            let seeds = 12;
+            let mut mean_var = 0.0;
+            for seed in 0..seeds {
+                let ocean = CpuOcean::new(&settings(spectrum, seed));
+                let var: f64 = ocean
+                    .fields(0.0)
+                    .iter()
+                    .map(|f| {
+                        f.displacement.iter().map(|d| d[1] * d[1]).sum::<f64>()
+                            / f.displacement.len() as f64
+                    })
+                    .sum();
+                mean_var += var / seeds as f64;
+            }
+            assert!(
+                (mean_var / integral - 1.0).abs() < 0.1,
+                "{spectrum:?}: sample {mean_var} vs ∫S {integral}"
+            );
+        }
+    }
+
+    #[test]
+    fn height_query_agrees_with_grid_and_is_deterministic() {
+        let s = OceanSettings {
+            choppiness: 0.0,
+            ..settings(SpectrumKind::Jonswap, 5)
+        };
+        let mut ocean = CpuOcean::new(&s);
+        let fields = ocean.fields(1.0);
+        // At a grid point of every cascade (the origin), without choppiness: the sum of cascades.
+        let expected: f64 = fields.iter().map(|f| f.displacement[0][1]).sum();
+        assert!((ocean.height_at(0.0, 0.0, 1.0) - expected).abs() < 1e-12);
+        let again = CpuOcean::new(&s).height_at(12.3, -45.6, 1.0);
+        assert_eq!(ocean.height_at(12.3, -45.6, 1.0), again);
+    }
+
+    #[test]
+    fn choppy_height_query_finds_the_displaced_point() {
+        let mut ocean = CpuOcean::new(&settings(SpectrumKind::Jonswap, 9));
+        let t = 0.7;
+        for &(x, z) in &[(31.0, 17.0), (-250.0, 903.5), (0.0, 0.0)] {
+            let [a, b] = ocean.rest_position(x, z, t);
+            let p = ocean.displaced(a, b, t);
+            assert!(
+                (p[0] - x).abs() < 1e-6 && (p[2] - z).abs() < 1e-6,
+                "({x},{z}) -> {p:?}"
+            );
+            assert_eq!(ocean.height_at(x, z, t), p[1]);
+        }
+    }
+}

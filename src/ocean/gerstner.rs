@@ -1,0 +1,145 @@
+//! Gerstner waves, analytic (seed 000, section 2; steepness from seed 004). A point (α, β) of the
+//! mean surface moves to
+//!
+//! ```text
+//! x = α − Σ Q_m (k_x,m/k_m) a_m sin θ_m,   z = β − Σ Q_m (k_z,m/k_m) a_m sin θ_m,   y = Σ a_m cos θ_m,
+//! θ_m = k_x,m α + k_z,m β − ω_m t − φ_m,   ω_m = √(g k_m), g = 9.8 (seed 000's constant).
+//! ```
+//! Q_m = 1 is seed 000's wave, Q_m = 0 a plain sine (seed 004). The normal is the cross product of
+//! the surface tangents; seed 000 writes ∂r/∂α × ∂r/∂β in Direct3D's left-handed (x, z, y) order,
+//! which in our right-handed (x, y, z) is n = ∂r/∂β × ∂r/∂α (pointing up).
+
+/// Gravity in seed 000's dispersion relation.
+pub const G_SEED: f64 = 9.8;
+
+/// One wave: wave vector (rad/m), amplitude (m), phase (rad), steepness Q.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Wave {
+    pub kx: f64,
+    pub kz: f64,
+    pub amplitude: f64,
+    pub phase: f64,
+    pub steepness: f64,
+}
+
+/// Seed 000's table of 13 waves (k_x, k_z, a, φ), Q = 1.
+pub const SEED_000_WAVES: [(f64, f64, f64, f64); 13] = [
+    (0.3, -0.46, 0.2, 0.0),
+    (-0.33, 0.40, 0.12, 0.0),
+    (0.0, 0.56, 0.2, 0.2),
+    (-0.33, 0.0, 0.12, 0.3),
+    (0.3, -0.26, 0.2, 0.7),
+    (-0.33, 0.20, 0.12, 0.9),
+    (0.17, 0.3, 0.3, -1.0),
+    (-0.15, -0.1, 0.7, 0.6),
+    (-0.15, 0.1, 0.6, 0.5),
+    (0.15, -0.1, 0.8, 0.4),
+    (0.15, 0.1, 0.3, 0.3),
+    (-0.25, -0.1, 0.2, 0.2),
+    (-0.15, -0.25, 0.4, 0.1),
+];
+
+/// The default wave table.
+pub fn default_waves() -> Vec<Wave> {
+    SEED_000_WAVES
+        .iter()
+        .map(|&(kx, kz, amplitude, phase)| Wave {
+            kx,
+            kz,
+            amplitude,
+            phase,
+            steepness: 1.0,
+        })
+        .collect()
+}
+
+/// Displaced position (x, y, z) and unit normal of the surface point (α, β) at time t.
+pub fn evaluate(waves: &[Wave], alpha: f64, beta: f64, t: f64) -> ([f64; 3], [f64; 3]) {
+    let mut p = [alpha, 0.0, beta];
+    // Tangents ∂r/∂α and ∂r/∂β, in (x, y, z).
+    let mut ta = [1.0, 0.0, 0.0];
+    let mut tb = [0.0, 0.0, 1.0];
+    for w in waves {
+        let k = (w.kx * w.kx + w.kz * w.kz).sqrt();
+        if k == 0.0 {
+            continue;
+        }
+        let omega = (G_SEED * k).sqrt();
+        let theta = w.kx * alpha + w.kz * beta - omega * t - w.phase;
+        let (s, c) = theta.sin_cos();
+        let qa = w.steepness * w.amplitude / k;
+        p[0] -= w.kx * qa * s;
+        p[2] -= w.kz * qa * s;
+        p[1] += w.amplitude * c;
+        ta[0] -= w.kx * w.kx * qa * c;
+        ta[1] -= w.kx * w.amplitude * s;
+        ta[2] -= w.kx * w.kz * qa * c;
+        tb[0] -= w.kx * w.kz * qa * c;
+        tb[1] -= w.kz * w.amplitude * s;
+        tb[2] -= w.kz * w.kz * qa * c;
+    }
+    let n = [
+        tb[1] * ta[2] - tb[2] * ta[1],
+        tb[2] * ta[0] - tb[0] * ta[2],
+        tb[0] * ta[1] - tb[1] * ta[0],
+    ];
+    let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt().max(1e-12);
+    (p, [n[0] / len, n[1] / len, n[2] / len])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+        [
+            a[1] * b[2] - a[2] * b[1],
+            a[2] * b[0] - a[0] * b[2],
+            a[0] * b[1] - a[1] * b[0],
+        ]
+    }
+
+    #[test]
+    fn normals_match_finite_differences() {
+        let waves = default_waves();
+        let h = 1e-5;
+        for &(a, b, t) in &[(0.0, 0.0, 0.0), (3.7, -12.1, 1.3), (-40.0, 22.5, 7.9)] {
+            let (_, n) = evaluate(&waves, a, b, t);
+            let d = |da: f64, db: f64| evaluate(&waves, a + da, b + db, t).0;
+            let sub = |p: [f64; 3], q: [f64; 3]| {
+                [
+                    (p[0] - q[0]) / (2.0 * h),
+                    (p[1] - q[1]) / (2.0 * h),
+                    (p[2] - q[2]) / (2.0 * h),
+                ]
+            };
+            let ta = sub(d(h, 0.0), d(-h, 0.0));
+            let tb = sub(d(0.0, h), d(0.0, -h));
+            let fd = cross(tb, ta);
+            let len = (fd[0] * fd[0] + fd[1] * fd[1] + fd[2] * fd[2]).sqrt();
+            for i in 0..3 {
+                assert!(
+                    (n[i] - fd[i] / len).abs() < 1e-6,
+                    "at ({a},{b},{t}): {n:?} vs {fd:?}"
+                );
+            }
+            assert!(n[1] > 0.0, "normal points up");
+        }
+    }
+
+    #[test]
+    fn flat_without_waves_and_plain_sine_with_zero_steepness() {
+        let (p, n) = evaluate(&[], 1.0, 2.0, 3.0);
+        assert_eq!((p, n), ([1.0, 0.0, 2.0], [0.0, 1.0, 0.0]));
+        let w = Wave {
+            kx: 0.5,
+            kz: 0.0,
+            amplitude: 0.3,
+            phase: 0.0,
+            steepness: 0.0,
+        };
+        let (p, _) = evaluate(&[w], 1.0, 0.0, 0.0);
+        assert_eq!((p[0], p[2]), (1.0, 0.0));
+        assert!((p[1] - 0.3 * 0.5f64.cos()).abs() < 1e-12);
+    }
+}

@@ -1,0 +1,10 @@
+//! The ocean: sea state and spectra ([`spectrum`]), the CPU reference simulation with rustfft
+//! ([`cpu`]), and analytic Gerstner waves ([`gerstner`]).
+
+pub mod cpu;
+pub mod gerstner;
+pub mod params;
+pub mod spectrum;
+
+pub use params::OceanSettings;
+pub use spectrum::{SeaState, SpectrumKind};

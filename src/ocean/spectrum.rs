@@ -1,0 +1,494 @@
+//! Sea state → directional wave spectrum → initial amplitudes h0(k), in SI units.
+//!
+//! # Conventions (shared with the GPU shaders, the CPU reference and `--dump`)
+//! A cascade is an N×N grid over a square patch of side L. Element `[m][n]` holds the wave vector
+//! k = (2π(n − N/2)/L, 2π(m − N/2)/L) = (k_x, k_z): x runs along n, z along m. The height is
+//!
+//! ```text
+//! h(x, t) = Σ_k h(k, t) e^{i k·x},   h(k, t) = h0(k) e^{iω(k)t} + conj(h0(−k)) e^{−iω(k)t}
+//! ```
+//! (Tessendorf 2001, eq. 43), so `h(k,t)` is Hermitian and the height real. The term h0(k)e^{i(k·x+ωt)}
+//! is a wave **travelling toward −k̂**; that is why every spectrum below is evaluated for the travel
+//! direction −k̂ of the component it feeds (waves then run downwind).
+//!
+//! # Amplitude normalization (the contract)
+//! With ξ = ξ_r + iξ_i, ξ_r, ξ_i independent standard normals, h0(k) = ξ·√(P(k)/2), so
+//! E|h0(k)|² = P(k). The two terms of h(k,t) are independent with zero mean, hence
+//! E|h(k,t)|² = P(k) + P(−k), and by Parseval the expected variance of the height field is
+//!
+//! ```text
+//! Var h = Σ_k E|h(k,t)|² = Σ_k (P(k) + P(−k)) = 2 Σ_k P(k).
+//! ```
+//! A directional spectrum S(k) (m⁴, density over the k-plane, by direction of travel) gives the
+//! variance Var h = ∫∫ S(k) dk_x dk_z ≈ Σ_k S(k) Δk² on a grid with Δk = 2π/L. Equating the two,
+//! component by component (P(k) feeds the wave travelling toward −k̂):
+//!
+//! ```text
+//! P(k) = S(−k) Δk² / 2.
+//! ```
+//! The frequency spectra S(ω) (m²·s) of Pierson–Moskowitz and JONSWAP become S(k) through the
+//! directional spreading D(ω, θ) (∫_{−π}^{π} D dθ = 1) and the Jacobian of the dispersion relation:
+//! S(k) d²k = S(ω) D(ω,θ) dω dθ and d²k = k dk dθ, so S(k) = S(ω) D(ω,θ) (dω/dk) / k.
+//! The Phillips spectrum is used directly as S(k) (see [`phillips`]).
+
+use std::f64::consts::PI;
+
+/// Gravitational acceleration (m/s²).
+pub const G: f64 = 9.81;
+
+/// Which spectrum shapes the sea.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SpectrumKind {
+    /// Tessendorf's graphics spectrum (2001), from wind speed and direction only.
+    Phillips,
+    /// Fetch-limited sea (Hasselmann et al. 1973), from wind speed and fetch.
+    Jonswap,
+    /// Fully developed sea (Pierson & Moskowitz 1964), from wind speed.
+    PiersonMoskowitz,
+}
+
+impl SpectrumKind {
+    pub fn name(self) -> &'static str {
+        match self {
+            SpectrumKind::Phillips => "phillips",
+            SpectrumKind::Jonswap => "jonswap",
+            SpectrumKind::PiersonMoskowitz => "pierson-moskowitz",
+        }
+    }
+}
+
+/// The physical sea state. All values SI except where the name says otherwise.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SeaState {
+    pub spectrum: SpectrumKind,
+    /// Wind speed 10 m above the sea, U10 (m/s).
+    pub wind_speed_m_s: f64,
+    /// Direction the wind blows toward, degrees from +x toward +z.
+    pub wind_dir_deg: f64,
+    /// Distance over which the wind has blown (km); JONSWAP only.
+    pub fetch_km: f64,
+    /// Water depth (m); `None` is deep water. Finite depth changes the dispersion relation and
+    /// applies the TMA attenuation to the physical spectra.
+    pub depth_m: Option<f64>,
+}
+
+impl Default for SeaState {
+    /// A moderate breeze over 100 km of fetch: about 1.6 m significant wave height.
+    fn default() -> Self {
+        SeaState {
+            spectrum: SpectrumKind::Jonswap,
+            wind_speed_m_s: 10.0,
+            wind_dir_deg: 0.0,
+            fetch_km: 100.0,
+            depth_m: None,
+        }
+    }
+}
+
+/// Largest k·h passed to tanh/cosh: tanh(20) = 1 to f64 precision, and cosh stays finite.
+const MAX_KH: f64 = 20.0;
+
+/// Angular frequency ω(k) = √(g k tanh(k h)) and group slope dω/dk, for deep (`None`) or finite
+/// depth. Arguments are clamped so no input produces NaN or infinity (k ≥ 0 assumed).
+pub fn dispersion(k: f64, depth_m: Option<f64>) -> (f64, f64) {
+    let k = k.max(0.0);
+    match depth_m {
+        None => {
+            let omega = (G * k).sqrt();
+            (omega, if omega > 0.0 { G / (2.0 * omega) } else { 0.0 })
+        }
+        Some(h) => {
+            let kh = (k * h.max(1e-3)).min(MAX_KH);
+            let t = kh.tanh();
+            let omega = (G * k * t).max(0.0).sqrt();
+            let sech2 = 1.0 / kh.cosh().powi(2);
+            let d = if omega > 0.0 {
+                G * (t + kh * sech2) / (2.0 * omega)
+            } else {
+                0.0
+            };
+            (omega, d)
+        }
+    }
+}
+
+/// Peak angular frequency ω_p (rad/s) of the physical spectra.
+pub fn peak_omega(sea: &SeaState) -> f64 {
+    let u = sea.wind_speed_m_s.max(1e-3);
+    match sea.spectrum {
+        // JONSWAP: ω_p = 22 (g² / (U F))^(1/3), F in metres (Horvath 2015, eq. 28).
+        SpectrumKind::Jonswap => 22.0 * (G * G / (u * sea.fetch_km.max(1e-3) * 1000.0)).cbrt(),
+        // Pierson–Moskowitz: ω_p = 0.855 g / U_19.5 with U_19.5 ≈ 1.026 U10 (Horvath 2015, §5.1).
+        SpectrumKind::PiersonMoskowitz | SpectrumKind::Phillips => 0.855 * G / (1.026 * u),
+    }
+}
+
+/// One-dimensional frequency spectrum S(ω) (m²·s) of the physical spectra, TMA-attenuated at
+/// finite depth. Zero at ω = 0.
+pub fn frequency_spectrum(sea: &SeaState, omega: f64) -> f64 {
+    if omega <= 1e-6 {
+        return 0.0;
+    }
+    let wp = peak_omega(sea);
+    let ratio4 = (wp / omega).powi(4);
+    let base = |alpha: f64| alpha * G * G / omega.powi(5) * (-1.25 * ratio4).exp();
+    let s = match sea.spectrum {
+        SpectrumKind::PiersonMoskowitz | SpectrumKind::Phillips => base(8.1e-3),
+        SpectrumKind::Jonswap => {
+            let u = sea.wind_speed_m_s.max(1e-3);
+            let fetch_m = sea.fetch_km.max(1e-3) * 1000.0;
+            // α = 0.076 (U² / (F g))^0.22, γ = 3.3, σ = 0.07 below the peak, 0.09 above.
+            let alpha = 0.076 * (u * u / (fetch_m * G)).powf(0.22);
+            let sigma = if omega <= wp { 0.07 } else { 0.09 };
+            let r = (-(omega - wp).powi(2) / (2.0 * sigma * sigma * wp * wp)).exp();
+            base(alpha) * 3.3f64.powf(r)
+        }
+    };
+    s * tma_attenuation(omega, sea.depth_m)
+}
+
+/// Kitaigorodskii depth attenuation Φ(ω, h) of the TMA spectrum (Bouws et al. 1985; Horvath 2015
+/// eq. 29): with ω_h = ω √(h/g), Φ = ω_h²/2 for ω_h ≤ 1, 1 − (2 − ω_h)²/2 for ω_h < 2, else 1.
+pub fn tma_attenuation(omega: f64, depth_m: Option<f64>) -> f64 {
+    let Some(h) = depth_m else { return 1.0 };
+    let wh = omega * (h.max(0.0) / G).sqrt();
+    if wh <= 1.0 {
+        0.5 * wh * wh
+    } else if wh < 2.0 {
+        1.0 - 0.5 * (2.0 - wh).powi(2)
+    } else {
+        1.0
+    }
+}
+
+/// Donelan–Banner directional spreading D(ω, θ) (Donelan, Hamilton & Hui 1985 with Banner's 1990
+/// high-frequency extension; Horvath 2015 eq. 38): D = β / (2 tanh(βπ)) · sech²(βθ), θ the angle
+/// between the direction of travel and the wind in (−π, π]. Integrates to exactly 1 over θ.
+pub fn donelan_banner(omega: f64, omega_p: f64, theta: f64) -> f64 {
+    let r = (omega / omega_p.max(1e-6)).max(1e-6);
+    let beta = if r < 0.95 {
+        2.61 * r.powf(1.3)
+    } else if r < 1.6 {
+        2.28 * r.powf(-1.3)
+    } else {
+        let eps = -0.4 + 0.8393 * (-0.567 * (r * r).ln().powi(2)).exp();
+        10f64.powf(eps)
+    };
+    let beta = beta.max(1e-3); // β → 0 would be isotropic; keep tanh(βπ) away from 0
+    let sech = 1.0 / (beta * theta).cosh();
+    beta / (2.0 * (beta * PI).tanh()) * sech * sech
+}
+
+/// Tessendorf's amplitude constant for the Phillips spectrum. With A = α/π, α = 0.0081 (the
+/// Phillips constant of the saturation range), ∫ S d²k = α L_w²/2 (L_w = U²/g), close to the
+/// Pierson–Moskowitz variance of the same wind.
+pub const PHILLIPS_A: f64 = 8.1e-3 / PI;
+/// Factor on waves travelling against the wind (seed 003 `dirDepend`; NVIDIA's sample uses 0.07).
+pub const PHILLIPS_AGAINST_WIND: f64 = 0.07;
+
+/// Phillips spectrum as a density over the k-plane (m⁴), for a wave travelling along `k_travel`
+/// (Tessendorf 2001 eq. 40, seed 003): A e^{−1/(kL)²}/k⁴ |k̂·ŵ|² · e^{−k²ℓ²}, L = U²/g, ℓ = L/1000
+/// (suppresses waves much shorter than the wind scale), times `PHILLIPS_AGAINST_WIND` when k̂·ŵ < 0.
+pub fn phillips(k_travel: [f64; 2], wind_speed_m_s: f64, wind_dir: [f64; 2]) -> f64 {
+    let k2 = k_travel[0] * k_travel[0] + k_travel[1] * k_travel[1];
+    if k2 < 1e-12 {
+        return 0.0;
+    }
+    let l_wind = (wind_speed_m_s * wind_speed_m_s / G).max(1e-6);
+    let k = k2.sqrt();
+    let cos = (k_travel[0] * wind_dir[0] + k_travel[1] * wind_dir[1]) / k;
+    let small = l_wind / 1000.0;
+    let mut p = PHILLIPS_A * (-1.0 / (k2 * l_wind * l_wind)).exp() / (k2 * k2)
+        * cos
+        * cos
+        * (-k2 * small * small).exp();
+    if cos < 0.0 {
+        p *= PHILLIPS_AGAINST_WIND;
+    }
+    p
+}
+
+/// Unit vector of the wind direction.
+pub fn wind_vector(sea: &SeaState) -> [f64; 2] {
+    let a = sea.wind_dir_deg.to_radians();
+    [a.cos(), a.sin()]
+}
+
+/// Directional spectrum S(k) (m⁴) for waves travelling along `k_travel`.
+pub fn directional_density(sea: &SeaState, k_travel: [f64; 2]) -> f64 {
+    let wind = wind_vector(sea);
+    if sea.spectrum == SpectrumKind::Phillips {
+        return phillips(k_travel, sea.wind_speed_m_s, wind);
+    }
+    let k = (k_travel[0] * k_travel[0] + k_travel[1] * k_travel[1]).sqrt();
+    if k < 1e-9 {
+        return 0.0;
+    }
+    let (omega, domega_dk) = dispersion(k, sea.depth_m);
+    let theta =
+        (k_travel[1].atan2(k_travel[0]) - wind[1].atan2(wind[0]) + PI).rem_euclid(2.0 * PI) - PI;
+    frequency_spectrum(sea, omega) * donelan_banner(omega, peak_omega(sea), theta) * domega_dk / k
+}
+
+/// Numerical ∫∫ S(k) d²k over the annulus k_min ≤ |k| ≤ k_max (polar midpoint rule, log-spaced
+/// in k). Used to check the normalization of generated fields.
+pub fn integrate_density(sea: &SeaState, k_min: f64, k_max: f64) -> f64 {
+    let (nk, nt) = (4000, 720);
+    let (lo, hi) = (k_min.max(1e-6).ln(), k_max.ln());
+    let mut sum = 0.0;
+    for i in 0..nk {
+        let (a, b) = (
+            lo + (hi - lo) * i as f64 / nk as f64,
+            lo + (hi - lo) * (i + 1) as f64 / nk as f64,
+        );
+        let k = ((a + b) / 2.0).exp();
+        let dk = b.exp() - a.exp();
+        for j in 0..nt {
+            let t = -PI + 2.0 * PI * (j as f64 + 0.5) / nt as f64;
+            sum += directional_density(sea, [k * t.cos(), k * t.sin()])
+                * k
+                * dk
+                * (2.0 * PI / nt as f64);
+        }
+    }
+    sum
+}
+
+/// Portable counter-based RNG: SplitMix64 (Steele, Lea & Flood 2014) of a key. The same key gives
+/// the same number on every machine.
+fn splitmix64(mut z: u64) -> u64 {
+    z = z.wrapping_add(0x9E37_79B9_7F4A_7C15);
+    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+    z ^ (z >> 31)
+}
+
+/// A complex standard normal pair (ξ_r, ξ_i) for wave index (i, j) of cascade `c` (Box–Muller).
+/// Keyed by the integer wave index, not the array position, so the same waves keep their phases
+/// when N changes.
+pub fn gaussian_pair(seed: u64, cascade: u32, i: i64, j: i64) -> (f64, f64) {
+    let key = splitmix64(
+        seed ^ splitmix64(
+            ((cascade as u64) << 48) ^ ((i as u64 & 0xFF_FFFF) << 24) ^ (j as u64 & 0xFF_FFFF),
+        ),
+    );
+    let a = splitmix64(key);
+    let b = splitmix64(a);
+    // Uniforms in (0, 1]: 53 random bits.
+    let u1 = ((a >> 11) + 1) as f64 / (1u64 << 53) as f64;
+    let u2 = (b >> 11) as f64 / (1u64 << 53) as f64;
+    let r = (-2.0 * u1.ln()).sqrt();
+    (r * (2.0 * PI * u2).cos(), r * (2.0 * PI * u2).sin())
+}
+
+/// One cascade: its patch size and the band of |k| it owns (disjoint between cascades).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Cascade {
+    pub patch_m: f64,
+    /// |k| ≥ k_min (rad/m).
+    pub k_min: f64,
+    /// |k| < k_max (rad/m); `f64::INFINITY` for the finest cascade (up to its Nyquist limit).
+    pub k_max: f64,
+}
+
+/// Ratio between successive patch sizes: not a ratio of small integers, so the tiles of different
+/// cascades never line up (no visible repetition).
+pub const CASCADE_RATIO: f64 = 4.353;
+
+/// Patch sizes and disjoint k bands for `count` cascades, the largest patch `patch_m`. The band
+/// boundary between cascades c and c+1 is 12π/L_{c+1}: six waves across the finer tile, far
+/// below the coarser cascade's Nyquist limit πN/L_c for every N ≥ 64.
+pub fn cascades(patch_m: f64, count: usize) -> Vec<Cascade> {
+    let patches: Vec<f64> = (0..count)
+        .map(|c| patch_m / CASCADE_RATIO.powi(c as i32))
+        .collect();
+    (0..count)
+        .map(|c| Cascade {
+            patch_m: patches[c],
+            k_min: if c == 0 { 0.0 } else { 12.0 * PI / patches[c] },
+            k_max: if c + 1 < count {
+                12.0 * PI / patches[c + 1]
+            } else {
+                f64::INFINITY
+            },
+        })
+        .collect()
+}
+
+/// Wave vector of element `[m][n]` of an N×N grid over a patch of side `patch_m`.
+pub fn wave_vector(n: usize, m: usize, size: usize, patch_m: f64) -> [f64; 2] {
+    let dk = 2.0 * PI / patch_m;
+    let half = (size / 2) as f64;
+    [(n as f64 - half) * dk, (m as f64 - half) * dk]
+}
+
+/// h0(k) of one cascade, row-major `[m][n]`, as (re, im) pairs in f32. Zero outside the cascade's
+/// band, at k = 0 and on the Nyquist row and column (which have no −k partner on the grid).
+pub fn h0(
+    sea: &SeaState,
+    size: usize,
+    cascade: &Cascade,
+    cascade_index: u32,
+    seed: u64,
+) -> Vec<[f32; 2]> {
+    let dk = 2.0 * PI / cascade.patch_m;
+    let half = size as i64 / 2;
+    let mut out = vec![[0.0f32; 2]; size * size];
+    for m in 0..size {
+        for n in 0..size {
+            let (i, j) = (n as i64 - half, m as i64 - half);
+            if i == -half || j == -half {
+                continue;
+            }
+            let k = wave_vector(n, m, size, cascade.patch_m);
+            let k_len = (k[0] * k[0] + k[1] * k[1]).sqrt();
+            if k_len < cascade.k_min || k_len >= cascade.k_max || k_len == 0.0 {
+                continue;
+            }
+            // P(k) = S(−k) Δk² / 2: h0(k) feeds the wave travelling toward −k̂.
+            let p = directional_density(sea, [-k[0], -k[1]]) * dk * dk / 2.0;
+            let (xr, xi) = gaussian_pair(seed, cascade_index, i, j);
+            let amp = (p / 2.0).sqrt();
+            out[m * size + n] = [(xr * amp) as f32, (xi * amp) as f32];
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn donelan_banner_integrates_to_one() {
+        for r in [0.3, 0.8, 1.0, 1.3, 2.0, 5.0] {
+            let n = 20000;
+            let sum: f64 = (0..n)
+                .map(|i| {
+                    donelan_banner(r, 1.0, -PI + 2.0 * PI * (i as f64 + 0.5) / n as f64) * 2.0 * PI
+                        / n as f64
+                })
+                .sum();
+            assert!((sum - 1.0).abs() < 1e-6, "ω/ωp = {r}: ∫D = {sum}");
+        }
+    }
+
+    #[test]
+    fn deep_and_shallow_dispersion() {
+        let (w, d) = dispersion(0.1, None);
+        assert!((w - (G * 0.1f64).sqrt()).abs() < 1e-12 && (d - G / (2.0 * w)).abs() < 1e-12);
+        // Deep limit of finite depth, and shallow-water speed √(g h).
+        let (w_deep, _) = dispersion(0.1, Some(1000.0));
+        assert!((w_deep - w).abs() < 1e-9);
+        let (w_shallow, _) = dispersion(1e-3, Some(2.0));
+        assert!((w_shallow / 1e-3 - (G * 2.0f64).sqrt()).abs() < 1e-3);
+        // No NaN at extremes.
+        for k in [0.0, 1e-12, 1e6] {
+            for h in [None, Some(1e-6), Some(1.0), Some(1e9)] {
+                let (w, d) = dispersion(k, h);
+                assert!(w.is_finite() && d.is_finite(), "k {k} h {h:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn pierson_moskowitz_peak_and_height() {
+        // Fully developed sea: Hs ≈ 0.21 U19.5² / g (Pierson–Moskowitz 1964).
+        let sea = SeaState {
+            spectrum: SpectrumKind::PiersonMoskowitz,
+            ..SeaState::default()
+        };
+        let n = 200_000;
+        let (mut var, mut peak) = (0.0, (0.0, 0.0));
+        for i in 1..n {
+            let w = 5.0 * i as f64 / n as f64;
+            let s = frequency_spectrum(&sea, w);
+            var += s * 5.0 / n as f64;
+            if s > peak.1 {
+                peak = (w, s);
+            }
+        }
+        let hs = 4.0 * var.sqrt();
+        let u195 = 1.026 * sea.wind_speed_m_s;
+        assert!(
+            (hs / (0.21 * u195 * u195 / G) - 1.0).abs() < 0.05,
+            "Hs {hs}"
+        );
+        assert!(
+            (peak.0 - peak_omega(&sea)).abs() < 1e-3,
+            "peak at {}",
+            peak.0
+        );
+    }
+
+    #[test]
+    fn frequency_and_wavenumber_spectra_agree() {
+        // ∫ S(k) d²k = ∫ S(ω) dω, since the spreading integrates to 1.
+        for spectrum in [SpectrumKind::Jonswap, SpectrumKind::PiersonMoskowitz] {
+            for depth in [None, Some(20.0)] {
+                let sea = SeaState {
+                    spectrum,
+                    depth_m: depth,
+                    ..SeaState::default()
+                };
+                let n = 100_000;
+                let var_w: f64 = (1..n)
+                    .map(|i| frequency_spectrum(&sea, 10.0 * i as f64 / n as f64) * 10.0 / n as f64)
+                    .sum();
+                let var_k = integrate_density(&sea, 1e-4, 10.0 * 10.0 / G * 4.0);
+                assert!(
+                    (var_k / var_w - 1.0).abs() < 0.01,
+                    "{spectrum:?} {depth:?}: {var_k} vs {var_w}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn phillips_variance_matches_closed_form() {
+        // ∫ A e^{−1/(kL)²} k^{−4} cos²θ (1 or 0.07) k dk dθ = A (π/2)(1 + 0.07) L²/2 (ℓ-suppression negligible).
+        let sea = SeaState {
+            spectrum: SpectrumKind::Phillips,
+            ..SeaState::default()
+        };
+        let l = sea.wind_speed_m_s.powi(2) / G;
+        let expected = PHILLIPS_A * PI / 2.0 * (1.0 + PHILLIPS_AGAINST_WIND) * l * l / 2.0;
+        let got = integrate_density(&sea, 1e-4, 1e4);
+        assert!((got / expected - 1.0).abs() < 0.01, "{got} vs {expected}");
+    }
+
+    #[test]
+    fn gaussians_are_standard_and_deterministic() {
+        let n = 200_000;
+        let (mut sum, mut sq) = (0.0, 0.0);
+        for i in 0..n {
+            let (a, b) = gaussian_pair(7, 0, i, -i);
+            sum += a + b;
+            sq += a * a + b * b;
+        }
+        let mean = sum / (2 * n) as f64;
+        let var = sq / (2 * n) as f64 - mean * mean;
+        assert!(
+            mean.abs() < 0.01 && (var - 1.0).abs() < 0.01,
+            "mean {mean} var {var}"
+        );
+        assert_eq!(gaussian_pair(1, 2, 3, 4), gaussian_pair(1, 2, 3, 4));
+        assert_ne!(gaussian_pair(1, 2, 3, 4), gaussian_pair(2, 2, 3, 4));
+    }
+
+    #[test]
+    fn cascade_bands_are_disjoint_and_resolvable() {
+        let cs = cascades(400.0, 4);
+        for w in cs.windows(2) {
+            assert_eq!(w[0].k_max, w[1].k_min);
+            assert!(
+                w[0].k_max < PI * 64.0 / w[0].patch_m,
+                "boundary below the coarse Nyquist at N = 64"
+            );
+            assert!(
+                w[1].k_min > 2.0 * PI / w[1].patch_m * 5.0,
+                "boundary well above the fine Δk"
+            );
+        }
+    }
+}
