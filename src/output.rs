@@ -1,6 +1,7 @@
 //! Output files (`--screenshot`, `--profile`) that are all-or-nothing: the path is checked for
-//! writability before any GPU work starts, the content goes to a temporary file beside it, and
-//! only a complete file is renamed into place. An error or an early exit leaves nothing behind.
+//! writability before any GPU work starts (a probe file is created and removed at once), the
+//! content goes to a temporary file beside it at the end, and only a complete file is renamed
+//! into place. An error, Ctrl-C or an early exit leaves nothing behind.
 
 use std::fs::File;
 use std::io::Write;
@@ -16,7 +17,7 @@ pub struct PendingFile {
 }
 
 impl PendingFile {
-    /// Proves that `path` can be written by creating its temporary sibling now.
+    /// Proves that `path` can be written by creating (and removing) its temporary sibling now.
     pub fn create(what: &'static str, path: &Path) -> anyhow::Result<PendingFile> {
         let name = path
             .file_name()
@@ -33,6 +34,7 @@ impl PendingFile {
         let temp = parent.join(format!(".{name}.{}.partial", std::process::id()));
         File::create(&temp)
             .map_err(|e| anyhow::anyhow!("cannot write {what} {}: {e}", path.display()))?;
+        let _ = std::fs::remove_file(&temp);
         Ok(PendingFile {
             path: path.to_path_buf(),
             temp,

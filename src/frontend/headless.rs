@@ -67,12 +67,13 @@ pub fn run(s: &RunSettings) -> anyhow::Result<Outcome> {
     };
 
     let mut last_progress = Instant::now();
+    let mut last_value = 0;
     for i in 0..frames {
         let capture = readback.as_ref().filter(|_| i + 1 == frames);
         let inputs = FrameInputs {
             time_s: i as f32 * FIXED_DT_S,
         };
-        session.frame(&output, &inputs, &[], &[], |rec| {
+        last_value = session.frame(&output, &inputs, &[], &[], |rec| {
             let Some(buffer) = capture else { return };
             rec.barrier(
                 &[ImageBarrier {
@@ -97,13 +98,18 @@ pub fn run(s: &RunSettings) -> anyhow::Result<Outcome> {
             last_progress = Instant::now();
         }
     }
-    session.finish(profile, s.size)?;
-
-    if let (Some(file), Some(buffer)) = (screenshot, readback.as_ref()) {
-        // `finish` waited for every frame, so the copy is complete and visible to the host.
-        let pixels = buffer.mapped().expect("readback memory is host-visible");
-        file.commit(&encode_png(extent.width, extent.height, pixels)?)?;
+    let finished = session.finish(s.size)?;
+    // Encode before writing anything, so a failure leaves no file at all.
+    let png = match &readback {
+        Some(buffer) => {
+            let pixels = session.frames.read_back(buffer, last_value)?;
+            Some(encode_png(extent.width, extent.height, pixels)?)
+        }
+        None => None,
+    };
+    if let (Some(file), Some(png)) = (screenshot, png) {
+        file.commit(&png)?;
     }
-    eprintln!("{}", session.summary_line(s.size));
+    finished.commit(profile, "")?;
     Ok(Outcome { counters })
 }

@@ -32,16 +32,23 @@ impl Session {
         output_format: vk::Format,
         extent: vk::Extent2D,
         s: &RunSettings,
-    ) -> GpuResult<Self> {
+    ) -> anyhow::Result<Self> {
         let hazard = if s.inject_sync_hazard {
             Some(SyncHazard::new(ctx)?)
         } else {
             None
         };
+        let profiler = Profiler::new(ctx, WARMUP_FRAMES)?;
+        if s.profile.is_some() && !profiler.enabled() {
+            anyhow::bail!(
+                "--profile: {} has no timestamp queries on its graphics queue",
+                ctx.info.name
+            );
+        }
         Ok(Session {
             ctx: ctx.clone(),
             frames: Frames::new(ctx)?,
-            profiler: Profiler::new(ctx, WARMUP_FRAMES)?,
+            profiler,
             renderer: Renderer::new(ctx, output_format, extent)?,
             hazard,
             cpu_frame_ms: Vec::new(),
@@ -89,8 +96,9 @@ impl Session {
         Ok(value)
     }
 
-    /// Waits for all frames and writes the profile (if asked for); logs the pass table.
-    pub fn finish(&mut self, profile: Option<PendingFile>, size: (u32, u32)) -> anyhow::Result<()> {
+    /// Waits for every frame and builds the profile report. Nothing is written or printed:
+    /// the frontend commits its output files only once the whole run has succeeded.
+    pub fn finish(&mut self, size: (u32, u32)) -> anyhow::Result<Finished> {
         self.frames.wait_all()?;
         let timings = self.profiler.finish()?;
         let report = ProfileReport {
@@ -100,21 +108,16 @@ impl Session {
             gpu: &timings,
             cpu_frame_ms: &self.cpu_frame_ms,
         };
-        if let Some(file) = profile {
-            if timings.frames.is_empty() {
-                anyhow::bail!(
-                    "--profile: no frame was measured ({} frames rendered, the first {WARMUP_FRAMES} are warm-up)",
-                    self.frames.submitted()
-                );
-            }
-            file.commit(report.to_json().as_bytes())?;
-            eprint!(
+        Ok(Finished {
+            profile_json: report.to_json(),
+            table: format!(
                 "vkocean: GPU time per pass (median of {} frames):\n{}",
                 timings.frames.len(),
                 report.summary()
-            );
-        }
-        Ok(())
+            ),
+            measured_frames: timings.frames.len(),
+            summary: self.summary_line(size),
+        })
     }
 
     /// The closing line of a run: frames, size, wall time, device.
@@ -128,6 +131,35 @@ impl Session {
             if n > 0 { secs * 1e3 / n as f64 } else { 0.0 },
             self.ctx.info.name
         )
+    }
+}
+
+/// The end of a run, ready to be written.
+pub struct Finished {
+    pub profile_json: String,
+    /// The per-pass table printed with `--profile`.
+    pub table: String,
+    /// Frames that contributed to the statistics (after warm-up).
+    pub measured_frames: usize,
+    /// The closing line (frames, size, time, device).
+    pub summary: String,
+}
+
+impl Finished {
+    /// Writes the profile (when asked for), then prints the table and `summary_suffix`-extended
+    /// summary line. Call after every other output of the run has succeeded.
+    pub fn commit(self, profile: Option<PendingFile>, summary_suffix: &str) -> anyhow::Result<()> {
+        if let Some(file) = profile {
+            if self.measured_frames == 0 {
+                anyhow::bail!(
+                    "--profile: no frame was measured (the first {WARMUP_FRAMES} frames are warm-up)"
+                );
+            }
+            file.commit(self.profile_json.as_bytes())?;
+            eprint!("{}", self.table);
+        }
+        eprintln!("{}{summary_suffix}", self.summary);
+        Ok(())
     }
 }
 

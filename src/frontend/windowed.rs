@@ -99,25 +99,26 @@ fn physical_size(size: PhysicalSize<u32>) -> vk::Extent2D {
 }
 
 impl App {
+    /// Ends the run with an error: the GPU state is dropped without writing any output.
     fn fail(&mut self, event_loop: &ActiveEventLoop, error: anyhow::Error) {
         if self.error.is_none() {
             self.error = Some(error);
         }
-        self.shutdown(event_loop);
+        self.state = None;
+        event_loop.exit();
     }
 
-    /// Finishes the run: waits for the GPU, writes the profile, prints the summary, exits.
+    /// Finishes a successful run: waits for the GPU, writes the profile, prints the summary.
     fn shutdown(&mut self, event_loop: &ActiveEventLoop) {
         if let Some(mut state) = self.state.take() {
             let size = (state.swapchain.extent.width, state.swapchain.extent.height);
-            match state.session.finish(self.profile.take(), size) {
-                Ok(()) => eprintln!(
-                    "{}; swapchain created {} times",
-                    state.session.summary_line(size),
-                    state.swapchain.generation
-                ),
-                Err(e) if self.error.is_none() => self.error = Some(e),
-                Err(_) => {}
+            let suffix = format!("; swapchain created {} times", state.swapchain.generation);
+            let done = state
+                .session
+                .finish(size)
+                .and_then(|finished| finished.commit(self.profile.take(), &suffix));
+            if let Err(e) = done {
+                self.error.get_or_insert(e);
             }
         }
         event_loop.exit();
@@ -155,7 +156,9 @@ impl App {
             self.settings.present_mode,
         )?;
         if self.screenshot.is_some() && !swapchain.can_copy {
-            anyhow::bail!("--screenshot: this window's swapchain images cannot be copied (no TRANSFER_SRC usage)");
+            anyhow::bail!(
+                "--screenshot: this window's swapchain images cannot be copied (no TRANSFER_SRC usage)"
+            );
         }
         let session = Session::new(&ctx, swapchain.format, swapchain.extent, &self.settings)?;
         Ok(WindowState {
@@ -182,14 +185,15 @@ impl App {
             state
                 .swapchain
                 .recreate(window_size, self.settings.present_mode)?;
-            state.session.renderer.resize(state.swapchain.extent)?;
+            state
+                .session
+                .renderer
+                .resize(state.swapchain.extent, state.swapchain.format)?;
             state.needs_recreate = false;
         }
         let extent = state.swapchain.extent;
 
-        state.session.frames.wait_for_slot()?;
-        let slot = state.session.frames.next_slot();
-        let Some((image, suboptimal)) = state.swapchain.acquire(slot)? else {
+        let Some((image, suboptimal)) = state.swapchain.acquire(&state.session.frames)? else {
             state.needs_recreate = true;
             return Ok(());
         };
@@ -199,13 +203,16 @@ impl App {
             .settings
             .frames
             .is_some_and(|n| self.frames_done + 1 >= n);
-        let capture = self.capture_next || (last && self.screenshot.is_some());
-        if capture
-            && state
-                .readback
-                .as_ref()
-                .is_none_or(|b| b.size != extent.width as u64 * extent.height as u64 * 4)
-        {
+        // The exit screenshot (--screenshot at the last frame, or after Esc/close) is part of
+        // the run's output; an F12 screenshot is a convenience whose failure is only reported.
+        let exit_shot = self.screenshot.is_some() && (last || self.exit_after_capture);
+        if self.capture_next && !state.swapchain.can_copy {
+            eprintln!("vkocean: F12: this swapchain's images cannot be copied; no screenshot");
+            self.capture_next = false;
+        }
+        let capture = exit_shot || self.capture_next;
+        let bytes = extent.width as u64 * extent.height as u64 * 4;
+        if capture && state.readback.as_ref().is_none_or(|b| b.size != bytes) {
             state.readback = Some(readback_buffer(&state.session.ctx, extent)?);
         }
         let readback = if capture {
@@ -280,34 +287,35 @@ impl App {
         self.frames_done += 1;
 
         if let Some(buffer) = readback {
-            state.session.frames.wait_for(value)?;
             let pixels = bgra_to_rgba(
-                buffer.mapped().expect("readback memory is host-visible"),
+                state.session.frames.read_back(buffer, value)?,
                 state.swapchain.format,
             );
-            let png = encode_png(extent.width, extent.height, &pixels)?;
-            let file = match self.screenshot.take() {
-                Some(file) => file,
-                None => PendingFile::create(
-                    "screenshot",
-                    &PathBuf::from(format!("vkocean-{}.png", self.frames_done)),
-                )?,
-            };
-            let path = file.path().to_path_buf();
-            file.commit(&png)?;
-            eprintln!("vkocean: saved {}", path.display());
-            // F12 with --screenshot: the exit screenshot still goes to the same path.
-            if self.capture_next && !last && !self.exit_after_capture {
-                self.screenshot = self
+            if exit_shot {
+                let png = encode_png(extent.width, extent.height, &pixels)?;
+                let file = self.screenshot.take().expect("exit_shot implies --screenshot");
+                let path = file.path().display().to_string();
+                file.commit(&png)?;
+                eprintln!("vkocean: saved {path}");
+            } else {
+                // F12: to --screenshot's path if given (the exit screenshot overwrites it
+                // later), else to vkocean-<frame>.png in the working directory.
+                let path = self
                     .settings
                     .screenshot
-                    .as_deref()
-                    .map(|p| PendingFile::create("--screenshot", p))
-                    .transpose()?;
+                    .clone()
+                    .unwrap_or_else(|| PathBuf::from(format!("vkocean-{}.png", self.frames_done)));
+                let saved = encode_png(extent.width, extent.height, &pixels).and_then(|png| {
+                    PendingFile::create("F12 screenshot", &path)?.commit(&png)
+                });
+                match saved {
+                    Ok(()) => eprintln!("vkocean: saved {}", path.display()),
+                    Err(e) => eprintln!("vkocean: F12 screenshot not saved: {e}"),
+                }
             }
             self.capture_next = false;
         }
-        if last || (self.exit_after_capture && !self.capture_next) {
+        if last || (self.exit_after_capture && self.screenshot.is_none()) {
             self.shutdown(event_loop);
         }
         Ok(())
@@ -319,17 +327,16 @@ impl App {
             let size = s.window.inner_size();
             size.width == 0 || size.height == 0
         });
-        if self.screenshot.is_some() && !minimised {
-            self.capture_next = true;
-            self.exit_after_capture = true;
-            if let Some(state) = &self.state {
+        match (&self.state, self.screenshot.is_some()) {
+            (Some(state), true) if !minimised => {
+                self.exit_after_capture = true;
                 state.window.request_redraw();
             }
-        } else {
-            if self.screenshot.is_some() {
-                eprintln!("vkocean: window minimised at exit; no screenshot written");
-            }
-            self.shutdown(event_loop);
+            (Some(_), true) => self.fail(
+                event_loop,
+                anyhow::anyhow!("the window was minimised at exit, so --screenshot was not written"),
+            ),
+            _ => self.shutdown(event_loop),
         }
     }
 }

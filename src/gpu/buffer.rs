@@ -72,7 +72,8 @@ impl Buffer {
     }
 
     /// The mapped bytes of a host-visible buffer (`None` for `GpuOnly`).
-    pub fn mapped(&self) -> Option<&[u8]> {
+    /// Outside this layer use `Frames::read_back`, which first waits for the GPU.
+    pub(crate) fn mapped(&self) -> Option<&[u8]> {
         self.allocation
             .as_ref()
             .and_then(|a| a.mapped_slice())

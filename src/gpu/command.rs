@@ -56,6 +56,21 @@ impl Access {
         stage: vk::PipelineStageFlags2::HOST,
         access: vk::AccessFlags2::HOST_READ,
     };
+    pub const COMPUTE_READ: Access = Access {
+        stage: vk::PipelineStageFlags2::COMPUTE_SHADER,
+        access: vk::AccessFlags2::SHADER_STORAGE_READ,
+    };
+    pub const COMPUTE_WRITE: Access = Access {
+        stage: vk::PipelineStageFlags2::COMPUTE_SHADER,
+        access: vk::AccessFlags2::SHADER_STORAGE_WRITE,
+    };
+    /// Any access by any command (coarse; for one-shot uploads and readbacks).
+    pub const ALL_READ_WRITE: Access = Access {
+        stage: vk::PipelineStageFlags2::ALL_COMMANDS,
+        access: vk::AccessFlags2::from_raw(
+            vk::AccessFlags2::MEMORY_READ.as_raw() | vk::AccessFlags2::MEMORY_WRITE.as_raw(),
+        ),
+    };
 
     /// Union of two scopes.
     pub const fn or(self, other: Access) -> Access {
@@ -77,13 +92,24 @@ pub struct ImageBarrier {
     pub dst: Access,
 }
 
+/// How a rendering scope starts on an attachment.
+#[derive(Clone, Copy)]
+pub enum Load {
+    /// Clear to this value (an attachment write).
+    Clear(vk::ClearValue),
+    /// Keep the previous contents (an attachment read: the barrier before must cover it).
+    Keep,
+    /// The pass overwrites every pixel; previous contents are undefined.
+    DontCare,
+}
+
 /// A colour or depth attachment of a rendering scope.
 #[derive(Clone, Copy)]
 pub struct Attachment {
     pub view: vk::ImageView,
     pub layout: vk::ImageLayout,
-    /// `Some(clear value)` clears, `None` loads the previous contents.
-    pub clear: Option<vk::ClearValue>,
+    /// What happens to the previous contents at the start of rendering.
+    pub load: Load,
 }
 
 /// A command buffer in the recording state.
@@ -167,13 +193,16 @@ impl<'a> Recorder<'a> {
             vk::RenderingAttachmentInfo::default()
                 .image_view(a.view)
                 .image_layout(a.layout)
-                .load_op(if a.clear.is_some() {
-                    vk::AttachmentLoadOp::CLEAR
-                } else {
-                    vk::AttachmentLoadOp::LOAD
+                .load_op(match a.load {
+                    Load::Clear(_) => vk::AttachmentLoadOp::CLEAR,
+                    Load::Keep => vk::AttachmentLoadOp::LOAD,
+                    Load::DontCare => vk::AttachmentLoadOp::DONT_CARE,
                 })
                 .store_op(vk::AttachmentStoreOp::STORE)
-                .clear_value(a.clear.unwrap_or_default())
+                .clear_value(match a.load {
+                    Load::Clear(value) => value,
+                    _ => vk::ClearValue::default(),
+                })
         };
         let colour_infos: Vec<_> = colour.iter().map(to_info).collect();
         let depth_info = depth.as_ref().map(to_info);

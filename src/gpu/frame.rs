@@ -8,6 +8,7 @@ use std::sync::Arc;
 
 use ash::vk;
 
+use super::buffer::Buffer;
 use super::command::Recorder;
 use super::context::Context;
 use super::error::{GpuError, GpuResult, VkResultExt};
@@ -57,7 +58,12 @@ impl Frame {
 
 impl Frames {
     pub fn new(ctx: &Arc<Context>) -> GpuResult<Frames> {
-        let mut slots = Vec::new();
+        // Slots are pushed as they are made, so an error drops (and frees) the earlier ones.
+        let mut frames = Frames {
+            ctx: ctx.clone(),
+            slots: Vec::new(),
+            next: 0,
+        };
         for i in 0..FRAMES_IN_FLIGHT {
             let info = vk::CommandPoolCreateInfo::default()
                 .queue_family_index(ctx.graphics.family)
@@ -82,13 +88,9 @@ impl Frames {
             };
             ctx.name(pool, &format!("frame slot {i} command pool"));
             ctx.name(cmd, &format!("frame slot {i} commands"));
-            slots.push(Slot { pool, cmd });
+            frames.slots.push(Slot { pool, cmd });
         }
-        Ok(Frames {
-            ctx: ctx.clone(),
-            slots,
-            next: 0,
-        })
+        Ok(frames)
     }
 
     /// Slot the next frame will use.
@@ -142,8 +144,6 @@ impl Frames {
         waits: &[vk::SemaphoreSubmitInfo],
         signals: &[vk::SemaphoreSubmitInfo],
     ) -> GpuResult<()> {
-        // The frame counts as submitted even if submission fails, so later waits stay consistent.
-        self.next = frame.index + 1;
         // SAFETY: `frame.cmd` is in the recording state (begun in `begin`).
         unsafe { self.ctx.device.end_command_buffer(frame.cmd) }.vk("vkEndCommandBuffer")?;
         let mut all_signals = vec![vk::SemaphoreSubmitInfo::default()
@@ -162,7 +162,18 @@ impl Frames {
                 .device
                 .queue_submit2(self.ctx.graphics.raw, &[submit], vk::Fence::null())
         }
-        .vk("vkQueueSubmit2")
+        .vk("vkQueueSubmit2")?;
+        // Only a submitted frame counts: waits for its value can then complete.
+        self.next = frame.index + 1;
+        Ok(())
+    }
+
+    /// The mapped bytes of a host-visible buffer that GPU work up to timeline value `value`
+    /// wrote (with a barrier making the write visible to HOST_READ). Waits for that value first,
+    /// so the GPU can no longer be writing.
+    pub fn read_back<'a>(&self, buffer: &'a Buffer, value: u64) -> GpuResult<&'a [u8]> {
+        self.wait_for(value)?;
+        Ok(buffer.mapped().expect("read_back needs a host-visible buffer"))
     }
 
     /// Blocks until the frame timeline reaches `value`.

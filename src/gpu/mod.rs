@@ -11,6 +11,7 @@ pub mod error;
 pub mod frame;
 mod garbage;
 pub mod image;
+pub mod oneshot;
 pub mod pipeline;
 pub mod selftest;
 pub mod swapchain;
@@ -18,7 +19,7 @@ pub mod timestamps;
 
 pub use ash::vk;
 pub use buffer::Buffer;
-pub use command::{Access, Attachment, ImageBarrier, Recorder};
+pub use command::{Access, Attachment, ImageBarrier, Load, Recorder};
 pub use context::{Context, ContextDesc, DeviceInfo, DeviceSummary};
 pub use debug::MessageCounters;
 pub use descriptors::{DescriptorPool, DescriptorSetLayout};

@@ -2,6 +2,11 @@
 //! acquisition and presentation. Acquire semaphores are per frame slot; "ready to present"
 //! semaphores are per swapchain image (an image's previous present has consumed its semaphore
 //! by the time the image is acquired again).
+//!
+//! Retiring a swapchain: `vkDeviceWaitIdle` does not cover the presentation engine's semaphore
+//! waits (no present fences without VK_EXT_swapchain_maintenance1), so a retired swapchain and
+//! its ready semaphores are kept until the new swapchain has presented `RETIRE_AFTER_PRESENTS`
+//! times, by which point every present queued on the old one has been processed.
 
 use std::sync::Arc;
 
@@ -9,7 +14,10 @@ use ash::vk;
 
 use super::context::Context;
 use super::error::{GpuError, GpuResult, VkResultExt};
-use super::frame::FRAMES_IN_FLIGHT;
+use super::frame::{Frames, FRAMES_IN_FLIGHT};
+
+/// Presents on a new swapchain after which a retired one is destroyed.
+const RETIRE_AFTER_PRESENTS: u64 = 8;
 
 /// Presentation mode requested on the command line.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -41,6 +49,14 @@ pub struct AcquiredImage {
     pub ready: vk::Semaphore,
 }
 
+/// A retired swapchain waiting for its presents to drain.
+struct Retired {
+    raw: vk::SwapchainKHR,
+    ready: Vec<vk::Semaphore>,
+    /// `presents` count at which it may be destroyed.
+    destroy_at: u64,
+}
+
 pub struct Swapchain {
     ctx: Arc<Context>,
     fns: ash::khr::swapchain::Device,
@@ -49,6 +65,9 @@ pub struct Swapchain {
     views: Vec<vk::ImageView>,
     ready: Vec<vk::Semaphore>,
     acquire: Vec<vk::Semaphore>,
+    retired: Vec<Retired>,
+    /// Presents so far (all swapchains).
+    presents: u64,
     pub format: vk::Format,
     pub extent: vk::Extent2D,
     pub present_mode: vk::PresentModeKHR,
@@ -62,34 +81,41 @@ impl Swapchain {
     /// Creates the swapchain for the context's surface at `size` (used when the surface leaves
     /// the extent to the application).
     pub fn new(ctx: &Arc<Context>, size: vk::Extent2D, mode: PresentMode) -> GpuResult<Swapchain> {
-        let fns = ash::khr::swapchain::Device::new(&ctx.instance, &ctx.device);
-        let mut acquire = Vec::new();
-        for i in 0..FRAMES_IN_FLIGHT {
-            // SAFETY: valid create info on a live device.
-            let s = unsafe {
-                ctx.device
-                    .create_semaphore(&vk::SemaphoreCreateInfo::default(), None)
-            }
-            .vk("vkCreateSemaphore")?;
-            ctx.name(s, &format!("swapchain acquire slot {i}"));
-            acquire.push(s);
-        }
         let mut swapchain = Swapchain {
             ctx: ctx.clone(),
-            fns,
+            fns: ash::khr::swapchain::Device::new(&ctx.instance, &ctx.device),
             raw: vk::SwapchainKHR::null(),
             images: Vec::new(),
             views: Vec::new(),
             ready: Vec::new(),
-            acquire,
+            acquire: Vec::new(),
+            retired: Vec::new(),
+            presents: 0,
             format: vk::Format::UNDEFINED,
             extent: vk::Extent2D::default(),
             present_mode: vk::PresentModeKHR::FIFO,
             can_copy: false,
             generation: 0,
         };
+        // Pushed one by one: an error drops (and frees) what exists so far.
+        for i in 0..FRAMES_IN_FLIGHT {
+            let s = swapchain.semaphore(&format!("swapchain acquire slot {i}"))?;
+            swapchain.acquire.push(s);
+        }
         swapchain.recreate(size, mode)?;
         Ok(swapchain)
+    }
+
+    fn semaphore(&self, name: &str) -> GpuResult<vk::Semaphore> {
+        // SAFETY: valid create info on a live device.
+        let s = unsafe {
+            self.ctx
+                .device
+                .create_semaphore(&vk::SemaphoreCreateInfo::default(), None)
+        }
+        .vk("vkCreateSemaphore")?;
+        self.ctx.name(s, name);
+        Ok(s)
     }
 
     /// The surface's current extent, or `fallback` (the window size) when the surface lets the
@@ -121,8 +147,8 @@ impl Swapchain {
             .vk("vkGetPhysicalDeviceSurfaceCapabilitiesKHR")
     }
 
-    /// (Re)creates the swapchain. Waits for the device to go idle first: resizes are rare and
-    /// this keeps the old images' destruction trivially safe.
+    /// (Re)creates the swapchain. Waits for the device to go idle first (resizes are rare); the
+    /// old swapchain is retired (see the module comment).
     pub fn recreate(&mut self, size: vk::Extent2D, mode: PresentMode) -> GpuResult<()> {
         self.ctx.wait_idle()?;
         let (surface_fns, surface) = self
@@ -132,9 +158,10 @@ impl Swapchain {
             .expect("a windowed context has a surface");
         let caps = self.capabilities()?;
         // SAFETY: surface and physical device are live.
-        let formats =
-            unsafe { surface_fns.get_physical_device_surface_formats(self.ctx.physical, *surface) }
-                .vk("vkGetPhysicalDeviceSurfaceFormatsKHR")?;
+        let formats = unsafe {
+            surface_fns.get_physical_device_surface_formats(self.ctx.physical, *surface)
+        }
+        .vk("vkGetPhysicalDeviceSurfaceFormatsKHR")?;
         // SAFETY: as above.
         let modes = unsafe {
             surface_fns.get_physical_device_surface_present_modes(self.ctx.physical, *surface)
@@ -154,9 +181,20 @@ impl Swapchain {
         let present_mode = if modes.contains(&mode.vk()) {
             mode.vk()
         } else {
-            log::warn!("present mode {mode:?} is not supported by this surface; using FIFO");
+            if self.generation == 0 {
+                log::warn!("present mode {mode:?} is not supported by this surface; using FIFO");
+            }
             vk::PresentModeKHR::FIFO
         };
+        let alpha = [
+            vk::CompositeAlphaFlagsKHR::OPAQUE,
+            vk::CompositeAlphaFlagsKHR::INHERIT,
+            vk::CompositeAlphaFlagsKHR::PRE_MULTIPLIED,
+            vk::CompositeAlphaFlagsKHR::POST_MULTIPLIED,
+        ]
+        .into_iter()
+        .find(|a| caps.supported_composite_alpha.contains(*a))
+        .unwrap_or(vk::CompositeAlphaFlagsKHR::OPAQUE);
         let extent = self.surface_extent(size)?;
         let mut image_count = caps.min_image_count + 1;
         if caps.max_image_count > 0 {
@@ -180,25 +218,34 @@ impl Swapchain {
             .image_usage(usage)
             .image_sharing_mode(vk::SharingMode::EXCLUSIVE)
             .pre_transform(caps.current_transform)
-            .composite_alpha(vk::CompositeAlphaFlagsKHR::OPAQUE)
+            .composite_alpha(alpha)
             .present_mode(present_mode)
             .clipped(true)
             .old_swapchain(old);
         // SAFETY: valid create info; `old` (possibly null) is retired by this call.
         let raw = unsafe { self.fns.create_swapchain(&info, None) }.vk("vkCreateSwapchainKHR")?;
-        self.destroy_images();
+        // SAFETY: the device is idle, so no command uses the old image views.
+        unsafe {
+            for view in self.views.drain(..) {
+                self.ctx.device.destroy_image_view(view, None);
+            }
+        }
+        self.images.clear();
         if old != vk::SwapchainKHR::null() {
-            // SAFETY: the device is idle, so nothing uses the old swapchain or its images.
-            unsafe { self.fns.destroy_swapchain(old, None) };
+            self.retired.push(Retired {
+                raw: old,
+                ready: std::mem::take(&mut self.ready),
+                destroy_at: self.presents + RETIRE_AFTER_PRESENTS,
+            });
         }
         self.raw = raw;
         self.generation += 1;
-        self.ctx
-            .name(raw, &format!("swapchain #{}", self.generation));
+        self.ctx.name(raw, &format!("swapchain #{}", self.generation));
         // SAFETY: the swapchain is live.
         self.images =
             unsafe { self.fns.get_swapchain_images(raw) }.vk("vkGetSwapchainImagesKHR")?;
-        for (i, &image) in self.images.iter().enumerate() {
+        for i in 0..self.images.len() {
+            let image = self.images[i];
             self.ctx.name(image, &format!("swapchain image {i}"));
             let view_info = vk::ImageViewCreateInfo::default()
                 .image(image)
@@ -210,15 +257,7 @@ impl Swapchain {
                 .vk("vkCreateImageView")?;
             self.ctx.name(view, &format!("swapchain image {i} view"));
             self.views.push(view);
-            // SAFETY: valid create info on a live device.
-            let ready = unsafe {
-                self.ctx
-                    .device
-                    .create_semaphore(&vk::SemaphoreCreateInfo::default(), None)
-            }
-            .vk("vkCreateSemaphore")?;
-            self.ctx
-                .name(ready, &format!("swapchain image {i} ready to present"));
+            let ready = self.semaphore(&format!("swapchain image {i} ready to present"))?;
             self.ready.push(ready);
         }
         self.format = format.format;
@@ -237,28 +276,28 @@ impl Swapchain {
         Ok(())
     }
 
-    /// Acquires the next image for frame slot `slot`. `Ok(None)`: the swapchain is out of date
-    /// and must be recreated. The flag is true when the image is usable but suboptimal.
-    pub fn acquire(&self, slot: usize) -> GpuResult<Option<(AcquiredImage, bool)>> {
-        let semaphore = self.acquire[slot];
-        // SAFETY: the semaphore is unsignalled: its previous wait (frame slot - 2) has completed
-        // because `Frames::begin` waited for that frame.
+    /// Waits until the next frame's slot is free (its acquire semaphore then is unsignalled and
+    /// unwaited) and acquires an image for it. `Ok(None)`: the swapchain is out of date and must
+    /// be recreated. The flag is true when the image is usable but suboptimal.
+    pub fn acquire(&self, frames: &Frames) -> GpuResult<Option<(AcquiredImage, bool)>> {
+        frames.wait_for_slot()?;
+        let semaphore = self.acquire[frames.next_slot()];
+        // SAFETY: the semaphore's previous wait (two frames ago) has completed (waited above)
+        // and an out-of-date acquire leaves it unsignalled.
         match unsafe {
             self.fns
                 .acquire_next_image(self.raw, u64::MAX, semaphore, vk::Fence::null())
         } {
             Ok((index, suboptimal)) => {
                 let i = index as usize;
-                Ok(Some((
-                    AcquiredImage {
-                        index,
-                        image: self.images[i],
-                        view: self.views[i],
-                        acquired: semaphore,
-                        ready: self.ready[i],
-                    },
-                    suboptimal,
-                )))
+                let image = AcquiredImage {
+                    index,
+                    image: self.images[i],
+                    view: self.views[i],
+                    acquired: semaphore,
+                    ready: self.ready[i],
+                };
+                Ok(Some((image, suboptimal)))
             }
             Err(vk::Result::ERROR_OUT_OF_DATE_KHR) => Ok(None),
             Err(result) => Err(GpuError::Vk {
@@ -270,7 +309,7 @@ impl Swapchain {
 
     /// Presents `image` after its `ready` semaphore. Returns true when the swapchain should be
     /// recreated (out of date or suboptimal).
-    pub fn present(&self, image: &AcquiredImage) -> GpuResult<bool> {
+    pub fn present(&mut self, image: &AcquiredImage) -> GpuResult<bool> {
         let waits = [image.ready];
         let swapchains = [self.raw];
         let indices = [image.index];
@@ -279,27 +318,37 @@ impl Swapchain {
             .swapchains(&swapchains)
             .image_indices(&indices);
         // SAFETY: the image was acquired from this swapchain and rendering signals `ready`.
-        match unsafe { self.fns.queue_present(self.ctx.graphics.raw, &info) } {
+        let result = match unsafe { self.fns.queue_present(self.ctx.graphics.raw, &info) } {
             Ok(suboptimal) => Ok(suboptimal),
             Err(vk::Result::ERROR_OUT_OF_DATE_KHR) => Ok(true),
             Err(result) => Err(GpuError::Vk {
                 call: "vkQueuePresentKHR",
                 result,
             }),
-        }
+        };
+        self.presents += 1;
+        self.destroy_retired(false);
+        result
     }
 
-    fn destroy_images(&mut self) {
-        // SAFETY: only called with the device idle; views and semaphores are ours.
-        unsafe {
-            for view in self.views.drain(..) {
-                self.ctx.device.destroy_image_view(view, None);
-            }
-            for s in self.ready.drain(..) {
-                self.ctx.device.destroy_semaphore(s, None);
+    /// Destroys retired swapchains whose presents have drained (all of them if `all`).
+    fn destroy_retired(&mut self, all: bool) {
+        let presents = self.presents;
+        let (done, keep): (Vec<_>, Vec<_>) = self
+            .retired
+            .drain(..)
+            .partition(|r| all || presents >= r.destroy_at);
+        self.retired = keep;
+        for r in done {
+            // SAFETY: the swapchain was retired by a newer one and its presents have been
+            // processed (module comment); the semaphores were only used by those presents.
+            unsafe {
+                for s in r.ready {
+                    self.ctx.device.destroy_semaphore(s, None);
+                }
+                self.fns.destroy_swapchain(r.raw, None);
             }
         }
-        self.images.clear();
     }
 }
 
@@ -308,10 +357,14 @@ impl Drop for Swapchain {
         if let Err(e) = self.ctx.wait_idle() {
             log::error!("swapchain shutdown: {e}");
         }
-        self.destroy_images();
-        // SAFETY: the device is idle; the swapchain and acquire semaphores are ours.
+        self.destroy_retired(true);
+        // SAFETY: the device is idle; at shutdown there is no later point to wait for pending
+        // presents (without VK_EXT_swapchain_maintenance1), so this is the best available.
         unsafe {
-            for s in self.acquire.drain(..) {
+            for view in self.views.drain(..) {
+                self.ctx.device.destroy_image_view(view, None);
+            }
+            for s in self.ready.drain(..).chain(self.acquire.drain(..)) {
                 self.ctx.device.destroy_semaphore(s, None);
             }
             if self.raw != vk::SwapchainKHR::null() {

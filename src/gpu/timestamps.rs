@@ -51,22 +51,10 @@ impl Profiler {
     /// `warmup_frames`: leading frames whose timings are discarded (pipeline JIT, first uploads).
     pub fn new(ctx: &Arc<Context>, warmup_frames: u64) -> GpuResult<Profiler> {
         let bits = ctx.info.timestamp_valid_bits;
-        let mut pools = Vec::new();
-        if bits > 0 {
-            for i in 0..FRAMES_IN_FLIGHT {
-                let info = vk::QueryPoolCreateInfo::default()
-                    .query_type(vk::QueryType::TIMESTAMP)
-                    .query_count(QUERIES_PER_FRAME);
-                // SAFETY: valid create info on a live device.
-                let pool =
-                    unsafe { ctx.device.create_query_pool(&info, None) }.vk("vkCreateQueryPool")?;
-                ctx.name(pool, &format!("timestamps slot {i}"));
-                pools.push(pool);
-            }
-        }
-        Ok(Profiler {
+        // Pools are pushed as they are made, so an error drops (and frees) the earlier ones.
+        let mut profiler = Profiler {
             ctx: ctx.clone(),
-            pools,
+            pools: Vec::new(),
             records: (0..FRAMES_IN_FLIGHT)
                 .map(|_| SlotRecord::default())
                 .collect(),
@@ -80,7 +68,20 @@ impl Profiler {
                 (1u64 << bits) - 1
             },
             timings: GpuTimings::default(),
-        })
+        };
+        if bits > 0 {
+            for i in 0..FRAMES_IN_FLIGHT {
+                let info = vk::QueryPoolCreateInfo::default()
+                    .query_type(vk::QueryType::TIMESTAMP)
+                    .query_count(QUERIES_PER_FRAME);
+                // SAFETY: valid create info on a live device.
+                let pool =
+                    unsafe { ctx.device.create_query_pool(&info, None) }.vk("vkCreateQueryPool")?;
+                ctx.name(pool, &format!("timestamps slot {i}"));
+                profiler.pools.push(pool);
+            }
+        }
+        Ok(profiler)
     }
 
     /// Whether the device can time passes.

@@ -2,7 +2,7 @@
 //!
 //! ```text
 //!  frame uniforms (slot f % 2) ──┐
-//!  sky        fullscreen sky            -> hdr colour            (cleared)
+//!  sky        fullscreen sky            -> hdr colour            (every pixel written)
 //!  water      lit plane at y = 0        -> hdr colour + depth    (depth cleared, reversed-Z)
 //!  composite  tone map hdr colour       -> output image (swapchain image or headless target)
 //! ```
@@ -19,7 +19,7 @@ use super::targets::Targets;
 use crate::gpu::descriptors::{self, Write};
 use crate::gpu::image::full_range;
 use crate::gpu::{
-    Access, Attachment, Buffer, Context, DescriptorPool, DescriptorSetLayout, Frame, GpuResult,
+    Access, Attachment, Buffer, Load, Context, DescriptorPool, DescriptorSetLayout, Frame, GpuResult,
     ImageBarrier, MemoryLocation, Profiler, Recorder, FRAMES_IN_FLIGHT,
 };
 
@@ -128,14 +128,22 @@ impl Renderer {
         self.targets.extent()
     }
 
-    /// Recreates the size-dependent targets. Waits for the device to go idle (resizes are rare).
-    pub fn resize(&mut self, extent: vk::Extent2D) -> GpuResult<()> {
-        if extent == self.targets.extent() {
+    /// Recreates the size-dependent targets, and the composite pipeline if the output format
+    /// changed (a recreated swapchain may pick another). Waits for the device to go idle first
+    /// (resizes are rare).
+    pub fn resize(&mut self, extent: vk::Extent2D, output_format: vk::Format) -> GpuResult<()> {
+        if extent == self.targets.extent() && output_format == self.composite.output_format {
             return Ok(());
         }
         self.ctx.wait_idle()?;
-        self.targets = Targets::new(&self.ctx, extent)?;
-        self.composite.resize(&self.targets.hdr);
+        if extent != self.targets.extent() {
+            self.targets = Targets::new(&self.ctx, extent)?;
+        }
+        if output_format == self.composite.output_format {
+            self.composite.resize(&self.targets.hdr);
+        } else {
+            self.composite = CompositePass::new(&self.ctx, output_format, &self.targets.hdr)?;
+        }
         Ok(())
     }
 
@@ -178,7 +186,7 @@ impl Renderer {
                     image: depth.raw,
                     range: depth.range(),
                     old_layout: vk::ImageLayout::UNDEFINED,
-                    new_layout: vk::ImageLayout::DEPTH_ATTACHMENT_OPTIMAL,
+                    new_layout: vk::ImageLayout::DEPTH_STENCIL_ATTACHMENT_OPTIMAL,
                     src: Access::DEPTH_RW,
                     dst: Access::DEPTH_RW,
                 },
@@ -186,20 +194,29 @@ impl Renderer {
             &[],
         );
 
-        let hdr_attachment = |clear: Option<vk::ClearValue>| Attachment {
+        let hdr_attachment = |load: Load| Attachment {
             view: hdr.view,
             layout: vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL,
-            clear,
+            load,
         };
         profiler.pass(rec, "sky", || {
-            rec.begin_rendering(
-                extent,
-                &[hdr_attachment(Some(vk::ClearValue::default()))],
-                None,
-            );
+            // The fullscreen triangle writes every pixel.
+            rec.begin_rendering(extent, &[hdr_attachment(Load::DontCare)], None);
             self.sky.record(rec, frame_set);
             rec.end_rendering();
         });
+        // Attachment writes are only ordered within one rendering scope: water loads the sky.
+        rec.barrier(
+            &[ImageBarrier {
+                image: hdr.raw,
+                range: hdr.range(),
+                old_layout: vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL,
+                new_layout: vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL,
+                src: Access::COLOUR_WRITE,
+                dst: Access::COLOUR_RW,
+            }],
+            &[],
+        );
         profiler.pass(rec, "water", || {
             let depth_clear = vk::ClearValue {
                 depth_stencil: vk::ClearDepthStencilValue {
@@ -209,11 +226,11 @@ impl Renderer {
             };
             rec.begin_rendering(
                 extent,
-                &[hdr_attachment(None)],
+                &[hdr_attachment(Load::Keep)],
                 Some(Attachment {
                     view: depth.view,
-                    layout: vk::ImageLayout::DEPTH_ATTACHMENT_OPTIMAL,
-                    clear: Some(depth_clear),
+                    layout: vk::ImageLayout::DEPTH_STENCIL_ATTACHMENT_OPTIMAL,
+                    load: Load::Clear(depth_clear),
                 }),
             );
             self.water.record(rec, frame_set);
@@ -245,7 +262,8 @@ impl Renderer {
             let target = Attachment {
                 view: output.view,
                 layout: vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL,
-                clear: None,
+                // Composite writes every pixel.
+                load: Load::DontCare,
             };
             rec.begin_rendering(extent, &[target], None);
             self.composite.record(rec);
