@@ -293,21 +293,22 @@ impl App {
             );
             if exit_shot {
                 let png = encode_png(extent.width, extent.height, &pixels)?;
-                let file = self.screenshot.take().expect("exit_shot implies --screenshot");
+                let file = self
+                    .screenshot
+                    .take()
+                    .expect("exit_shot implies --screenshot");
                 let path = file.path().display().to_string();
                 file.commit(&png)?;
                 eprintln!("vkocean: saved {path}");
             } else {
                 // F12: to --screenshot's path if given (the exit screenshot overwrites it
                 // later), else to vkocean-<frame>.png in the working directory.
-                let path = self
-                    .settings
-                    .screenshot
-                    .clone()
-                    .unwrap_or_else(|| PathBuf::from(format!("vkocean-{}.png", self.frames_done)));
-                let saved = encode_png(extent.width, extent.height, &pixels).and_then(|png| {
-                    PendingFile::create("F12 screenshot", &path)?.commit(&png)
-                });
+                let path =
+                    self.settings.screenshot.clone().unwrap_or_else(|| {
+                        PathBuf::from(format!("vkocean-{}.png", self.frames_done))
+                    });
+                let saved = encode_png(extent.width, extent.height, &pixels)
+                    .and_then(|png| PendingFile::create("F12 screenshot", &path)?.commit(&png));
                 match saved {
                     Ok(()) => eprintln!("vkocean: saved {}", path.display()),
                     Err(e) => eprintln!("vkocean: F12 screenshot not saved: {e}"),
@@ -334,7 +335,9 @@ impl App {
             }
             (Some(_), true) => self.fail(
                 event_loop,
-                anyhow::anyhow!("the window was minimised at exit, so --screenshot was not written"),
+                anyhow::anyhow!(
+                    "the window was minimised at exit, so --screenshot was not written"
+                ),
             ),
             _ => self.shutdown(event_loop),
         }

@@ -173,7 +173,9 @@ impl Frames {
     /// so the GPU can no longer be writing.
     pub fn read_back<'a>(&self, buffer: &'a Buffer, value: u64) -> GpuResult<&'a [u8]> {
         self.wait_for(value)?;
-        Ok(buffer.mapped().expect("read_back needs a host-visible buffer"))
+        Ok(buffer
+            .mapped()
+            .expect("read_back needs a host-visible buffer"))
     }
 
     /// Blocks until the frame timeline reaches `value`.

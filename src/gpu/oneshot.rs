@@ -12,21 +12,28 @@ use super::context::Context;
 use super::error::{GpuError, GpuResult, VkResultExt};
 
 /// Records commands with `record`, submits them and blocks until the GPU has finished.
-pub fn run_once<R>(ctx: &Arc<Context>, name: &str, record: impl FnOnce(&Recorder) -> R) -> GpuResult<R> {
+pub fn run_once<R>(
+    ctx: &Arc<Context>,
+    name: &str,
+    record: impl FnOnce(&Recorder) -> R,
+) -> GpuResult<R> {
     let pool_info = vk::CommandPoolCreateInfo::default()
         .queue_family_index(ctx.graphics.family)
         .flags(vk::CommandPoolCreateFlags::TRANSIENT);
     // SAFETY: valid create info on a live device; destroyed below after the wait.
-    let pool = unsafe { ctx.device.create_command_pool(&pool_info, None) }.vk("vkCreateCommandPool")?;
+    let pool =
+        unsafe { ctx.device.create_command_pool(&pool_info, None) }.vk("vkCreateCommandPool")?;
     let result = (|| {
         let alloc = vk::CommandBufferAllocateInfo::default()
             .command_pool(pool)
             .level(vk::CommandBufferLevel::PRIMARY)
             .command_buffer_count(1);
         // SAFETY: the pool is live and used by this thread only.
-        let cmd = unsafe { ctx.device.allocate_command_buffers(&alloc) }.vk("vkAllocateCommandBuffers")?[0];
+        let cmd = unsafe { ctx.device.allocate_command_buffers(&alloc) }
+            .vk("vkAllocateCommandBuffers")?[0];
         ctx.name(cmd, name);
-        let begin = vk::CommandBufferBeginInfo::default().flags(vk::CommandBufferUsageFlags::ONE_TIME_SUBMIT);
+        let begin = vk::CommandBufferBeginInfo::default()
+            .flags(vk::CommandBufferUsageFlags::ONE_TIME_SUBMIT);
         // SAFETY: a freshly allocated command buffer.
         unsafe { ctx.device.begin_command_buffer(cmd, &begin) }.vk("vkBeginCommandBuffer")?;
         let value = {
@@ -39,18 +46,26 @@ pub fn run_once<R>(ctx: &Arc<Context>, name: &str, record: impl FnOnce(&Recorder
         // SAFETY: recording began above.
         unsafe { ctx.device.end_command_buffer(cmd) }.vk("vkEndCommandBuffer")?;
         // SAFETY: valid create info on a live device.
-        let fence = unsafe { ctx.device.create_fence(&vk::FenceCreateInfo::default(), None) }.vk("vkCreateFence")?;
+        let fence = unsafe {
+            ctx.device
+                .create_fence(&vk::FenceCreateInfo::default(), None)
+        }
+        .vk("vkCreateFence")?;
         let cmds = [vk::CommandBufferSubmitInfo::default().command_buffer(cmd)];
         let submit = vk::SubmitInfo2::default().command_buffer_infos(&cmds);
         // SAFETY: the command buffer is executable; the fence is unsignalled.
-        let submitted = unsafe { ctx.device.queue_submit2(ctx.graphics.raw, &[submit], fence) }.vk("vkQueueSubmit2");
+        let submitted = unsafe { ctx.device.queue_submit2(ctx.graphics.raw, &[submit], fence) }
+            .vk("vkQueueSubmit2");
         // SAFETY: the fence was submitted (or the submit failed and it stays unsignalled, in which
         // case we do not wait on it).
         let waited = submitted.and_then(|()| {
             match unsafe { ctx.device.wait_for_fences(&[fence], true, 60_000_000_000) } {
                 Ok(()) => Ok(()),
                 Err(vk::Result::TIMEOUT) => Err(GpuError::Timeout { seconds: 60 }),
-                Err(result) => Err(GpuError::Vk { call: "vkWaitForFences", result }),
+                Err(result) => Err(GpuError::Vk {
+                    call: "vkWaitForFences",
+                    result,
+                }),
             }
         });
         // SAFETY: the fence is no longer in use (waited, or never submitted).
@@ -74,14 +89,22 @@ pub fn upload(ctx: &Arc<Context>, dst: &Buffer, bytes: &[u8]) -> GpuResult<()> {
     staging.write(bytes);
     run_once(ctx, "upload", |rec| {
         rec.copy_buffer(&staging, dst, bytes.len() as u64);
-        rec.barrier(&[], &[(dst.raw, Access::COPY_WRITE, Access::ALL_READ_WRITE)]);
+        rec.barrier(
+            &[],
+            &[(dst.raw, Access::COPY_WRITE, Access::ALL_READ_WRITE)],
+        );
     })
 }
 
 /// Reads the first `len` bytes of a device buffer (through a staging buffer).
 pub fn download(ctx: &Arc<Context>, src: &Buffer, len: usize) -> GpuResult<Vec<u8>> {
-    let staging =
-        Buffer::new(ctx, "download staging", len.max(4) as u64, vk::BufferUsageFlags::TRANSFER_DST, MemoryLocation::GpuToCpu)?;
+    let staging = Buffer::new(
+        ctx,
+        "download staging",
+        len.max(4) as u64,
+        vk::BufferUsageFlags::TRANSFER_DST,
+        MemoryLocation::GpuToCpu,
+    )?;
     run_once(ctx, "download", |rec| {
         rec.barrier(&[], &[(src.raw, Access::ALL_READ_WRITE, Access::COPY_READ)]);
         rec.copy_buffer(src, &staging, len as u64);

@@ -227,10 +227,16 @@ impl Pipeline {
     ) -> GpuResult<Pipeline> {
         let module = ShaderModule::new(ctx, name, spirv)?;
         let entries: Vec<_> = (0..constants.len() as u32)
-            .map(|i| vk::SpecializationMapEntry { constant_id: i, offset: i * 4, size: 4 })
+            .map(|i| vk::SpecializationMapEntry {
+                constant_id: i,
+                offset: i * 4,
+                size: 4,
+            })
             .collect();
         let data: Vec<u8> = constants.iter().flat_map(|c| c.to_ne_bytes()).collect();
-        let specialization = vk::SpecializationInfo::default().map_entries(&entries).data(&data);
+        let specialization = vk::SpecializationInfo::default()
+            .map_entries(&entries)
+            .data(&data);
         let stage = vk::PipelineShaderStageCreateInfo::default()
             .specialization_info(&specialization)
             .stage(vk::ShaderStageFlags::COMPUTE)

@@ -158,10 +158,9 @@ impl Swapchain {
             .expect("a windowed context has a surface");
         let caps = self.capabilities()?;
         // SAFETY: surface and physical device are live.
-        let formats = unsafe {
-            surface_fns.get_physical_device_surface_formats(self.ctx.physical, *surface)
-        }
-        .vk("vkGetPhysicalDeviceSurfaceFormatsKHR")?;
+        let formats =
+            unsafe { surface_fns.get_physical_device_surface_formats(self.ctx.physical, *surface) }
+                .vk("vkGetPhysicalDeviceSurfaceFormatsKHR")?;
         // SAFETY: as above.
         let modes = unsafe {
             surface_fns.get_physical_device_surface_present_modes(self.ctx.physical, *surface)
@@ -240,7 +239,8 @@ impl Swapchain {
         }
         self.raw = raw;
         self.generation += 1;
-        self.ctx.name(raw, &format!("swapchain #{}", self.generation));
+        self.ctx
+            .name(raw, &format!("swapchain #{}", self.generation));
         // SAFETY: the swapchain is live.
         self.images =
             unsafe { self.fns.get_swapchain_images(raw) }.vk("vkGetSwapchainImagesKHR")?;

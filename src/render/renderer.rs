@@ -19,8 +19,8 @@ use super::targets::Targets;
 use crate::gpu::descriptors::{self, Write};
 use crate::gpu::image::full_range;
 use crate::gpu::{
-    Access, Attachment, Buffer, Load, Context, DescriptorPool, DescriptorSetLayout, Frame, GpuResult,
-    ImageBarrier, MemoryLocation, Profiler, Recorder, FRAMES_IN_FLIGHT,
+    Access, Attachment, Buffer, Context, DescriptorPool, DescriptorSetLayout, Frame, GpuResult,
+    ImageBarrier, Load, MemoryLocation, Profiler, Recorder, FRAMES_IN_FLIGHT,
 };
 
 /// The image a frame ends in.

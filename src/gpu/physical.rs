@@ -1,0 +1,246 @@
+//! Physical devices: what each offers, whether vkocean can run on it (Vulkan 1.3 and the required
+//! features, a graphics queue that can present), the ranking discrete > integrated > virtual > cpu,
+//! and the `--list-gpus` listing.
+
+use std::sync::Arc;
+
+use ash::vk;
+
+use super::debug::MessageCounters;
+use super::error::{GpuResult, VkResultExt};
+use super::instance::{create_instance, load_entry};
+
+/// Facts about the chosen device that the rest of the program reports or respects.
+#[derive(Clone, Debug)]
+pub struct DeviceInfo {
+    pub name: String,
+    /// Driver name and version, e.g. "llvmpipe: Mesa 22.3.6 (LLVM 15.0.6)".
+    pub driver: String,
+    pub device_type: vk::PhysicalDeviceType,
+    pub api_version: u32,
+    pub limits: vk::PhysicalDeviceLimits,
+    /// Valid bits of timestamps on the graphics queue family (0: no timestamps).
+    pub timestamp_valid_bits: u32,
+    pub fill_mode_non_solid: bool,
+    pub sampler_anisotropy: bool,
+}
+
+/// One line of `--list-gpus`.
+#[derive(Clone, Debug)]
+pub struct DeviceSummary {
+    pub index: usize,
+    pub name: String,
+    pub device_type: vk::PhysicalDeviceType,
+    pub api_version: u32,
+    pub driver: String,
+    /// `None` when usable, else why not.
+    pub unusable: Option<String>,
+}
+
+impl std::fmt::Display for DeviceSummary {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "{}: {} ({}, Vulkan {}.{}.{}, {})",
+            self.index,
+            self.name,
+            type_name(self.device_type),
+            vk::api_version_major(self.api_version),
+            vk::api_version_minor(self.api_version),
+            vk::api_version_patch(self.api_version),
+            self.driver
+        )?;
+        match &self.unusable {
+            None => Ok(()),
+            Some(why) => write!(f, " [unusable: {why}]"),
+        }
+    }
+}
+
+pub(crate) fn type_name(t: vk::PhysicalDeviceType) -> &'static str {
+    match t {
+        vk::PhysicalDeviceType::DISCRETE_GPU => "discrete",
+        vk::PhysicalDeviceType::INTEGRATED_GPU => "integrated",
+        vk::PhysicalDeviceType::VIRTUAL_GPU => "virtual",
+        vk::PhysicalDeviceType::CPU => "cpu",
+        _ => "other",
+    }
+}
+
+/// discrete > integrated > virtual > cpu > other.
+pub(crate) fn type_rank(t: vk::PhysicalDeviceType) -> u32 {
+    match t {
+        vk::PhysicalDeviceType::DISCRETE_GPU => 4,
+        vk::PhysicalDeviceType::INTEGRATED_GPU => 3,
+        vk::PhysicalDeviceType::VIRTUAL_GPU => 2,
+        vk::PhysicalDeviceType::CPU => 1,
+        _ => 0,
+    }
+}
+
+/// What one physical device offers, as far as vkocean cares.
+pub(crate) struct Candidate {
+    pub(crate) physical: vk::PhysicalDevice,
+    pub(crate) info: DeviceInfo,
+    pub(crate) graphics_family: u32,
+    pub(crate) compute_family: u32,
+}
+
+pub(crate) fn driver_string(instance: &ash::Instance, physical: vk::PhysicalDevice) -> String {
+    let mut driver = vk::PhysicalDeviceDriverProperties::default();
+    let mut props2 = vk::PhysicalDeviceProperties2::default().push_next(&mut driver);
+    // SAFETY: `physical` belongs to `instance`; the chain points to locals.
+    unsafe { instance.get_physical_device_properties2(physical, &mut props2) };
+    let name = driver
+        .driver_name_as_c_str()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let detail = driver
+        .driver_info_as_c_str()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    match (name.is_empty(), detail.is_empty()) {
+        (false, false) => format!("{name}: {detail}"),
+        (false, true) => name,
+        _ => "unknown driver".to_string(),
+    }
+}
+
+/// Inspects a device; `Err(reason)` when vkocean cannot run on it.
+pub(crate) fn inspect(
+    instance: &ash::Instance,
+    physical: vk::PhysicalDevice,
+    surface: Option<&(ash::khr::surface::Instance, vk::SurfaceKHR)>,
+) -> (DeviceSummaryParts, Result<Candidate, String>) {
+    // SAFETY: `physical` was enumerated from `instance`.
+    let props = unsafe { instance.get_physical_device_properties(physical) };
+    let name = props
+        .device_name_as_c_str()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let driver = driver_string(instance, physical);
+    let parts = DeviceSummaryParts {
+        name: name.clone(),
+        device_type: props.device_type,
+        api_version: props.api_version,
+        driver: driver.clone(),
+    };
+    if props.api_version < vk::API_VERSION_1_3 {
+        return (parts, Err("needs Vulkan 1.3".to_string()));
+    }
+
+    let mut f12 = vk::PhysicalDeviceVulkan12Features::default();
+    let mut f13 = vk::PhysicalDeviceVulkan13Features::default();
+    let mut f2 = vk::PhysicalDeviceFeatures2::default()
+        .push_next(&mut f12)
+        .push_next(&mut f13);
+    // SAFETY: as above; the chain points to locals.
+    unsafe { instance.get_physical_device_features2(physical, &mut f2) };
+    let f = f2.features;
+    let required = [
+        ("timelineSemaphore", f12.timeline_semaphore),
+        ("synchronization2", f13.synchronization2),
+        ("dynamicRendering", f13.dynamic_rendering),
+        ("maintenance4", f13.maintenance4),
+        ("tessellationShader", f.tessellation_shader),
+        ("shaderClipDistance", f.shader_clip_distance),
+    ];
+    let missing: Vec<&str> = required
+        .iter()
+        .filter(|(_, v)| *v == vk::FALSE)
+        .map(|(n, _)| *n)
+        .collect();
+    if !missing.is_empty() {
+        return (
+            parts,
+            Err(format!("missing Vulkan feature {}", missing.join(", "))),
+        );
+    }
+
+    // SAFETY: as above.
+    let families = unsafe { instance.get_physical_device_queue_family_properties(physical) };
+    let presents = |i: u32| match surface {
+        None => true,
+        // SAFETY: the surface belongs to this instance; `i` is a valid family index.
+        Some((fns, surface)) => {
+            unsafe { fns.get_physical_device_surface_support(physical, i, *surface) }
+                .unwrap_or(false)
+        }
+    };
+    let graphics_family = families
+        .iter()
+        .enumerate()
+        .position(|(i, q)| q.queue_flags.contains(vk::QueueFlags::GRAPHICS) && presents(i as u32));
+    let Some(graphics_family) = graphics_family.map(|i| i as u32) else {
+        let what = if surface.is_some() {
+            "graphics queue that can present to the window"
+        } else {
+            "graphics queue"
+        };
+        return (parts, Err(format!("no {what}")));
+    };
+    let compute_family = families
+        .iter()
+        .position(|q| {
+            q.queue_flags.contains(vk::QueueFlags::COMPUTE)
+                && !q.queue_flags.contains(vk::QueueFlags::GRAPHICS)
+        })
+        .map(|i| i as u32)
+        .unwrap_or(graphics_family);
+
+    let info = DeviceInfo {
+        name,
+        driver,
+        device_type: props.device_type,
+        api_version: props.api_version,
+        limits: props.limits,
+        timestamp_valid_bits: families[graphics_family as usize].timestamp_valid_bits,
+        fill_mode_non_solid: f.fill_mode_non_solid == vk::TRUE,
+        sampler_anisotropy: f.sampler_anisotropy == vk::TRUE,
+    };
+    (
+        parts,
+        Ok(Candidate {
+            physical,
+            info,
+            graphics_family,
+            compute_family,
+        }),
+    )
+}
+
+pub(crate) struct DeviceSummaryParts {
+    pub(crate) name: String,
+    pub(crate) device_type: vk::PhysicalDeviceType,
+    pub(crate) api_version: u32,
+    pub(crate) driver: String,
+}
+
+/// Lists every Vulkan device for `--list-gpus`, marking the ones vkocean cannot use.
+pub fn list_devices() -> GpuResult<Vec<DeviceSummary>> {
+    let entry = load_entry()?;
+    let counters = Arc::new(MessageCounters::new(false));
+    let (instance, _) = create_instance(&entry, false, None, &counters)?;
+    // SAFETY: the instance is live; it is destroyed below, after its last use.
+    let physicals = unsafe { instance.enumerate_physical_devices() };
+    let list = physicals.map(|physicals| {
+        physicals
+            .into_iter()
+            .enumerate()
+            .map(|(index, p)| {
+                let (parts, usable) = inspect(&instance, p, None);
+                DeviceSummary {
+                    index,
+                    name: parts.name,
+                    device_type: parts.device_type,
+                    api_version: parts.api_version,
+                    driver: parts.driver,
+                    unusable: usable.err(),
+                }
+            })
+            .collect()
+    });
+    // SAFETY: no object created from this instance is alive.
+    unsafe { instance.destroy_instance(None) };
+    list.vk("vkEnumeratePhysicalDevices")
+}
