@@ -114,6 +114,10 @@ pub enum Write {
         binding: u32,
         buffer: vk::Buffer,
     },
+    StorageBuffer {
+        binding: u32,
+        buffer: vk::Buffer,
+    },
     SampledImage {
         binding: u32,
         view: vk::ImageView,
@@ -131,11 +135,13 @@ pub fn update(ctx: &Context, set: vk::DescriptorSet, writes: &[Write]) {
     let buffer_infos: Vec<[vk::DescriptorBufferInfo; 1]> = writes
         .iter()
         .map(|w| match w {
-            Write::UniformBuffer { buffer, .. } => [vk::DescriptorBufferInfo {
-                buffer: *buffer,
-                offset: 0,
-                range: vk::WHOLE_SIZE,
-            }],
+            Write::UniformBuffer { buffer, .. } | Write::StorageBuffer { buffer, .. } => {
+                [vk::DescriptorBufferInfo {
+                    buffer: *buffer,
+                    offset: 0,
+                    range: vk::WHOLE_SIZE,
+                }]
+            }
             _ => [vk::DescriptorBufferInfo::default()],
         })
         .collect();
@@ -164,6 +170,10 @@ pub fn update(ctx: &Context, set: vk::DescriptorSet, writes: &[Write]) {
                 Write::UniformBuffer { binding, .. } => base
                     .dst_binding(*binding)
                     .descriptor_type(vk::DescriptorType::UNIFORM_BUFFER)
+                    .buffer_info(&buffer_infos[i]),
+                Write::StorageBuffer { binding, .. } => base
+                    .dst_binding(*binding)
+                    .descriptor_type(vk::DescriptorType::STORAGE_BUFFER)
                     .buffer_info(&buffer_infos[i]),
                 Write::SampledImage { binding, .. } => base
                     .dst_binding(*binding)

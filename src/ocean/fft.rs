@@ -1,0 +1,316 @@
+//! Our GPU FFT: 2D complex transforms of a batch of N×N arrays with a Stockham radix-2 autosort
+//! kernel (shaders/ocean/fft.comp). One dispatch per axis covers the whole batch (every packed
+//! field of every cascade); each workgroup transforms one row in shared memory (no round trip
+//! through global memory between stages) and writes it transposed, so the second dispatch reads
+//! contiguous rows too and leaves the result in the original orientation.
+//!
+//! Transforms are unnormalized: inverse out[j] = Σ_n in[n] e^{+2πi nj/N} per axis (rustfft's
+//! convention); forward uses e^{−2πi nj/N}.
+
+use std::sync::Arc;
+
+use ash::vk;
+
+use crate::gpu::descriptors::{self, Write};
+use crate::gpu::{
+    Access, Buffer, Context, DescriptorPool, DescriptorSetLayout, MemoryLocation, Pipeline,
+    PipelineLayout, Recorder,
+};
+use crate::shaders;
+
+/// Smallest and largest supported N.
+pub const MIN_N: usize = 64;
+pub const MAX_N: usize = 1024;
+
+/// Environment variable overriding the invocations per workgroup (tuning experiments).
+pub const THREADS_ENV: &str = "VKOCEAN_FFT_THREADS";
+
+/// Direction of a transform.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Direction {
+    /// e^{+2πi nj/N}: spectrum → field.
+    Inverse,
+    /// e^{−2πi nj/N}.
+    Forward,
+}
+
+/// Checks N (a power of two in MIN_N..=MAX_N) and the device limits for a batch.
+pub fn check_plan(ctx: &Context, n: usize, batch: usize) -> Result<(), String> {
+    if !n.is_power_of_two() || !(MIN_N..=MAX_N).contains(&n) {
+        return Err(format!(
+            "FFT size {n} is not a power of two from {MIN_N} to {MAX_N}"
+        ));
+    }
+    let limits = &ctx.info.limits;
+    let shared = 2 * n * 8;
+    if shared > limits.max_compute_shared_memory_size as usize {
+        return Err(format!(
+            "FFT size {n} needs {shared} bytes of shared memory; {} allows {}",
+            ctx.info.name, limits.max_compute_shared_memory_size
+        ));
+    }
+    let bytes = (batch * n * n * 8) as u64;
+    if bytes > limits.max_storage_buffer_range as u64 {
+        return Err(format!(
+            "FFT size {n} with {batch} fields needs a {} MiB buffer; {} allows {} MiB",
+            bytes >> 20,
+            ctx.info.name,
+            limits.max_storage_buffer_range >> 20
+        ));
+    }
+    if n > limits.max_compute_work_group_count[0] as usize
+        || batch > limits.max_compute_work_group_count[1] as usize
+    {
+        return Err(format!(
+            "FFT size {n} x {batch} exceeds the dispatch limits of {}",
+            ctx.info.name
+        ));
+    }
+    Ok(())
+}
+
+/// Invocations per workgroup: N/2 (one butterfly each per stage) on GPUs, capped by the device;
+/// few on CPU drivers such as lavapipe, where a workgroup barrier switches between SIMD groups
+/// and costs more than the arithmetic between two barriers.
+pub fn threads_for(ctx: &Context, n: usize) -> u32 {
+    let limits = &ctx.info.limits;
+    let cap = limits
+        .max_compute_work_group_invocations
+        .min(limits.max_compute_work_group_size[0]);
+    let wanted = match std::env::var(THREADS_ENV)
+        .ok()
+        .and_then(|v| v.parse::<u32>().ok())
+    {
+        Some(t) => t,
+        None if ctx.info.device_type == vk::PhysicalDeviceType::CPU => 16,
+        None => (n / 2) as u32,
+    };
+    wanted.clamp(1, cap).min((n / 2) as u32).next_power_of_two()
+}
+
+/// A batch of N×N 2D transforms on the GPU: buffers, twiddles and the pipeline.
+pub struct GpuFft {
+    pub n: usize,
+    pub batch: usize,
+    pub threads: u32,
+    /// Input and output, (batch, N, N) complex f32 (vec2).
+    pub data: Buffer,
+    /// The intermediate (row-transformed, transposed) arrays.
+    scratch: Buffer,
+    /// e^{+2πi j/N}, j < N/2, computed once in f64.
+    _twiddles: Buffer,
+    _set_layout: DescriptorSetLayout,
+    layout: PipelineLayout,
+    pipeline: Pipeline,
+    _pool: DescriptorPool,
+    /// data → scratch, scratch → data.
+    sets: [vk::DescriptorSet; 2],
+}
+
+/// Push constants of fft.comp.
+#[repr(C)]
+#[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
+struct FftParams {
+    direction: f32,
+}
+
+impl GpuFft {
+    /// Plans transforms of `batch` N×N arrays. `extra_usage` is added to the data buffer's usage
+    /// (TRANSFER_SRC/DST are always there).
+    pub fn new(ctx: &Arc<Context>, n: usize, batch: usize) -> anyhow::Result<GpuFft> {
+        check_plan(ctx, n, batch).map_err(anyhow::Error::msg)?;
+        let bytes = (batch * n * n * 8) as u64;
+        let usage = vk::BufferUsageFlags::STORAGE_BUFFER
+            | vk::BufferUsageFlags::TRANSFER_SRC
+            | vk::BufferUsageFlags::TRANSFER_DST;
+        let data = Buffer::new(ctx, "fft data", bytes, usage, MemoryLocation::GpuOnly)?;
+        let scratch = Buffer::new(ctx, "fft scratch", bytes, usage, MemoryLocation::GpuOnly)?;
+        let twiddle_values: Vec<f32> = (0..n / 2)
+            .flat_map(|j| {
+                let a = 2.0 * std::f64::consts::PI * j as f64 / n as f64;
+                [a.cos() as f32, a.sin() as f32]
+            })
+            .collect();
+        let mut twiddles = Buffer::new(
+            ctx,
+            &format!("fft twiddles N={n}"),
+            (n / 2 * 8) as u64,
+            vk::BufferUsageFlags::STORAGE_BUFFER,
+            MemoryLocation::CpuToGpu,
+        )?;
+        twiddles.write(bytemuck::cast_slice(&twiddle_values));
+
+        let storage = vk::DescriptorType::STORAGE_BUFFER;
+        let stage = vk::ShaderStageFlags::COMPUTE;
+        let set_layout = DescriptorSetLayout::new(
+            ctx,
+            "fft set layout",
+            &[
+                (0, storage, stage),
+                (1, storage, stage),
+                (2, storage, stage),
+            ],
+        )?;
+        let layout = PipelineLayout::new(
+            ctx,
+            "fft layout",
+            &[&set_layout],
+            Some((stage, std::mem::size_of::<FftParams>() as u32)),
+        )?;
+        let threads = threads_for(ctx, n);
+        let pipeline = Pipeline::compute(
+            ctx,
+            &layout,
+            &format!("fft N={n}"),
+            shaders::OCEAN_FFT_COMP,
+            &[n.trailing_zeros(), threads],
+        )?;
+        let pool = DescriptorPool::new(ctx, "fft descriptors", 2, &[(storage, 6)])?;
+        let forward = pool.allocate(&set_layout, "fft rows: data -> scratch")?;
+        let back = pool.allocate(&set_layout, "fft columns: scratch -> data")?;
+        for (set, from, to) in [(forward, &data, &scratch), (back, &scratch, &data)] {
+            descriptors::update(
+                ctx,
+                set,
+                &[
+                    Write::StorageBuffer {
+                        binding: 0,
+                        buffer: from.raw,
+                    },
+                    Write::StorageBuffer {
+                        binding: 1,
+                        buffer: to.raw,
+                    },
+                    Write::StorageBuffer {
+                        binding: 2,
+                        buffer: twiddles.raw,
+                    },
+                ],
+            );
+        }
+        Ok(GpuFft {
+            n,
+            batch,
+            threads,
+            data,
+            scratch,
+            _twiddles: twiddles,
+            _set_layout: set_layout,
+            layout,
+            pipeline,
+            _pool: pool,
+            sets: [forward, back],
+        })
+    }
+
+    /// Size of `data` in bytes.
+    pub fn byte_len(&self) -> usize {
+        self.batch * self.n * self.n * 8
+    }
+
+    /// Records the 2D transform of `data` in place. `data_prior` is the last access to `data`
+    /// before this (its writer); afterwards `data` has been written by COMPUTE_WRITE and the
+    /// caller's barrier must make it visible to the reader.
+    pub fn record(&self, rec: &Recorder, direction: Direction, data_prior: Access) {
+        let sign = match direction {
+            Direction::Inverse => 1.0,
+            Direction::Forward => -1.0,
+        };
+        rec.bind_pipeline(&self.pipeline);
+        rec.push_constants(&self.layout, &FftParams { direction: sign });
+        // data: its writer → our reads; scratch: the previous transform's reads → our writes.
+        rec.barrier(
+            &[],
+            &[
+                (self.data.raw, data_prior, Access::COMPUTE_READ),
+                (
+                    self.scratch.raw,
+                    Access::COMPUTE_READ,
+                    Access::COMPUTE_WRITE,
+                ),
+            ],
+        );
+        rec.bind_sets(&self.pipeline, &self.layout, &[self.sets[0]]);
+        rec.dispatch(self.n as u32, self.batch as u32, 1);
+        rec.barrier(
+            &[],
+            &[
+                (
+                    self.scratch.raw,
+                    Access::COMPUTE_WRITE,
+                    Access::COMPUTE_READ,
+                ),
+                (self.data.raw, Access::COMPUTE_READ, Access::COMPUTE_WRITE),
+            ],
+        );
+        rec.bind_sets(&self.pipeline, &self.layout, &[self.sets[1]]);
+        rec.dispatch(self.n as u32, self.batch as u32, 1);
+    }
+}
+
+/// The shader's algorithm on the CPU (one row, in place): the executable specification of the
+/// index arithmetic in fft.comp, checked against rustfft in the tests below.
+pub fn stockham_model(x: &mut [rustfft::num_complex::Complex64], direction: Direction) {
+    use rustfft::num_complex::Complex64;
+    let n = x.len();
+    let half = n / 2;
+    let log2 = n.trailing_zeros();
+    let sign = if direction == Direction::Inverse {
+        1.0
+    } else {
+        -1.0
+    };
+    let twiddle = |j: usize| {
+        Complex64::from_polar(1.0, sign * 2.0 * std::f64::consts::PI * j as f64 / n as f64)
+    };
+    let mut from = x.to_vec();
+    let mut to = vec![Complex64::new(0.0, 0.0); n];
+    for log_ns in 0..log2 {
+        let ns = 1usize << log_ns;
+        for j in 0..half {
+            let k = j & (ns - 1);
+            let w = twiddle(k << (log2 - 1 - log_ns));
+            let a = from[j];
+            let b = from[j + half] * w;
+            let o = (j << 1) - k;
+            to[o] = a + b;
+            to[o + ns] = a - b;
+        }
+        std::mem::swap(&mut from, &mut to);
+    }
+    x.copy_from_slice(&from);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rustfft::num_complex::Complex64;
+    use rustfft::FftPlanner;
+
+    #[test]
+    fn stockham_model_matches_rustfft() {
+        let mut planner = FftPlanner::<f64>::new();
+        for log2 in 1..=10 {
+            let n = 1usize << log2;
+            let input: Vec<Complex64> = (0..n)
+                .map(|i| Complex64::new((i as f64 * 0.37).sin(), (i as f64 * 1.3).cos() - 0.2))
+                .collect();
+            for direction in [Direction::Inverse, Direction::Forward] {
+                let mut ours = input.clone();
+                stockham_model(&mut ours, direction);
+                let mut reference = input.clone();
+                match direction {
+                    Direction::Inverse => planner.plan_fft_inverse(n).process(&mut reference),
+                    Direction::Forward => planner.plan_fft_forward(n).process(&mut reference),
+                }
+                let err: f64 = ours
+                    .iter()
+                    .zip(&reference)
+                    .map(|(a, b)| (a - b).norm_sqr())
+                    .sum();
+                let norm: f64 = reference.iter().map(|b| b.norm_sqr()).sum();
+                assert!((err / norm).sqrt() < 1e-12, "N = {n} {direction:?}");
+            }
+        }
+    }
+}

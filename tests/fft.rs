@@ -1,0 +1,140 @@
+//! Our GPU Stockham FFT against rustfft (f64) on random complex input, for every supported N and
+//! a few batch sizes, plus a forward/inverse round trip; validation-clean throughout.
+
+use std::sync::Arc;
+
+use rustfft::num_complex::Complex64;
+use vkocean::gpu::oneshot::{download, run_once, upload};
+use vkocean::gpu::{Access, Context, ContextDesc};
+use vkocean::ocean::cpu::inverse_2d;
+use vkocean::ocean::fft::{check_plan, Direction, GpuFft};
+
+fn context() -> Arc<Context> {
+    Context::new(&ContextDesc {
+        validation: true,
+        ..Default::default()
+    })
+    .expect("a Vulkan device (tools/setup installs lavapipe)")
+}
+
+/// Deterministic pseudo-random complex values in [-1, 1]².
+fn random_input(len: usize, seed: u64) -> Vec<[f32; 2]> {
+    let mut state = seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1;
+    let mut next = || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        (state >> 40) as f32 / (1u64 << 23) as f32 * 2.0 - 1.0
+    };
+    (0..len).map(|_| [next(), next()]).collect()
+}
+
+fn run_gpu(
+    ctx: &Arc<Context>,
+    fft: &GpuFft,
+    input: &[[f32; 2]],
+    directions: &[Direction],
+) -> Vec<[f32; 2]> {
+    upload(ctx, &fft.data, bytemuck::cast_slice(input)).unwrap();
+    run_once(ctx, "fft test", |rec| {
+        for &d in directions {
+            fft.record(rec, d, Access::ALL_READ_WRITE);
+        }
+        rec.barrier(
+            &[],
+            &[(fft.data.raw, Access::COMPUTE_WRITE, Access::ALL_READ_WRITE)],
+        );
+    })
+    .unwrap();
+    let bytes = download(ctx, &fft.data, fft.byte_len()).unwrap();
+    bytemuck::cast_slice(&bytes).to_vec()
+}
+
+fn relative_l2(ours: &[[f32; 2]], reference: &[Complex64]) -> f64 {
+    let err: f64 = ours
+        .iter()
+        .zip(reference)
+        .map(|(a, b)| (a[0] as f64 - b.re).powi(2) + (a[1] as f64 - b.im).powi(2))
+        .sum();
+    let norm: f64 = reference.iter().map(|b| b.norm_sqr()).sum();
+    (err / norm).sqrt()
+}
+
+#[test]
+fn inverse_fft_matches_rustfft_for_every_size() {
+    let ctx = context();
+    for log2 in 6..=10 {
+        let n = 1usize << log2;
+        if check_plan(&ctx, n, 3).is_err() {
+            panic!(
+                "N = {n} should be supported on lavapipe: {:?}",
+                check_plan(&ctx, n, 3)
+            );
+        }
+        for batch in [1usize, 3] {
+            let fft = GpuFft::new(&ctx, n, batch).unwrap();
+            let input = random_input(batch * n * n, (n * 31 + batch) as u64);
+            let ours = run_gpu(&ctx, &fft, &input, &[Direction::Inverse]);
+            let mut reference: Vec<Complex64> = input
+                .iter()
+                .map(|c| Complex64::new(c[0] as f64, c[1] as f64))
+                .collect();
+            for array in reference.chunks_exact_mut(n * n) {
+                inverse_2d(array, n);
+            }
+            let err = relative_l2(&ours, &reference);
+            assert!(
+                err < 1e-5,
+                "N = {n}, batch {batch}: relative L2 error {err:e}"
+            );
+        }
+    }
+    let counters = ctx.counters();
+    drop(ctx);
+    assert_eq!(
+        (counters.warnings(), counters.errors()),
+        (0, 0),
+        "validation messages"
+    );
+}
+
+#[test]
+fn forward_then_inverse_is_identity() {
+    let ctx = context();
+    for n in [64usize, 256, 1024] {
+        let batch = 2;
+        let fft = GpuFft::new(&ctx, n, batch).unwrap();
+        let input = random_input(batch * n * n, n as u64);
+        let out = run_gpu(
+            &ctx,
+            &fft,
+            &input,
+            &[Direction::Forward, Direction::Inverse],
+        );
+        let scale = 1.0 / (n * n) as f64;
+        let reference: Vec<Complex64> = input
+            .iter()
+            .map(|c| Complex64::new(c[0] as f64, c[1] as f64) / scale)
+            .collect();
+        let err = relative_l2(&out, &reference);
+        assert!(err < 1e-5, "N = {n}: round trip relative L2 error {err:e}");
+    }
+    let counters = ctx.counters();
+    drop(ctx);
+    assert_eq!(
+        (counters.warnings(), counters.errors()),
+        (0, 0),
+        "validation messages"
+    );
+}
+
+#[test]
+fn unsupported_sizes_are_refused_with_a_reason() {
+    let ctx = context();
+    for n in [0usize, 32, 100, 2048] {
+        let err = check_plan(&ctx, n, 1).unwrap_err();
+        assert!(err.contains(&n.to_string()), "{err}");
+    }
+    // lavapipe allows 128 MiB per storage buffer: 1024² x 17 arrays of 8 bytes do not fit.
+    assert!(check_plan(&ctx, 1024, 17).unwrap_err().contains("MiB"));
+}
