@@ -3,7 +3,7 @@
 
 use std::path::PathBuf;
 
-use clap::{Parser, ValueEnum};
+use clap::{Args, Parser, Subcommand, ValueEnum};
 
 use crate::frontend::RunSettings;
 use crate::gpu::PresentMode;
@@ -39,7 +39,7 @@ pub struct Cli {
 
     /// Enable the Khronos validation layer with synchronization validation; prints
     /// "validation: N warnings, M errors" at exit and exits with 3 if there were any.
-    #[arg(long)]
+    #[arg(long, global = true)]
     pub validation: bool,
 
     /// Write GPU timestamps per pass and frame times as JSON (first 5 frames are warm-up).
@@ -47,7 +47,7 @@ pub struct Cli {
     pub profile: Option<PathBuf>,
 
     /// Use Vulkan device N (see --list-gpus); default: the best one (discrete > integrated > virtual > cpu).
-    #[arg(long, value_name = "N")]
+    #[arg(long, value_name = "N", global = true)]
     pub gpu: Option<usize>,
 
     /// List the Vulkan devices and exit.
@@ -61,6 +61,89 @@ pub struct Cli {
     /// Test only: record a deliberate synchronization hazard (validation must catch it).
     #[arg(long, hide = true)]
     pub inject_sync_hazard: bool,
+
+    #[command(subcommand)]
+    pub command: Option<Command>,
+}
+
+#[derive(Subcommand, Debug)]
+pub enum Command {
+    /// Benchmarks (GPU timestamps, medians, a reference run in the same process).
+    #[command(subcommand)]
+    Bench(BenchCommand),
+}
+
+#[derive(Subcommand, Debug)]
+pub enum BenchCommand {
+    /// Time our GPU FFT against rustfft (one CPU thread) on the same 2D transforms.
+    Fft(BenchFftArgs),
+}
+
+#[derive(Args, Debug)]
+pub struct BenchFftArgs {
+    /// FFT sizes, comma-separated powers of two from 64 to 1024.
+    #[arg(long, value_name = "N,...", value_delimiter = ',', value_parser = parse_fft_size,
+          default_value = "128,256,512,1024")]
+    pub sizes: Vec<usize>,
+    /// 2D transforms per batch.
+    #[arg(long, value_name = "B", value_parser = parse_batch, allow_hyphen_values = true, default_value = "4")]
+    pub batch: usize,
+    /// Measured runs per size (after 5 warm-up runs on the GPU, 3 on the CPU).
+    #[arg(long, value_name = "R", value_parser = parse_runs, allow_hyphen_values = true, default_value = "30")]
+    pub runs: usize,
+    /// Also write the table as JSON: [{"n","batch","gpu_ms","rustfft_ms","ratio"}, ...].
+    #[arg(long, value_name = "PATH")]
+    pub json: Option<PathBuf>,
+}
+
+fn parse_whole(s: &str, lo: u64, hi: u64) -> Result<u64, String> {
+    match s.trim().parse::<i128>() {
+        Ok(n) if n >= lo as i128 && n <= hi as i128 => Ok(n as u64),
+        Ok(_) => Err(format!("must be a whole number from {lo} to {hi}")),
+        Err(_) => Err("not a whole number".to_string()),
+    }
+}
+
+/// A power of two from 64 to 1024.
+pub fn parse_fft_size(s: &str) -> Result<usize, String> {
+    let n = parse_whole(s, 1, 1 << 20)?;
+    if !n.is_power_of_two() || !(64..=1024).contains(&n) {
+        return Err("must be a power of two from 64 to 1024".to_string());
+    }
+    Ok(n as usize)
+}
+
+fn parse_batch(s: &str) -> Result<usize, String> {
+    parse_whole(s, 1, 64).map(|n| n as usize)
+}
+
+fn parse_runs(s: &str) -> Result<usize, String> {
+    parse_whole(s, 1, 10_000).map(|n| n as usize)
+}
+
+impl BenchFftArgs {
+    pub fn settings(&self, cli: &Cli) -> Result<crate::bench::FftBenchSettings, UsageError> {
+        if let Some(path) = &self.json {
+            let ext = path
+                .extension()
+                .and_then(|e| e.to_str())
+                .map(str::to_ascii_lowercase);
+            if ext.as_deref() != Some("json") {
+                return Err(UsageError(format!(
+                    "--json {}: the file name must end in .json",
+                    path.display()
+                )));
+            }
+        }
+        Ok(crate::bench::FftBenchSettings {
+            sizes: self.sizes.clone(),
+            batch: self.batch,
+            runs: self.runs,
+            json: self.json.clone(),
+            validation: cli.validation,
+            gpu: cli.gpu,
+        })
+    }
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -71,11 +154,7 @@ pub enum PresentModeArg {
 }
 
 fn parse_frames(s: &str) -> Result<u64, String> {
-    match s.trim().parse::<i128>() {
-        Ok(n) if n >= 1 && n <= u32::MAX as i128 => Ok(n as u64),
-        Ok(_) => Err(format!("must be a whole number from 1 to {}", u32::MAX)),
-        Err(_) => Err("not a whole number".to_string()),
-    }
+    parse_whole(s, 1, u32::MAX as u64)
 }
 
 fn parse_size(s: &str) -> Result<(u32, u32), String> {

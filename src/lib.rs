@@ -4,6 +4,7 @@
 //! [`render`] (passes that record the frame), [`frontend`] (window or headless output) and the
 //! command line in `main.rs` / [`cli`].
 
+pub mod bench;
 pub mod cli;
 pub mod frontend;
 pub mod gpu;

@@ -5,7 +5,8 @@
 use std::process::ExitCode;
 
 use clap::Parser;
-use vkocean::cli::{Cli, UsageError};
+use vkocean::bench;
+use vkocean::cli::{BenchCommand, Cli, Command, UsageError};
 use vkocean::frontend;
 use vkocean::gpu::{context, GpuError};
 
@@ -55,13 +56,19 @@ fn main() -> ExitCode {
         };
     }
 
-    let settings = match cli.settings() {
-        Ok(s) => s,
-        Err(e) => return fail(&e.into()),
+    let outcome = match &cli.command {
+        Some(Command::Bench(BenchCommand::Fft(args))) => match args.settings(&cli) {
+            Ok(settings) => bench::fft(&settings),
+            Err(e) => return fail(&e.into()),
+        },
+        None => match cli.settings() {
+            Ok(settings) => frontend::run(&settings),
+            Err(e) => return fail(&e.into()),
+        },
     };
-    match frontend::run(&settings) {
+    match outcome {
         Ok(outcome) => {
-            if settings.validation {
+            if cli.validation {
                 eprintln!("{}", outcome.counters.summary());
                 if outcome.counters.warnings() + outcome.counters.errors() > 0 {
                     return ExitCode::from(3);

@@ -1,20 +1,25 @@
 #version 460
-// Stockham radix-2 autosort FFT of the rows of a batch of N x N complex arrays, in shared memory,
-// one workgroup per row; the result is written transposed. Running it twice (A -> B, B -> A)
-// therefore transforms rows, then columns, and leaves the 2D transform in A in its original
-// orientation — both passes read contiguous rows.
+#extension GL_EXT_control_flow_attributes : require
+// Stockham autosort FFT of the rows of a batch of N x N complex arrays, one workgroup per row;
+// the row is written transposed, so running the shader twice (A -> B, B -> A) transforms rows,
+// then columns, and leaves the 2D transform in A in its original orientation, with both passes
+// reading contiguous rows.
 //
-// Stage with half-span Ns = 1, 2, ..., N/2 (Govindaraju et al. 2008, "High Performance Discrete
-// Fourier Transforms on Graphics Processors", Stockham formulation): for j < N/2, k = j mod Ns,
-//   a = x[j], b = x[j + N/2] * W^(k N / (2 Ns)),  y[2j - k] = a + b,  y[2j - k + Ns] = a - b,
-// with W = e^{±2πi/N}. Unnormalized. Mirrors `stockham_model` in src/ocean/fft.rs.
+// Radix-2 butterflies throughout, in the Stockham formulation of Govindaraju et al. 2008 ("High
+// Performance Discrete Fourier Transforms on Graphics Processors"). Consecutive stages are fused
+// in registers: each thread loads R = 8 or 16 values, applies the inter-pass twiddles and runs
+// log2(R) radix-2 stages on them, so shared memory is touched once per pass (2 passes for N <= 256,
+// 3 for N <= 1024) instead of once per stage, and global memory only on the first load and the
+// last store. A pass with Ns = product of the earlier passes' R:
+//   for j < N/R: k = j mod Ns, v_q = x[j + q N/R] w^{qk}, w = e^{±2πi/(Ns R)},
+//                v = DFT_R(v) by radix-2 stages, y[(j - k) R + k + q Ns] = v_q.
+// Unnormalized. Mirrors `stockham_model` and `pass_schedule` in src/ocean/fft.rs.
 //
-// Inputs: src (batch, N, N) vec2, twiddles e^{+2πi j/N} for j < N/2 (computed once, in f64).
+// Inputs: src (batch, N, N) vec2; twiddles e^{+2πi m/N}, m < N (computed once, in f64).
 // Output: dst (batch, N, N) vec2, transposed. Push constant: +1 inverse, -1 forward.
 layout(constant_id = 0) const uint LOG2_N = 8;
-// Invocations per workgroup (each does N/2/THREADS butterflies per stage): N/2 on GPUs; small on
-// CPU drivers, where every workgroup barrier is a costly switch between SIMD groups.
-layout(constant_id = 1) const uint THREADS = 128;
+// Invocations per workgroup; each handles N/R/THREADS groups of R values per pass.
+layout(constant_id = 1) const uint THREADS = 16;
 layout(local_size_x_id = 1) in;
 
 layout(std430, set = 0, binding = 0) readonly buffer Src { vec2 src[]; };
@@ -23,46 +28,88 @@ layout(std430, set = 0, binding = 2) readonly buffer Twiddles { vec2 twiddle[]; 
 layout(push_constant) uniform Params { float direction; } params;
 
 const uint N = 1u << LOG2_N;
-const uint HALF = N >> 1;
-shared vec2 ping[N];
-shared vec2 pong[N];
+shared vec2 buf[2][N];
+
+// e^{+2πi m/16}, m < 16: the roots inside an 8- or 16-point group.
+const vec2 ROOTS16[16] = vec2[](
+    vec2(1.0, 0.0), vec2(0.92387953, 0.38268343), vec2(0.70710678, 0.70710678), vec2(0.38268343, 0.92387953),
+    vec2(0.0, 1.0), vec2(-0.38268343, 0.92387953), vec2(-0.70710678, 0.70710678), vec2(-0.92387953, 0.38268343),
+    vec2(-1.0, 0.0), vec2(-0.92387953, -0.38268343), vec2(-0.70710678, -0.70710678), vec2(-0.38268343, -0.92387953),
+    vec2(0.0, -1.0), vec2(0.38268343, -0.92387953), vec2(0.70710678, -0.70710678), vec2(0.92387953, -0.38268343));
 
 vec2 cmul(vec2 a, vec2 b) { return vec2(a.x * b.x - a.y * b.y, a.x * b.y + a.y * b.x); }
+vec2 conj_if_forward(vec2 w) { return vec2(w.x, w.y * params.direction); }
 
-// One stage from `from` to `to`; a macro, so both shared arrays stay statically indexed.
-#define STAGE(from, to)                                                    \
-    for (uint j = t; j < HALF; j += THREADS) {                             \
-        uint k = j & (ns - 1u);                                            \
-        vec2 w = twiddle[k << (LOG2_N - 1u - log_ns)];                     \
-        w.y *= params.direction;                                           \
-        vec2 a = from[j];                                                  \
-        vec2 b = cmul(from[j + HALF], w);                                  \
-        uint o = (j << 1) - k;                                             \
-        to[o] = a + b;                                                     \
-        to[o + ns] = a - b;                                                \
+// One pass with R = 2^LOG_R values per group. `in_slot`/`out_slot` pick the shared buffers;
+// the first pass reads src, the last writes dst (transposed). A macro keeps the register arrays
+// sized by a constant and every index constant after unrolling.
+#define PASS(LOG_R)                                                                          \
+    {                                                                                        \
+        const uint R = 1u << LOG_R;                                                          \
+        for (uint j = t; j < N / R; j += THREADS) {                                          \
+            uint k = j & (ns - 1u);                                                          \
+            vec2 v[R];                                                                       \
+            [[unroll]] for (uint q = 0u; q < R; ++q) {                                       \
+                uint i = j + q * (N / R);                                                    \
+                v[q] = first ? src[row_base + i] : buf[in_slot][i];                          \
+            }                                                                                \
+            if (ns > 1u) {                                                                   \
+                vec2 w1 = conj_if_forward(twiddle[k * (N / (ns * R))]);                      \
+                vec2 w = w1;                                                                 \
+                [[unroll]] for (uint q = 1u; q < R; ++q) {                                   \
+                    v[q] = cmul(v[q], w);                                                    \
+                    w = cmul(w, w1);                                                         \
+                }                                                                            \
+            }                                                                                \
+            [[unroll]] for (uint ls = 0u; ls < LOG_R; ++ls) {                                \
+                uint s = 1u << ls;                                                           \
+                vec2 u[R];                                                                   \
+                [[unroll]] for (uint jj = 0u; jj < R / 2u; ++jj) {                           \
+                    uint kk = jj & (s - 1u);                                                 \
+                    vec2 a = v[jj];                                                          \
+                    vec2 b = cmul(v[jj + R / 2u], conj_if_forward(ROOTS16[kk * (16u / (2u * s))])); \
+                    u[2u * jj - kk] = a + b;                                                 \
+                    u[2u * jj - kk + s] = a - b;                                             \
+                }                                                                            \
+                v = u;                                                                       \
+            }                                                                                \
+            uint o = (j - k) * R + k;                                                        \
+            [[unroll]] for (uint q = 0u; q < R; ++q) {                                       \
+                uint i = o + q * ns;                                                         \
+                if (last) {                                                                  \
+                    dst[out_base + i * N] = v[q];                                            \
+                } else {                                                                     \
+                    buf[out_slot][i] = v[q];                                                 \
+                }                                                                            \
+            }                                                                                \
+        }                                                                                    \
+        ns *= R;                                                                             \
     }
 
 void main() {
     uint row = gl_WorkGroupID.x;
     uint batch = gl_WorkGroupID.y;
     uint t = gl_LocalInvocationID.x;
-    uint base = (batch * N + row) * N;
-    for (uint i = t; i < N; i += THREADS) {
-        ping[i] = src[base + i];
-    }
-    barrier();
-    for (uint log_ns = 0u; log_ns < LOG2_N; ++log_ns) {
-        uint ns = 1u << log_ns;
-        if ((log_ns & 1u) == 0u) {
-            STAGE(ping, pong)
-        } else {
-            STAGE(pong, ping)
-        }
-        barrier();
-    }
-    // After LOG2_N stages the result is in pong when LOG2_N is odd, else in ping.
+    uint row_base = (batch * N + row) * N;
     uint out_base = batch * N * N + row;
-    for (uint i = t; i < N; i += THREADS) {
-        dst[out_base + i * N] = (LOG2_N & 1u) == 1u ? pong[i] : ping[i];
+
+    // pass_schedule: ceil(LOG2_N / 4) passes of 3 or 4 fused stages, the larger first.
+    const uint PASSES = (LOG2_N + 3u) / 4u;
+    const uint BASE_R = LOG2_N / PASSES;
+    const uint EXTRA = LOG2_N % PASSES;
+    uint ns = 1u;
+    for (uint p = 0u; p < PASSES; ++p) {
+        bool first = p == 0u;
+        bool last = p + 1u == PASSES;
+        uint in_slot = (p + 1u) & 1u;
+        uint out_slot = p & 1u;
+        if (BASE_R + (p < EXTRA ? 1u : 0u) == 4u) {
+            PASS(4u)
+        } else {
+            PASS(3u)
+        }
+        if (!last) {
+            barrier();
+        }
     }
 }

@@ -63,6 +63,8 @@ pub struct Context {
     garbage: Mutex<Vec<(u64, Garbage)>>,
     /// Timeline value the next graphics submission will signal (tag for new garbage).
     pending_value: AtomicU64,
+    /// Highest timeline value submitted so far.
+    signaled_value: AtomicU64,
     /// Validation message counts; dropped after the instance.
     counters: Arc<MessageCounters>,
 }
@@ -210,6 +212,7 @@ impl Context {
             allocator: ManuallyDrop::new(Mutex::new(allocator)),
             garbage: Mutex::new(Vec::new()),
             pending_value: AtomicU64::new(1),
+            signaled_value: AtomicU64::new(0),
             counters,
         };
         ctx.name(
@@ -251,6 +254,15 @@ impl Context {
             .lock()
             .unwrap_or_else(|p| p.into_inner())
             .push((tag, garbage));
+    }
+
+    /// Highest frame-timeline value submitted so far.
+    pub fn signaled_value(&self) -> u64 {
+        self.signaled_value.load(Ordering::Acquire)
+    }
+
+    pub(crate) fn set_signaled_value(&self, value: u64) {
+        self.signaled_value.store(value, Ordering::Release);
     }
 
     /// Sets the timeline value the next graphics submission signals (called by `Frames`).

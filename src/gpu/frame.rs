@@ -30,6 +30,9 @@ struct Slot {
 pub struct Frames {
     ctx: Arc<Context>,
     slots: Vec<Slot>,
+    /// Timeline value before this frame loop's first frame (an earlier loop on the same context
+    /// may have signalled values already; timeline values must keep increasing).
+    base: u64,
     /// Index of the next frame to begin.
     next: u64,
 }
@@ -41,12 +44,14 @@ pub struct Frame {
     /// Frame-in-flight slot (`index % FRAMES_IN_FLIGHT`).
     pub slot: usize,
     cmd: vk::CommandBuffer,
+    /// Timeline value its submission signals.
+    value: u64,
 }
 
 impl Frame {
     /// The timeline value this frame's graphics submission signals.
     pub fn signal_value(&self) -> u64 {
-        self.index + 1
+        self.value
     }
 
     /// A recorder for this frame's command buffer. It borrows the frame, so it cannot outlive
@@ -62,6 +67,7 @@ impl Frames {
         let mut frames = Frames {
             ctx: ctx.clone(),
             slots: Vec::new(),
+            base: ctx.signaled_value(),
             next: 0,
         };
         for i in 0..FRAMES_IN_FLIGHT {
@@ -102,7 +108,7 @@ impl Frames {
     /// resources, e.g. a swapchain acquire semaphore, are free). `begin` does this too.
     pub fn wait_for_slot(&self) -> GpuResult<()> {
         if self.next >= FRAMES_IN_FLIGHT as u64 {
-            self.wait_for(self.next + 1 - FRAMES_IN_FLIGHT as u64)?;
+            self.wait_for(self.base + self.next + 1 - FRAMES_IN_FLIGHT as u64)?;
         }
         Ok(())
     }
@@ -112,7 +118,8 @@ impl Frames {
         let index = self.next;
         let slot = self.next_slot();
         self.wait_for_slot()?;
-        self.ctx.set_pending_value(index + 1);
+        let value = self.base + index + 1;
+        self.ctx.set_pending_value(value);
         self.ctx.collect_garbage()?;
         let s = &self.slots[slot];
         // SAFETY: the slot's previous submission has completed (waited above), so its pool
@@ -133,6 +140,7 @@ impl Frames {
             index,
             slot,
             cmd: s.cmd,
+            value,
         })
     }
 
@@ -165,6 +173,7 @@ impl Frames {
         .vk("vkQueueSubmit2")?;
         // Only a submitted frame counts: waits for its value can then complete.
         self.next = frame.index + 1;
+        self.ctx.set_signaled_value(frame.value);
         Ok(())
     }
 
@@ -205,7 +214,7 @@ impl Frames {
     /// Waits for every submitted frame.
     pub fn wait_all(&self) -> GpuResult<()> {
         if self.next > 0 {
-            self.wait_for(self.next)?;
+            self.wait_for(self.base + self.next)?;
         }
         Ok(())
     }
