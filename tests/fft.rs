@@ -10,6 +10,11 @@ use vkocean::ocean::cpu::inverse_2d;
 use vkocean::ocean::fft::{check_plan, Direction, GpuFft};
 
 fn context() -> Arc<Context> {
+    // Validation messages go to the log: show them when a test fails.
+    let _ = env_logger::builder()
+        .is_test(true)
+        .filter_level(log::LevelFilter::Warn)
+        .try_init();
     Context::new(&ContextDesc {
         validation: true,
         ..Default::default()

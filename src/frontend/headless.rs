@@ -50,6 +50,7 @@ pub fn run(s: &RunSettings) -> anyhow::Result<Outcome> {
             format: OUTPUT_FORMAT,
             usage: vk::ImageUsageFlags::COLOR_ATTACHMENT | vk::ImageUsageFlags::TRANSFER_SRC,
             layers: 1,
+            shared: false,
         },
     )?;
     let readback = if screenshot.is_some() {

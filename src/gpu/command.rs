@@ -56,6 +56,11 @@ impl Access {
         stage: vk::PipelineStageFlags2::HOST,
         access: vk::AccessFlags2::HOST_READ,
     };
+    /// vkCmdClearColorImage's write (the CLEAR stage of synchronization2).
+    pub const CLEAR_WRITE: Access = Access {
+        stage: vk::PipelineStageFlags2::CLEAR,
+        access: vk::AccessFlags2::TRANSFER_WRITE,
+    };
     pub const COMPUTE_READ: Access = Access {
         stage: vk::PipelineStageFlags2::COMPUTE_SHADER,
         access: vk::AccessFlags2::SHADER_STORAGE_READ,
@@ -323,6 +328,59 @@ impl<'a> Recorder<'a> {
                 vk::ImageLayout::TRANSFER_SRC_OPTIMAL,
                 buffer.raw,
                 &[region],
+            )
+        };
+    }
+
+    /// Copies every layer of a colour image (in `layout`: GENERAL or TRANSFER_SRC_OPTIMAL) into a
+    /// buffer, tightly packed, layer after layer.
+    pub fn copy_image_layers_to_buffer(
+        &self,
+        image: &super::image::Image,
+        layout: vk::ImageLayout,
+        buffer: &Buffer,
+    ) {
+        let region = vk::BufferImageCopy {
+            buffer_offset: 0,
+            buffer_row_length: 0,
+            buffer_image_height: 0,
+            image_subresource: vk::ImageSubresourceLayers {
+                aspect_mask: vk::ImageAspectFlags::COLOR,
+                mip_level: 0,
+                base_array_layer: 0,
+                layer_count: image.layers,
+            },
+            image_offset: vk::Offset3D::default(),
+            image_extent: vk::Extent3D {
+                width: image.extent.width,
+                height: image.extent.height,
+                depth: 1,
+            },
+        };
+        // SAFETY: recording-state invariant; the image is in `layout` (caller's barrier) and
+        // the buffer holds all layers (caller's sizing).
+        unsafe {
+            self.ctx.device.cmd_copy_image_to_buffer(
+                self.cmd,
+                image.raw,
+                layout,
+                buffer.raw,
+                &[region],
+            )
+        };
+    }
+
+    /// Clears every layer of a colour image in GENERAL layout to zero.
+    pub fn clear_image(&self, image: &super::image::Image) {
+        let range = image.range();
+        // SAFETY: recording-state invariant; the image has TRANSFER_DST usage and is in GENERAL.
+        unsafe {
+            self.ctx.device.cmd_clear_color_image(
+                self.cmd,
+                image.raw,
+                vk::ImageLayout::GENERAL,
+                &vk::ClearColorValue::default(),
+                &[range],
             )
         };
     }

@@ -21,6 +21,7 @@ pub(crate) enum Garbage {
     DescriptorSetLayout(vk::DescriptorSetLayout),
     DescriptorPool(vk::DescriptorPool),
     CommandPool(vk::CommandPool),
+    Semaphore(vk::Semaphore),
     QueryPool(vk::QueryPool),
 }
 
@@ -52,6 +53,7 @@ impl Garbage {
                 Garbage::DescriptorSetLayout(l) => d.destroy_descriptor_set_layout(l, None),
                 Garbage::DescriptorPool(p) => d.destroy_descriptor_pool(p, None),
                 Garbage::CommandPool(p) => d.destroy_command_pool(p, None),
+                Garbage::Semaphore(s) => d.destroy_semaphore(s, None),
                 Garbage::QueryPool(q) => d.destroy_query_pool(q, None),
             }
         }

@@ -20,6 +20,9 @@ pub struct ImageDesc<'a> {
     pub usage: vk::ImageUsageFlags,
     /// Array layers (1 for a plain 2D image; the view is a 2D array when > 1).
     pub layers: u32,
+    /// Used by both the graphics and the compute queue: CONCURRENT sharing when their families
+    /// differ (correct by construction, no ownership transfers).
+    pub shared: bool,
 }
 
 /// A 2D (array) image in device memory with a view of all its layers.
@@ -66,8 +69,14 @@ impl Image {
             .samples(vk::SampleCountFlags::TYPE_1)
             .tiling(vk::ImageTiling::OPTIMAL)
             .usage(desc.usage)
-            .sharing_mode(vk::SharingMode::EXCLUSIVE)
             .initial_layout(vk::ImageLayout::UNDEFINED);
+        let families = [ctx.graphics.family, ctx.compute.family];
+        let info = if desc.shared && families[0] != families[1] {
+            info.sharing_mode(vk::SharingMode::CONCURRENT)
+                .queue_family_indices(&families)
+        } else {
+            info.sharing_mode(vk::SharingMode::EXCLUSIVE)
+        };
         // SAFETY: valid create info on a live device.
         let raw = unsafe { ctx.device.create_image(&info, None) }.vk("vkCreateImage")?;
         // SAFETY: `raw` is a live image of this device.

@@ -4,6 +4,7 @@
 
 pub mod buffer;
 pub mod command;
+pub mod compute;
 pub mod context;
 pub mod debug;
 pub mod descriptors;

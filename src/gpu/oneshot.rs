@@ -17,6 +17,16 @@ pub fn run_once<R>(
     name: &str,
     record: impl FnOnce(&Recorder) -> R,
 ) -> GpuResult<R> {
+    run_once_waiting(ctx, name, &[], record)
+}
+
+/// `run_once` whose submission first waits on the given semaphores (e.g. a compute timeline).
+pub fn run_once_waiting<R>(
+    ctx: &Arc<Context>,
+    name: &str,
+    waits: &[vk::SemaphoreSubmitInfo],
+    record: impl FnOnce(&Recorder) -> R,
+) -> GpuResult<R> {
     let pool_info = vk::CommandPoolCreateInfo::default()
         .queue_family_index(ctx.graphics.family)
         .flags(vk::CommandPoolCreateFlags::TRANSIENT);
@@ -52,7 +62,9 @@ pub fn run_once<R>(
         }
         .vk("vkCreateFence")?;
         let cmds = [vk::CommandBufferSubmitInfo::default().command_buffer(cmd)];
-        let submit = vk::SubmitInfo2::default().command_buffer_infos(&cmds);
+        let submit = vk::SubmitInfo2::default()
+            .wait_semaphore_infos(waits)
+            .command_buffer_infos(&cmds);
         // SAFETY: the command buffer is executable; the fence is unsignalled.
         let submitted = unsafe { ctx.device.queue_submit2(ctx.graphics.raw, &[submit], fence) }
             .vk("vkQueueSubmit2");

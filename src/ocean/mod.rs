@@ -5,6 +5,7 @@ pub mod cpu;
 pub mod fft;
 pub mod gerstner;
 pub mod params;
+pub mod simulation;
 pub mod spectrum;
 
 pub use params::OceanSettings;

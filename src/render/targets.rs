@@ -29,6 +29,7 @@ impl Targets {
                     format: HDR_FORMAT,
                     usage: vk::ImageUsageFlags::COLOR_ATTACHMENT | vk::ImageUsageFlags::SAMPLED,
                     layers: 1,
+                    shared: false,
                 },
             )?,
             depth: Image::new(
@@ -39,6 +40,7 @@ impl Targets {
                     format: DEPTH_FORMAT,
                     usage: vk::ImageUsageFlags::DEPTH_STENCIL_ATTACHMENT,
                     layers: 1,
+                    shared: false,
                 },
             )?,
         })

@@ -1,0 +1,170 @@
+//! The compute queue's submissions: per frame slot a command buffer on the compute family, and a
+//! compute timeline semaphore. Frame f's compute work signals the compute timeline with the frame's
+//! value; it may wait on the graphics timeline first (before overwriting a slot that graphics
+//! still samples). On a device with one queue (lavapipe) this is the graphics queue, and the same
+//! semaphores order the two submissions.
+
+use std::sync::Arc;
+
+use ash::vk;
+
+use super::command::Recorder;
+use super::context::Context;
+use super::error::{GpuError, GpuResult, VkResultExt};
+use super::frame::FRAMES_IN_FLIGHT;
+use super::garbage::Garbage;
+
+pub struct ComputeQueue {
+    ctx: Arc<Context>,
+    /// Per slot: command pool and its command buffer.
+    slots: Vec<(vk::CommandPool, vk::CommandBuffer)>,
+    /// Signalled with frame values by compute submissions.
+    pub timeline: vk::Semaphore,
+}
+
+impl ComputeQueue {
+    pub fn new(ctx: &Arc<Context>) -> GpuResult<ComputeQueue> {
+        let mut timeline_type = vk::SemaphoreTypeCreateInfo::default()
+            .semaphore_type(vk::SemaphoreType::TIMELINE)
+            .initial_value(0);
+        let info = vk::SemaphoreCreateInfo::default().push_next(&mut timeline_type);
+        // SAFETY: valid create info on a live device.
+        let timeline =
+            unsafe { ctx.device.create_semaphore(&info, None) }.vk("vkCreateSemaphore")?;
+        ctx.name(timeline, "compute timeline");
+        // Pushed as made: an error drops (and frees) what exists.
+        let mut queue = ComputeQueue {
+            ctx: ctx.clone(),
+            slots: Vec::new(),
+            timeline,
+        };
+        for i in 0..FRAMES_IN_FLIGHT {
+            let pool_info = vk::CommandPoolCreateInfo::default()
+                .queue_family_index(ctx.compute.family)
+                .flags(vk::CommandPoolCreateFlags::TRANSIENT);
+            // SAFETY: valid create info on a live device.
+            let pool = unsafe { ctx.device.create_command_pool(&pool_info, None) }
+                .vk("vkCreateCommandPool")?;
+            let alloc = vk::CommandBufferAllocateInfo::default()
+                .command_pool(pool)
+                .level(vk::CommandBufferLevel::PRIMARY)
+                .command_buffer_count(1);
+            // SAFETY: the pool is live.
+            let cmd = match unsafe { ctx.device.allocate_command_buffers(&alloc) } {
+                Ok(c) => c[0],
+                Err(result) => {
+                    ctx.defer(Garbage::CommandPool(pool));
+                    return Err(GpuError::Vk {
+                        call: "vkAllocateCommandBuffers",
+                        result,
+                    });
+                }
+            };
+            ctx.name(pool, &format!("compute slot {i} command pool"));
+            ctx.name(cmd, &format!("compute slot {i} commands"));
+            queue.slots.push((pool, cmd));
+        }
+        Ok(queue)
+    }
+
+    /// Records compute work for the frame with timeline `value` in `slot` and submits it to the
+    /// compute queue: waits for the graphics timeline to reach `wait_graphics` (if any) at the
+    /// compute stage, and signals the compute timeline with `value`.
+    pub fn submit(
+        &mut self,
+        slot: usize,
+        value: u64,
+        wait_graphics: Option<u64>,
+        record: impl FnOnce(&Recorder),
+    ) -> GpuResult<()> {
+        // The slot's previous submission (two frames ago) must be finished before its pool is
+        // reset. The frame loop already waited for that frame's graphics work, which waited for
+        // this compute work; the wait here keeps the type correct on its own.
+        if value > FRAMES_IN_FLIGHT as u64 {
+            let semaphores = [self.timeline];
+            let values = [value - FRAMES_IN_FLIGHT as u64];
+            let info = vk::SemaphoreWaitInfo::default()
+                .semaphores(&semaphores)
+                .values(&values);
+            // SAFETY: the timeline semaphore is live.
+            match unsafe { self.ctx.device.wait_semaphores(&info, 60_000_000_000) } {
+                Ok(()) => {}
+                Err(vk::Result::TIMEOUT) => return Err(GpuError::Timeout { seconds: 60 }),
+                Err(result) => {
+                    return Err(GpuError::Vk {
+                        call: "vkWaitSemaphores",
+                        result,
+                    })
+                }
+            }
+        }
+        let (pool, cmd) = self.slots[slot];
+        // SAFETY: the slot's previous submission has completed (waited above).
+        unsafe {
+            self.ctx
+                .device
+                .reset_command_pool(pool, vk::CommandPoolResetFlags::empty())
+                .vk("vkResetCommandPool")?;
+            let begin = vk::CommandBufferBeginInfo::default()
+                .flags(vk::CommandBufferUsageFlags::ONE_TIME_SUBMIT);
+            self.ctx
+                .device
+                .begin_command_buffer(cmd, &begin)
+                .vk("vkBeginCommandBuffer")?;
+        }
+        {
+            let rec = Recorder::new(&self.ctx, cmd);
+            rec.begin_label(&format!("compute frame value {value}"));
+            record(&rec);
+            rec.end_label();
+        }
+        // SAFETY: recording began above.
+        unsafe { self.ctx.device.end_command_buffer(cmd) }.vk("vkEndCommandBuffer")?;
+        let waits: Vec<_> = wait_graphics
+            .map(|v| {
+                vk::SemaphoreSubmitInfo::default()
+                    .semaphore(self.ctx.frame_timeline)
+                    .value(v)
+                    .stage_mask(vk::PipelineStageFlags2::COMPUTE_SHADER)
+            })
+            .into_iter()
+            .collect();
+        let signals = [vk::SemaphoreSubmitInfo::default()
+            .semaphore(self.timeline)
+            .value(value)
+            .stage_mask(vk::PipelineStageFlags2::COMPUTE_SHADER)];
+        let cmds = [vk::CommandBufferSubmitInfo::default().command_buffer(cmd)];
+        let submit = vk::SubmitInfo2::default()
+            .wait_semaphore_infos(&waits)
+            .command_buffer_infos(&cmds)
+            .signal_semaphore_infos(&signals);
+        // SAFETY: the command buffer is executable; semaphores are live; one submitting thread.
+        unsafe {
+            self.ctx
+                .device
+                .queue_submit2(self.ctx.compute.raw, &[submit], vk::Fence::null())
+        }
+        .vk("vkQueueSubmit2")
+    }
+
+    /// The wait a graphics submission adds to sample this frame's compute results.
+    pub fn graphics_wait(
+        &self,
+        value: u64,
+        stages: vk::PipelineStageFlags2,
+    ) -> vk::SemaphoreSubmitInfo<'static> {
+        vk::SemaphoreSubmitInfo::default()
+            .semaphore(self.timeline)
+            .value(value)
+            .stage_mask(stages)
+    }
+}
+
+impl Drop for ComputeQueue {
+    fn drop(&mut self) {
+        for (pool, _) in self.slots.drain(..) {
+            self.ctx.defer(Garbage::CommandPool(pool));
+        }
+        self.ctx.defer(Garbage::Semaphore(self.timeline));
+    }
+}
