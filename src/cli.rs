@@ -7,6 +7,7 @@ use clap::{Args, Parser, Subcommand, ValueEnum};
 
 use crate::frontend::RunSettings;
 use crate::gpu::PresentMode;
+use crate::ocean::{OceanSettings, SeaState, SpectrumKind};
 use crate::profile::WARMUP_FRAMES;
 
 /// Largest accepted `--size` side; the device limit is checked again at run time.
@@ -57,6 +58,55 @@ pub struct Cli {
     /// Window presentation mode (falls back to fifo when the surface lacks it).
     #[arg(long, value_enum, value_name = "MODE", default_value_t = PresentModeArg::Fifo)]
     pub present_mode: PresentModeArg,
+
+    /// Ocean spectrum: phillips (Tessendorf), jonswap (fetch-limited), pierson-moskowitz (fully developed).
+    #[arg(long, value_enum, value_name = "KIND", default_value_t = SpectrumArg::Jonswap, help_heading = "Ocean")]
+    pub spectrum: SpectrumArg,
+
+    /// Wind speed 10 m above the sea, U10 (m/s, 0 < U <= 100).
+    #[arg(long, value_name = "M_S", default_value = "10", allow_hyphen_values = true,
+          value_parser = |s: &str| parse_real(s, 0.0, 100.0, false), help_heading = "Ocean")]
+    pub wind_speed: f64,
+
+    /// Direction the wind blows toward, degrees from +x toward +z.
+    #[arg(long, value_name = "DEG", default_value = "0", allow_hyphen_values = true,
+          value_parser = |s: &str| parse_real(s, -360.0, 360.0, true), help_heading = "Ocean")]
+    pub wind_dir: f64,
+
+    /// Fetch: distance the wind has blown over water (km, JONSWAP; 0 < F <= 10000).
+    #[arg(long, value_name = "KM", default_value = "100", allow_hyphen_values = true,
+          value_parser = |s: &str| parse_real(s, 0.0, 10_000.0, false), help_heading = "Ocean")]
+    pub fetch: f64,
+
+    /// Water depth (m, 0 < h <= 11000); default deep water. Finite depth changes the dispersion
+    /// and applies the TMA attenuation.
+    #[arg(long, value_name = "M", allow_hyphen_values = true,
+          value_parser = |s: &str| parse_real(s, 0.0, 11_000.0, false), help_heading = "Ocean")]
+    pub depth: Option<f64>,
+
+    /// FFT size N: a power of two from 64 to 1024.
+    #[arg(long, value_name = "N", default_value = "256", value_parser = parse_fft_size, help_heading = "Ocean")]
+    pub fft_size: usize,
+
+    /// Side of the largest cascade's patch (m, 0 < L <= 100000); each further cascade is 4.353x smaller.
+    #[arg(long, value_name = "M", default_value = "400", allow_hyphen_values = true,
+          value_parser = |s: &str| parse_real(s, 0.0, 100_000.0, false), help_heading = "Ocean")]
+    pub patch_size: f64,
+
+    /// Horizontal (choppy) displacement scale λ (0 <= λ <= 10).
+    #[arg(long, value_name = "X", default_value = "1", allow_hyphen_values = true,
+          value_parser = |s: &str| parse_real(s, 0.0, 10.0, true), help_heading = "Ocean")]
+    pub choppiness: f64,
+
+    /// Number of cascades, 1 to 4 (disjoint wave-number bands, non-commensurate patches).
+    #[arg(long, value_name = "K", default_value = "3", allow_hyphen_values = true,
+          value_parser = |s: &str| parse_whole(s, 1, 4).map(|n| n as usize), help_heading = "Ocean")]
+    pub cascades: usize,
+
+    /// Seed of the initial spectrum (same seed, same sea on every machine).
+    #[arg(long, value_name = "S", default_value = "1", allow_hyphen_values = true,
+          value_parser = |s: &str| parse_whole(s, 0, u64::MAX), help_heading = "Ocean")]
+    pub seed: u64,
 
     /// Test only: record a deliberate synchronization hazard (validation must catch it).
     #[arg(long, hide = true)]
@@ -147,6 +197,28 @@ impl BenchFftArgs {
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum SpectrumArg {
+    Phillips,
+    Jonswap,
+    PiersonMoskowitz,
+}
+
+/// A finite real number in (lo, hi], or [lo, hi] when `closed`.
+fn parse_real(s: &str, lo: f64, hi: f64, closed: bool) -> Result<f64, String> {
+    let v: f64 = s.trim().parse().map_err(|_| "not a number".to_string())?;
+    let ok = v.is_finite() && v <= hi && (v > lo || (closed && v >= lo));
+    if ok {
+        Ok(v)
+    } else if closed {
+        Err(format!("must be a number from {lo} to {hi}"))
+    } else {
+        Err(format!(
+            "must be a number greater than {lo} and at most {hi}"
+        ))
+    }
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum PresentModeArg {
     Fifo,
     Mailbox,
@@ -228,6 +300,24 @@ impl Cli {
                 PresentModeArg::Immediate => PresentMode::Immediate,
             },
             inject_sync_hazard: self.inject_sync_hazard,
+            ocean: OceanSettings {
+                sea: SeaState {
+                    spectrum: match self.spectrum {
+                        SpectrumArg::Phillips => SpectrumKind::Phillips,
+                        SpectrumArg::Jonswap => SpectrumKind::Jonswap,
+                        SpectrumArg::PiersonMoskowitz => SpectrumKind::PiersonMoskowitz,
+                    },
+                    wind_speed_m_s: self.wind_speed,
+                    wind_dir_deg: self.wind_dir,
+                    fetch_km: self.fetch,
+                    depth_m: self.depth,
+                },
+                fft_size: self.fft_size,
+                patch_size_m: self.patch_size,
+                cascades: self.cascades,
+                choppiness: self.choppiness,
+                seed: self.seed,
+            },
         })
     }
 }

@@ -58,6 +58,26 @@ fn bad_usage_exits_2_with_one_line() {
             &["--headless", "--profile", "p.json", "--frames", "5"],
             "warm-up",
         ),
+        (
+            &["--headless", "--spectrum", "bogus"],
+            "possible values: phillips, jonswap, pierson-moskowitz",
+        ),
+        (&["--headless", "--wind-speed", "0"], "--wind-speed"),
+        (&["--headless", "--wind-speed", "-3"], "greater than 0"),
+        (&["--headless", "--wind-speed", "nan"], "--wind-speed"),
+        (&["--headless", "--wind-speed", "fast"], "not a number"),
+        (&["--headless", "--wind-dir", "inf"], "--wind-dir"),
+        (&["--headless", "--fetch", "0"], "--fetch"),
+        (&["--headless", "--depth", "0"], "--depth"),
+        (&["--headless", "--depth", "-5"], "--depth"),
+        (&["--headless", "--fft-size", "100"], "power of two"),
+        (&["--headless", "--fft-size", "2048"], "power of two"),
+        (&["--headless", "--patch-size", "0"], "--patch-size"),
+        (&["--headless", "--choppiness", "-1"], "--choppiness"),
+        (&["--headless", "--choppiness", "NaN"], "--choppiness"),
+        (&["--headless", "--cascades", "0"], "--cascades"),
+        (&["--headless", "--cascades", "5"], "from 1 to 4"),
+        (&["--headless", "--seed", "-1"], "--seed"),
     ];
     for (args, needle) in cases {
         assert_fails(args, &[], 2, needle);
@@ -164,6 +184,16 @@ fn help_and_device_list() {
         "--gpu",
         "--list-gpus",
         "--present-mode",
+        "--spectrum",
+        "--wind-speed",
+        "--wind-dir",
+        "--fetch",
+        "--depth",
+        "--fft-size",
+        "--patch-size",
+        "--choppiness",
+        "--cascades",
+        "--seed",
     ] {
         assert!(help.contains(flag), "help lacks {flag}");
     }

@@ -1,4 +1,4 @@
-//! The windowed frontend under Xvfb (xvfb-run, xdotool from tools/setup): a window opens, is
+//! The windowed frontend under Xvfb (a small ocean, --fft-size 64, keeps lavapipe's frame rate up) (xvfb-run, xdotool from tools/setup): a window opens, is
 //! resized twice (the swapchain is recreated each time), saves a screenshot on F12, runs
 //! validation-clean and exits on Esc;
 //! `--frames N` stops by itself; `--screenshot` saves the last frame at the window's size.
@@ -39,7 +39,7 @@ fn window_resizes_twice_and_stays_validation_clean() {
     let shot = dir.join("last.png");
     let script = format!(
         r#"
-        "$VKOCEAN" --validation --size 640x360 --screenshot '{shot}' &
+        "$VKOCEAN" --validation --size 640x360 --fft-size 64 --cascades 2 --screenshot '{shot}' &
         pid=$!
         # Wait for the window, but give up as soon as vkocean exits (a crash must fail fast).
         wid=""

@@ -7,7 +7,14 @@ layout(set = 0, binding = 0, std140) uniform FrameUniforms {
     vec4 camera_pos;     // xyz: world camera position (m); w: simulation time (s)
     vec4 sun_dir;        // xyz: unit vector toward the sun; w: sun radiance scale
     vec4 viewport;       // xy: target size (px); zw: 1 / size
+    vec4 patch_m;        // side of each ocean cascade's patch (m), cascades 0..3
+    vec4 ocean;          // x: number of cascades
 } frame;
+
+// The ocean simulation's images of this frame's slot, one layer per cascade (GENERAL layout,
+// repeat sampler): (dx, h, dz, 0) and (dh/dx, dh/dz, Jacobian, foam).
+layout(set = 0, binding = 1) uniform sampler2DArray ocean_displacement;
+layout(set = 0, binding = 2) uniform sampler2DArray ocean_normals;
 
 // World-space view ray through a pixel, from the fragment's normalized device coordinates.
 vec3 view_ray(vec2 ndc) {

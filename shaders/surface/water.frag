@@ -1,8 +1,8 @@
 #version 460
-// Lit water plane (placeholder for the FFT ocean): Schlick Fresnel (F0 = 0.02, water n = 1.33)
-// between the sky's reflection and a deep-water body colour, a Blinn-Phong sun highlight, and a
-// distance haze that blends into the horizon sky. Small analytic ripples perturb the normal near
-// the camera and fade with distance (no aliasing at the horizon).
+// Ocean surface shading (the full treatment comes with the rendering issue): normals from the
+// simulation's slopes, Schlick Fresnel (F0 = 0.02, water n = 1.33) between the sky's reflection and
+// a deep-water body colour, a Blinn-Phong sun highlight, foam from the simulation, and a distance
+// haze that blends into the horizon sky.
 #include "common/frame.glsl"
 #include "common/sky.glsl"
 
@@ -13,27 +13,27 @@ layout(location = 0) out vec4 out_colour;
 const vec3 WATER_BODY = vec3(0.004, 0.035, 0.06);
 const float F0 = 0.02;
 
-vec3 ripple_normal(vec2 xz, float t, float fade) {
-    // Gradient of a sum of four sines; amplitudes are slopes (dimensionless).
+// Slopes add across cascades (normals do not): n = normalize(-Σ ∂h/∂x, 1, -Σ ∂h/∂z). Each
+// cascade fades out with distance before its waves alias. Returns (normal, foam).
+vec4 ocean_normal_foam(vec2 world_xz, float dist) {
     vec2 slope = vec2(0.0);
-    const vec4 dirs_x = vec4(0.98, 0.60, -0.35, 0.15);
-    const vec4 dirs_z = vec4(0.20, 0.80, 0.94, -0.99);
-    const vec4 k = vec4(0.21, 0.47, 0.93, 1.71);     // rad/m
-    const vec4 amp = vec4(0.05, 0.035, 0.025, 0.015); // slope amplitude
-    for (int i = 0; i < 4; ++i) {
-        vec2 d = vec2(dirs_x[i], dirs_z[i]);
-        float omega = sqrt(9.81 * k[i]); // deep-water dispersion
-        slope += d * amp[i] * cos(k[i] * dot(d, xz) - omega * t);
+    float foam = 0.0;
+    int cascades = int(frame.ocean.x);
+    for (int c = 0; c < cascades; ++c) {
+        float patch_m = frame.patch_m[c];
+        float fade = clamp(2.0 - dist / (patch_m * 4.0), 0.0, 1.0);
+        vec4 s = texture(ocean_normals, vec3(world_xz / patch_m, c));
+        slope += fade * s.xy;
+        foam = max(foam, fade * s.w);
     }
-    slope *= fade;
-    return normalize(vec3(-slope.x, 1.0, -slope.y));
+    return vec4(normalize(vec3(-slope.x, 1.0, -slope.y)), foam);
 }
 
 void main() {
     float dist = length(in_rel_pos);
     vec3 v = -in_rel_pos / dist; // toward the camera
-    float fade = exp(-dist / 300.0);
-    vec3 n = ripple_normal(in_world_xz, frame.camera_pos.w, fade);
+    vec4 nf = ocean_normal_foam(in_world_xz, dist);
+    vec3 n = nf.xyz;
     vec3 sun = frame.sun_dir.xyz;
 
     vec3 r = reflect(-v, n);
@@ -45,6 +45,7 @@ void main() {
     float diffuse = max(dot(n, sun), 0.0) * 0.5 + 0.5;
     vec3 body = WATER_BODY * diffuse * (SKY_HORIZON + SUN_COLOUR);
     vec3 colour = mix(body, reflected, fresnel);
+    colour = mix(colour, vec3(0.85, 0.9, 0.92) * (0.6 + 0.4 * max(sun.y, 0.0)), nf.w * 0.8);
 
     vec3 h = normalize(v + sun);
     float spec = pow(max(dot(n, h), 0.0), 720.0) * frame.sun_dir.w * 0.25;

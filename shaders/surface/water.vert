@@ -1,19 +1,39 @@
 #version 460
-// Flat water plane at y = 0: one camera-centred quad (two triangles, no vertex buffer) reaching
-// far past the horizon haze. Positions are camera-relative (frame.glsl).
-// Outputs: camera-relative position and world xz (for the ripple normals).
+// Ocean surface as a displaced grid (the tessellated tiles come with the rendering issue): a
+// camera-centred grid whose spacing grows with distance (|u|^3 warp: 0.1 m cells under the camera,
+// reaching 20 km), displaced by the sum of every cascade's displacement image at the vertex's
+// world position. Positions are camera-relative (frame.glsl).
+// Outputs: camera-relative position, undisplaced world xz (for the normal lookup).
 #include "common/frame.glsl"
 
 layout(location = 0) out vec3 out_rel_pos;
 layout(location = 1) out vec2 out_world_xz;
 
-const float HALF_EXTENT_M = 40000.0;
-const vec2 CORNERS[6] = vec2[](vec2(-1, -1), vec2(1, -1), vec2(1, 1), vec2(-1, -1), vec2(1, 1), vec2(-1, 1));
+const uint GRID = 192;           // quads per side
+const float FAR_M = 20000.0;
+const uvec2 CORNERS[6] = uvec2[](uvec2(0, 0), uvec2(1, 1), uvec2(1, 0), uvec2(0, 0), uvec2(0, 1), uvec2(1, 1));
+
+vec3 ocean_displacement_at(vec2 world_xz, float dist) {
+    vec3 d = vec3(0.0);
+    int cascades = int(frame.ocean.x);
+    for (int c = 0; c < cascades; ++c) {
+        float patch_m = frame.patch_m[c];
+        // Fade a cascade out where its waves are smaller than the grid can resolve.
+        float fade = clamp(2.0 - dist / (patch_m * 4.0), 0.0, 1.0);
+        d += fade * textureLod(ocean_displacement, vec3(world_xz / patch_m, c), 0.0).xyz;
+    }
+    return d;
+}
 
 void main() {
-    vec2 c = CORNERS[gl_VertexIndex] * HALF_EXTENT_M;
-    vec3 rel = vec3(c.x, -frame.camera_pos.y, c.y);
+    uint quad = uint(gl_VertexIndex) / 6u;
+    uvec2 cell = uvec2(quad % GRID, quad / GRID) + CORNERS[uint(gl_VertexIndex) % 6u];
+    vec2 u = vec2(cell) / float(GRID) * 2.0 - 1.0;
+    vec2 offset = sign(u) * abs(u) * abs(u) * abs(u) * FAR_M;
+    vec2 world_xz = frame.camera_pos.xz + offset;
+    vec3 d = ocean_displacement_at(world_xz, length(offset));
+    vec3 rel = vec3(offset.x + d.x, d.y - frame.camera_pos.y, offset.y + d.z);
     out_rel_pos = rel;
-    out_world_xz = frame.camera_pos.xz + c;
+    out_world_xz = world_xz;
     gl_Position = frame.view_proj * vec4(rel, 1.0);
 }

@@ -24,6 +24,8 @@ pub struct RunSettings {
     pub present_mode: PresentMode,
     /// Test-only: record a deliberate synchronization hazard in the first frame.
     pub inject_sync_hazard: bool,
+    /// Sea state and simulation grid.
+    pub ocean: crate::ocean::OceanSettings,
 }
 
 /// What a finished run reports back to `main`.

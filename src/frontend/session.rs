@@ -9,15 +9,18 @@ use ash::vk;
 use super::RunSettings;
 use crate::gpu::selftest::SyncHazard;
 use crate::gpu::{Buffer, Context, Frames, GpuResult, MemoryLocation, Profiler, Recorder};
+use crate::ocean::simulation::Simulation;
 use crate::output::PendingFile;
 use crate::profile::{ProfileReport, WARMUP_FRAMES};
-use crate::render::{FrameInputs, OutputTarget, Renderer};
+use crate::render::{FrameInputs, OceanBindings, OutputTarget, Renderer};
 
 pub struct Session {
     pub ctx: Arc<Context>,
     pub frames: Frames,
     pub profiler: Profiler,
     pub renderer: Renderer,
+    /// The FFT ocean on the compute queue.
+    pub simulation: Simulation,
     /// Test-only hazard, recorded once in the first frame.
     hazard: Option<SyncHazard>,
     /// Wall time between consecutive frame starts (ms), after warm-up.
@@ -45,11 +48,19 @@ impl Session {
                 ctx.info.name
             );
         }
+        let simulation = Simulation::new(ctx, &s.ocean)?;
+        let ocean = OceanBindings {
+            displacement: simulation.displacement.iter().map(|i| i.view).collect(),
+            normals: simulation.normals.iter().map(|i| i.view).collect(),
+            patch_m: simulation.patch_sizes(),
+            cascades: simulation.cascades.len() as u32,
+        };
         Ok(Session {
             ctx: ctx.clone(),
             frames: Frames::new(ctx)?,
             profiler,
-            renderer: Renderer::new(ctx, output_format, extent)?,
+            renderer: Renderer::new(ctx, output_format, extent, ocean)?,
+            simulation,
             hazard,
             cpu_frame_ms: Vec::new(),
             last_frame_start: None,
@@ -78,6 +89,11 @@ impl Session {
 
         let frame = self.frames.begin()?;
         let value = frame.signal_value();
+        // Compute first (it waits for the frame that last sampled this slot), then graphics,
+        // which waits for this frame's compute results where it samples them.
+        self.simulation.submit(frame.slot, value, inputs.time_s)?;
+        let mut waits = waits.to_vec();
+        waits.push(self.simulation.graphics_wait(value));
         {
             let rec = frame.recorder(&self.ctx);
             rec.begin_label(&format!("frame {}", frame.index));
@@ -92,7 +108,7 @@ impl Session {
             self.profiler.end_frame(&rec);
             rec.end_label();
         }
-        self.frames.submit(frame, waits, signals)?;
+        self.frames.submit(frame, &waits, signals)?;
         Ok(value)
     }
 

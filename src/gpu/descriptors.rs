@@ -122,6 +122,8 @@ pub enum Write {
         binding: u32,
         view: vk::ImageView,
         sampler: vk::Sampler,
+        /// Layout the image is in when sampled (SHADER_READ_ONLY_OPTIMAL or GENERAL).
+        layout: vk::ImageLayout,
     },
     StorageImage {
         binding: u32,
@@ -148,10 +150,15 @@ pub fn update(ctx: &Context, set: vk::DescriptorSet, writes: &[Write]) {
     let image_infos: Vec<[vk::DescriptorImageInfo; 1]> = writes
         .iter()
         .map(|w| match w {
-            Write::SampledImage { view, sampler, .. } => [vk::DescriptorImageInfo {
+            Write::SampledImage {
+                view,
+                sampler,
+                layout,
+                ..
+            } => [vk::DescriptorImageInfo {
                 sampler: *sampler,
                 image_view: *view,
-                image_layout: vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL,
+                image_layout: *layout,
             }],
             Write::StorageImage { view, .. } => [vk::DescriptorImageInfo {
                 sampler: vk::Sampler::null(),

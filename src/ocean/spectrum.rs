@@ -477,6 +477,48 @@ mod tests {
     }
 
     #[test]
+    fn no_nan_or_inf_across_sea_states() {
+        // Wind 0.5-40 m/s, depth 1 m to deep, fetch 1-1000 km, k up to the Nyquist limit of the
+        // finest cascade at N = 1024 (and the h0 of a small grid).
+        let patch = 400.0;
+        let finest = cascades(patch, 4)[3].patch_m;
+        let k_max = PI * 1024.0 / finest;
+        for spectrum in [
+            SpectrumKind::Phillips,
+            SpectrumKind::Jonswap,
+            SpectrumKind::PiersonMoskowitz,
+        ] {
+            for wind in [0.5, 3.0, 10.0, 25.0, 40.0] {
+                for depth in [Some(1.0), Some(10.0), Some(200.0), None] {
+                    for fetch in [1.0, 30.0, 1000.0] {
+                        let sea = SeaState {
+                            spectrum,
+                            wind_speed_m_s: wind,
+                            wind_dir_deg: 33.0,
+                            fetch_km: fetch,
+                            depth_m: depth,
+                        };
+                        for i in 0..=400 {
+                            let k = k_max * (i as f64 / 400.0).powi(3);
+                            for t in [-2.0f64, 0.0, 0.7, 3.1] {
+                                let s = directional_density(&sea, [k * t.cos(), k * t.sin()]);
+                                assert!(s.is_finite() && s >= 0.0, "{sea:?} k {k}: S = {s}");
+                            }
+                        }
+                        for (c, cascade) in cascades(patch, 2).iter().enumerate() {
+                            let h = h0(&sea, 64, cascade, c as u32, 7);
+                            assert!(
+                                h.iter().all(|v| v[0].is_finite() && v[1].is_finite()),
+                                "{sea:?}"
+                            );
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
     fn cascade_bands_are_disjoint_and_resolvable() {
         let cs = cascades(400.0, 4);
         for w in cs.windows(2) {

@@ -48,6 +48,17 @@ impl Camera {
     }
 }
 
+/// What the scene passes sample of the ocean simulation.
+#[derive(Clone, Debug)]
+pub struct OceanBindings {
+    /// Per frame slot: displacement and normal+foam image views (GENERAL layout).
+    pub displacement: Vec<ash::vk::ImageView>,
+    pub normals: Vec<ash::vk::ImageView>,
+    /// Patch side of each cascade (m), padded to four.
+    pub patch_m: [f32; 4],
+    pub cascades: u32,
+}
+
 /// Mirrors `shaders/common/frame.glsl` (std140: matrices and vec4s only, so no padding).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
@@ -60,6 +71,10 @@ pub struct FrameUniforms {
     pub sun_dir: [f32; 4],
     /// xy: target size (px); zw: reciprocal.
     pub viewport: [f32; 4],
+    /// Patch side of each ocean cascade (m).
+    pub patch_m: [f32; 4],
+    /// x: number of cascades.
+    pub ocean: [f32; 4],
 }
 
 impl FrameUniforms {
@@ -69,6 +84,7 @@ impl FrameUniforms {
         sun_scale: f32,
         time_s: f32,
         size: (u32, u32),
+        ocean: &OceanBindings,
     ) -> Self {
         let (w, h) = (size.0.max(1) as f32, size.1.max(1) as f32);
         let view_proj = camera.view_proj(w / h);
@@ -78,6 +94,8 @@ impl FrameUniforms {
             camera_pos: camera.position.extend(time_s).to_array(),
             sun_dir: sun_dir.normalize().extend(sun_scale).to_array(),
             viewport: Vec4::new(w, h, 1.0 / w, 1.0 / h).to_array(),
+            patch_m: ocean.patch_m,
+            ocean: [ocean.cascades as f32, 0.0, 0.0, 0.0],
         }
     }
 }

@@ -6,5 +6,5 @@ pub mod passes;
 pub mod renderer;
 pub mod targets;
 
-pub use camera::{Camera, FrameUniforms};
+pub use camera::{Camera, FrameUniforms, OceanBindings};
 pub use renderer::{FrameInputs, OutputTarget, Renderer};

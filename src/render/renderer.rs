@@ -3,7 +3,8 @@
 //! ```text
 //!  frame uniforms (slot f % 2) ──┐
 //!  sky        fullscreen sky            -> hdr colour            (every pixel written)
-//!  water      lit plane at y = 0        -> hdr colour + depth    (depth cleared, reversed-Z)
+//!  water      displaced ocean grid      -> hdr colour + depth    (depth cleared, reversed-Z)
+//!             (samples the simulation images of slot f % 2, after the compute timeline wait)
 //!  composite  tone map hdr colour       -> output image (swapchain image or headless target)
 //! ```
 //! The output is left in COLOR_ATTACHMENT_OPTIMAL; the frontend transitions it for present or copy.
@@ -13,14 +14,14 @@ use std::sync::Arc;
 use ash::vk;
 use glam::Vec3;
 
-use super::camera::{Camera, FrameUniforms};
+use super::camera::{Camera, FrameUniforms, OceanBindings};
 use super::passes::{CompositePass, SkyPass, WaterPass};
 use super::targets::Targets;
 use crate::gpu::descriptors::{self, Write};
 use crate::gpu::image::full_range;
 use crate::gpu::{
     Access, Attachment, Buffer, Context, DescriptorPool, DescriptorSetLayout, Frame, GpuResult,
-    ImageBarrier, Load, MemoryLocation, Profiler, Recorder, FRAMES_IN_FLIGHT,
+    ImageBarrier, Load, MemoryLocation, Profiler, Recorder, Sampler, FRAMES_IN_FLIGHT,
 };
 
 /// The image a frame ends in.
@@ -53,6 +54,9 @@ pub struct Renderer {
     _pool: DescriptorPool,
     /// Per frame slot: uniform buffer and the set that binds it.
     frame_uniforms: Vec<(Buffer, vk::DescriptorSet)>,
+    /// The simulation images the frame sets bind, and the cascade layout.
+    ocean: OceanBindings,
+    _ocean_sampler: Sampler,
     sky: SkyPass,
     water: WaterPass,
     composite: CompositePass,
@@ -64,22 +68,34 @@ impl Renderer {
         ctx: &Arc<Context>,
         output_format: vk::Format,
         extent: vk::Extent2D,
+        ocean: OceanBindings,
     ) -> GpuResult<Renderer> {
         let targets = Targets::new(ctx, extent)?;
+        let graphics = vk::ShaderStageFlags::ALL_GRAPHICS;
+        let sampled = vk::DescriptorType::COMBINED_IMAGE_SAMPLER;
         let frame_set_layout = DescriptorSetLayout::new(
             ctx,
-            "frame uniforms set layout",
-            &[(
-                0,
-                vk::DescriptorType::UNIFORM_BUFFER,
-                vk::ShaderStageFlags::ALL_GRAPHICS,
-            )],
+            "frame set layout (uniforms, ocean images)",
+            &[
+                (0, vk::DescriptorType::UNIFORM_BUFFER, graphics),
+                (1, sampled, graphics),
+                (2, sampled, graphics),
+            ],
         )?;
+        let slots = FRAMES_IN_FLIGHT as u32;
         let pool = DescriptorPool::new(
             ctx,
             "renderer descriptors",
-            FRAMES_IN_FLIGHT as u32,
-            &[(vk::DescriptorType::UNIFORM_BUFFER, FRAMES_IN_FLIGHT as u32)],
+            slots,
+            &[
+                (vk::DescriptorType::UNIFORM_BUFFER, slots),
+                (sampled, 2 * slots),
+            ],
+        )?;
+        let ocean_sampler = Sampler::linear(
+            ctx,
+            "ocean sampler (repeat)",
+            vk::SamplerAddressMode::REPEAT,
         )?;
         let mut frame_uniforms = Vec::new();
         for slot in 0..FRAMES_IN_FLIGHT {
@@ -97,10 +113,24 @@ impl Renderer {
             descriptors::update(
                 ctx,
                 set,
-                &[Write::UniformBuffer {
-                    binding: 0,
-                    buffer: buffer.raw,
-                }],
+                &[
+                    Write::UniformBuffer {
+                        binding: 0,
+                        buffer: buffer.raw,
+                    },
+                    Write::SampledImage {
+                        binding: 1,
+                        view: ocean.displacement[slot],
+                        sampler: ocean_sampler.raw,
+                        layout: vk::ImageLayout::GENERAL,
+                    },
+                    Write::SampledImage {
+                        binding: 2,
+                        view: ocean.normals[slot],
+                        sampler: ocean_sampler.raw,
+                        layout: vk::ImageLayout::GENERAL,
+                    },
+                ],
             );
             frame_uniforms.push((buffer, set));
         }
@@ -117,6 +147,8 @@ impl Renderer {
             _frame_set_layout: frame_set_layout,
             _pool: pool,
             frame_uniforms,
+            ocean,
+            _ocean_sampler: ocean_sampler,
             sky,
             water,
             composite,
@@ -164,6 +196,7 @@ impl Renderer {
             self.sun_scale,
             inputs.time_s,
             (extent.width, extent.height),
+            &self.ocean,
         );
         let (buffer, frame_set) = &mut self.frame_uniforms[frame.slot];
         buffer.write(bytemuck::bytes_of(&uniforms));

@@ -110,6 +110,7 @@ impl CompositePass {
                 binding: 0,
                 view: hdr.view,
                 sampler: self.sampler.raw,
+                layout: vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL,
             }],
         );
     }

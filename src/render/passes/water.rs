@@ -1,5 +1,6 @@
-//! Water pass: the flat, lit water plane at y = 0 (shaders/surface/water.*), depth-tested into
-//! the HDR and depth targets. The ocean issue replaces it with tessellated, displaced tiles.
+//! Water pass: the ocean surface as a camera-centred grid displaced by the simulation's images
+//! (shaders/surface/water.*), depth-tested into the HDR and depth targets. The rendering issue
+//! replaces it with tessellated tiles.
 
 use std::sync::Arc;
 
@@ -10,6 +11,9 @@ use crate::gpu::{
 };
 use crate::render::targets::{DEPTH_FORMAT, HDR_FORMAT};
 use crate::shaders;
+
+/// Quads per side of the ocean grid (`GRID` in shaders/surface/water.vert).
+pub const GRID_QUADS: u32 = 192;
 
 pub struct WaterPass {
     layout: PipelineLayout,
@@ -42,6 +46,6 @@ impl WaterPass {
     pub fn record(&self, rec: &Recorder, frame_set: vk::DescriptorSet) {
         rec.bind_pipeline(&self.pipeline);
         rec.bind_sets(&self.pipeline, &self.layout, &[frame_set]);
-        rec.draw(6, 1);
+        rec.draw(GRID_QUADS * GRID_QUADS * 6, 1);
     }
 }
