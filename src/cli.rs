@@ -108,6 +108,16 @@ pub struct Cli {
           value_parser = |s: &str| parse_whole(s, 0, u64::MAX), help_heading = "Ocean")]
     pub seed: u64,
 
+    /// Print one JSON line of height statistics per frame on stdout (mean, std, hs = 4·std, min,
+    /// max per cascade and for the summed surface); waits for every frame.
+    #[arg(long)]
+    pub stats: bool,
+
+    /// With --headless: write the last frame's h0.npy, displacement.npy, normals.npy and
+    /// params.json into DIR (created if missing). Layout in README.
+    #[arg(long, value_name = "DIR")]
+    pub dump: Option<PathBuf>,
+
     /// Test only: record a deliberate synchronization hazard (validation must catch it).
     #[arg(long, hide = true)]
     pub inject_sync_hazard: bool,
@@ -275,6 +285,9 @@ impl Cli {
                 )));
             }
         }
+        if self.dump.is_some() && !self.headless {
+            return Err(UsageError("--dump needs --headless".to_string()));
+        }
         let frames = match (self.frames, self.headless, self.profile.is_some()) {
             (Some(n), _, true) if n <= WARMUP_FRAMES => {
                 return Err(UsageError(format!(
@@ -300,6 +313,8 @@ impl Cli {
                 PresentModeArg::Immediate => PresentMode::Immediate,
             },
             inject_sync_hazard: self.inject_sync_hazard,
+            stats: self.stats,
+            dump: self.dump.clone(),
             ocean: OceanSettings {
                 sea: SeaState {
                     spectrum: match self.spectrum {

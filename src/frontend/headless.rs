@@ -15,6 +15,8 @@ use crate::render::{FrameInputs, OutputTarget};
 
 /// Format of the offscreen target: 8-bit sRGB, the bytes a PNG stores.
 const OUTPUT_FORMAT: vk::Format = vk::Format::R8G8B8A8_SRGB;
+/// Files `--dump DIR` writes, in the order `Session::dump_contents` returns them.
+const DUMP_FILES: [&str; 4] = ["h0.npy", "displacement.npy", "normals.npy", "params.json"];
 /// Simulation time step per frame (s).
 pub const FIXED_DT_S: f32 = 1.0 / 60.0;
 
@@ -29,6 +31,17 @@ pub fn run(s: &RunSettings) -> anyhow::Result<Outcome> {
         .as_deref()
         .map(|p| PendingFile::create("--profile", p))
         .transpose()?;
+    let dump = match &s.dump {
+        Some(dir) => {
+            std::fs::create_dir_all(dir)
+                .map_err(|e| anyhow::anyhow!("cannot create --dump {}: {e}", dir.display()))?;
+            DUMP_FILES
+                .iter()
+                .map(|name| PendingFile::create("--dump", &dir.join(name)))
+                .collect::<anyhow::Result<Vec<_>>>()?
+        }
+        None => Vec::new(),
+    };
     let frames = s.frames.unwrap_or(1);
 
     let ctx = Context::new(&ContextDesc {
@@ -90,6 +103,9 @@ pub fn run(s: &RunSettings) -> anyhow::Result<Outcome> {
             rec.copy_image_to_buffer(target.raw, extent, buffer);
             rec.barrier(&[], &[(buffer.raw, Access::COPY_WRITE, Access::HOST_READ)]);
         })?;
+        if s.stats {
+            session.print_stats()?;
+        }
         if last_progress.elapsed() > Duration::from_secs(5) {
             eprintln!(
                 "vkocean: frame {}/{frames} ({:.1} s)",
@@ -100,6 +116,11 @@ pub fn run(s: &RunSettings) -> anyhow::Result<Outcome> {
         }
     }
     let finished = session.finish(s.size)?;
+    let dump_contents = if dump.is_empty() {
+        Vec::new()
+    } else {
+        session.dump_contents()?
+    };
     // Encode before writing anything, so a failure leaves no file at all.
     let png = match &readback {
         Some(buffer) => {
@@ -110,6 +131,9 @@ pub fn run(s: &RunSettings) -> anyhow::Result<Outcome> {
     };
     if let (Some(file), Some(png)) = (screenshot, png) {
         file.commit(&png)?;
+    }
+    for (file, (_, bytes)) in dump.into_iter().zip(dump_contents) {
+        file.commit(&bytes)?;
     }
     finished.commit(profile, "")?;
     Ok(Outcome { counters })

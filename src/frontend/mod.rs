@@ -26,6 +26,10 @@ pub struct RunSettings {
     pub inject_sync_hazard: bool,
     /// Sea state and simulation grid.
     pub ocean: crate::ocean::OceanSettings,
+    /// `--stats`: one JSON line of height statistics per frame on stdout.
+    pub stats: bool,
+    /// `--dump DIR`: the last frame's h0, displacement, normals (.npy) and params.json.
+    pub dump: Option<PathBuf>,
 }
 
 /// What a finished run reports back to `main`.

@@ -7,9 +7,11 @@ use std::time::Instant;
 use ash::vk;
 
 use super::RunSettings;
+use crate::gpu::oneshot::download;
 use crate::gpu::selftest::SyncHazard;
 use crate::gpu::{Buffer, Context, Frames, GpuResult, MemoryLocation, Profiler, Recorder};
 use crate::ocean::simulation::Simulation;
+use crate::ocean::stats::{npy, stats_line};
 use crate::output::PendingFile;
 use crate::profile::{ProfileReport, WARMUP_FRAMES};
 use crate::render::{FrameInputs, OceanBindings, OutputTarget, Renderer};
@@ -27,6 +29,8 @@ pub struct Session {
     cpu_frame_ms: Vec<f64>,
     last_frame_start: Option<Instant>,
     pub started: Instant,
+    /// The last submitted frame: (slot, timeline value, simulation time).
+    last: Option<(usize, u64, f32)>,
 }
 
 impl Session {
@@ -65,6 +69,7 @@ impl Session {
             cpu_frame_ms: Vec::new(),
             last_frame_start: None,
             started: Instant::now(),
+            last: None,
         })
     }
 
@@ -108,8 +113,85 @@ impl Session {
             self.profiler.end_frame(&rec);
             rec.end_label();
         }
+        let slot = frame.slot;
         self.frames.submit(frame, &waits, signals)?;
+        self.last = Some((slot, value, inputs.time_s));
         Ok(value)
+    }
+
+    /// `--stats`: waits for the last frame (compute and graphics) and prints the height
+    /// statistics of its simulation images as one JSON line on stdout.
+    pub fn print_stats(&mut self) -> anyhow::Result<()> {
+        let Some((slot, value, t)) = self.last else {
+            return Ok(());
+        };
+        // Graphics sampled the images: wait for it before the readback changes their layout.
+        self.frames.wait_for(value)?;
+        let (displacement, _) = self.simulation.read_back(&self.ctx, slot, value)?;
+        let patches: Vec<f64> = self.simulation.cascades.iter().map(|c| c.patch_m).collect();
+        let index = self.frames.submitted() - 1;
+        println!(
+            "{}",
+            stats_line(
+                index,
+                t,
+                &displacement,
+                self.simulation.settings.fft_size,
+                &patches
+            )
+        );
+        Ok(())
+    }
+
+    /// `--dump`: the last frame's files, ready to be written: h0.npy (complex64, K×N×N),
+    /// displacement.npy and normals.npy (float32, K×N×N×4) and params.json.
+    pub fn dump_contents(&mut self) -> anyhow::Result<Vec<(&'static str, Vec<u8>)>> {
+        let (slot, value, t) = self
+            .last
+            .ok_or_else(|| anyhow::anyhow!("--dump: no frame was rendered"))?;
+        self.frames.wait_for(value)?;
+        let sim = &self.simulation;
+        let (n, k) = (sim.settings.fft_size, sim.cascades.len());
+        let (displacement, normals) = sim.read_back(&self.ctx, slot, value)?;
+        let h0 = download(&self.ctx, sim.h0_buffer(), k * n * n * 8)?;
+        let s = &sim.settings;
+        let params = serde_json::json!({
+            "waves": "fft",
+            "t": t,
+            "g": crate::ocean::spectrum::G,
+            "spectrum": s.sea.spectrum.name(),
+            "wind_speed_m_s": s.sea.wind_speed_m_s,
+            "wind_dir_deg": s.sea.wind_dir_deg,
+            "fetch_km": s.sea.fetch_km,
+            "depth_m": s.sea.depth_m,
+            "fft_size": n,
+            "cascades": k,
+            "patch_sizes_m": sim.cascades.iter().map(|c| c.patch_m).collect::<Vec<_>>(),
+            "k_bands_rad_m": sim.cascades.iter().map(|c| [c.k_min, if c.k_max.is_finite() { c.k_max } else { f64::MAX }]).collect::<Vec<_>>(),
+            "choppiness": s.choppiness,
+            "seed": s.seed,
+            "foam": {
+                "threshold": crate::ocean::simulation::FOAM_THRESHOLD,
+                "decay_s": crate::ocean::simulation::FOAM_DECAY_S,
+                "gain": crate::ocean::simulation::FOAM_GAIN,
+            },
+            "layout": "h0[c, m, n] has k = (2π(n − N/2), 2π(m − N/2)) / L_c; displacement and normals [c, m, n] are at x = n·L_c/N, z = m·L_c/N",
+        });
+        Ok(vec![
+            ("h0.npy", npy("<c8", &[k, n, n], &h0)),
+            (
+                "displacement.npy",
+                npy("<f4", &[k, n, n, 4], bytemuck::cast_slice(&displacement)),
+            ),
+            (
+                "normals.npy",
+                npy("<f4", &[k, n, n, 4], bytemuck::cast_slice(&normals)),
+            ),
+            (
+                "params.json",
+                (serde_json::to_string_pretty(&params)? + "\n").into_bytes(),
+            ),
+        ])
     }
 
     /// Waits for every frame and builds the profile report. Nothing is written or printed:

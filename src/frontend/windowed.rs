@@ -285,6 +285,9 @@ impl App {
             })?;
         state.needs_recreate |= state.swapchain.present(&image)?;
         self.frames_done += 1;
+        if self.settings.stats {
+            state.session.print_stats()?;
+        }
 
         if let Some(buffer) = readback {
             let pixels = bgra_to_rgba(

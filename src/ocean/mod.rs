@@ -7,6 +7,7 @@ pub mod gerstner;
 pub mod params;
 pub mod simulation;
 pub mod spectrum;
+pub mod stats;
 
 pub use params::OceanSettings;
 pub use spectrum::{SeaState, SpectrumKind};

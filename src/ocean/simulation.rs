@@ -139,7 +139,9 @@ impl Simulation {
             ctx,
             "h0 (all cascades)",
             h0_bytes.len() as u64,
-            vk::BufferUsageFlags::STORAGE_BUFFER | vk::BufferUsageFlags::TRANSFER_DST,
+            vk::BufferUsageFlags::STORAGE_BUFFER
+                | vk::BufferUsageFlags::TRANSFER_DST
+                | vk::BufferUsageFlags::TRANSFER_SRC,
             MemoryLocation::GpuOnly,
         )?;
         upload(ctx, &h0_buffer, h0_bytes)?;
