@@ -7,7 +7,7 @@ use clap::{Args, Parser, Subcommand, ValueEnum};
 
 use crate::frontend::RunSettings;
 use crate::gpu::PresentMode;
-use crate::ocean::{OceanSettings, SeaState, SpectrumKind};
+use crate::ocean::{gerstner, OceanSettings, SeaState, SpectrumKind, Waves};
 use crate::profile::WARMUP_FRAMES;
 
 /// Largest accepted `--size` side; the device limit is checked again at run time.
@@ -58,6 +58,19 @@ pub struct Cli {
     /// Window presentation mode (falls back to fifo when the surface lacks it).
     #[arg(long, value_enum, value_name = "MODE", default_value_t = PresentModeArg::Fifo)]
     pub present_mode: PresentModeArg,
+
+    /// Wave model: fft (spectrum, cascades) or gerstner (analytic waves, seed 000's table by default).
+    #[arg(long, value_enum, value_name = "MODEL", default_value_t = WavesArg::Fft, help_heading = "Ocean")]
+    pub waves: WavesArg,
+
+    /// Gerstner wave table: CSV (kx,kz,amplitude,phase[,steepness]) or TOML ([[wave]] tables).
+    #[arg(long, value_name = "FILE", help_heading = "Ocean")]
+    pub gerstner_waves: Option<PathBuf>,
+
+    /// Use only the first M waves of the Gerstner table.
+    #[arg(long, value_name = "M", allow_hyphen_values = true,
+          value_parser = |s: &str| parse_whole(s, 1, 10_000).map(|n| n as usize), help_heading = "Ocean")]
+    pub gerstner_count: Option<usize>,
 
     /// Ocean spectrum: phillips (Tessendorf), jonswap (fetch-limited), pierson-moskowitz (fully developed).
     #[arg(long, value_enum, value_name = "KIND", default_value_t = SpectrumArg::Jonswap, help_heading = "Ocean")]
@@ -207,6 +220,12 @@ impl BenchFftArgs {
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum WavesArg {
+    Fft,
+    Gerstner,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum SpectrumArg {
     Phillips,
     Jonswap,
@@ -285,6 +304,42 @@ impl Cli {
                 )));
             }
         }
+        let waves = match self.waves {
+            WavesArg::Fft => {
+                if self.gerstner_waves.is_some() || self.gerstner_count.is_some() {
+                    return Err(UsageError(
+                        "--gerstner-waves and --gerstner-count need --waves gerstner".to_string(),
+                    ));
+                }
+                Waves::Fft
+            }
+            WavesArg::Gerstner => {
+                let mut table = match &self.gerstner_waves {
+                    None => gerstner::default_waves(),
+                    Some(path) => {
+                        let text = std::fs::read_to_string(path).map_err(|e| {
+                            UsageError(format!("--gerstner-waves {}: {e}", path.display()))
+                        })?;
+                        let toml = path
+                            .extension()
+                            .is_some_and(|e| e.eq_ignore_ascii_case("toml"));
+                        gerstner::parse_waves(&text, toml).map_err(|e| {
+                            UsageError(format!("--gerstner-waves {}: {e}", path.display()))
+                        })?
+                    }
+                };
+                if let Some(m) = self.gerstner_count {
+                    if m > table.len() {
+                        return Err(UsageError(format!(
+                            "--gerstner-count {m}: the table has only {} waves",
+                            table.len()
+                        )));
+                    }
+                    table.truncate(m);
+                }
+                Waves::Gerstner(table)
+            }
+        };
         if self.dump.is_some() && !self.headless {
             return Err(UsageError("--dump needs --headless".to_string()));
         }
@@ -332,6 +387,7 @@ impl Cli {
                 cascades: self.cascades,
                 choppiness: self.choppiness,
                 seed: self.seed,
+                waves,
             },
         })
     }

@@ -78,6 +78,38 @@ fn bad_usage_exits_2_with_one_line() {
         (&["--headless", "--cascades", "0"], "--cascades"),
         (&["--headless", "--cascades", "5"], "from 1 to 4"),
         (&["--headless", "--seed", "-1"], "--seed"),
+        (
+            &["--headless", "--waves", "sines"],
+            "possible values: fft, gerstner",
+        ),
+        (
+            &[
+                "--headless",
+                "--waves",
+                "gerstner",
+                "--gerstner-count",
+                "14",
+            ],
+            "only 13 waves",
+        ),
+        (
+            &["--headless", "--waves", "gerstner", "--gerstner-count", "0"],
+            "--gerstner-count",
+        ),
+        (
+            &["--headless", "--gerstner-count", "3"],
+            "need --waves gerstner",
+        ),
+        (
+            &[
+                "--headless",
+                "--waves",
+                "gerstner",
+                "--gerstner-waves",
+                "/nonexistent/waves.csv",
+            ],
+            "--gerstner-waves",
+        ),
     ];
     for (args, needle) in cases {
         assert_fails(args, &[], 2, needle);

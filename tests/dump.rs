@@ -23,8 +23,10 @@ fn read_npy_f32(path: &Path) -> (String, Vec<f32>) {
     (header, data)
 }
 
-const ARGS: [&str; 12] = [
+const ARGS: [&str; 14] = [
     "--headless",
+    "--size",
+    "320x180",
     "--frames",
     "3",
     "--fft-size",
@@ -148,4 +150,43 @@ fn dump_needs_headless_and_a_writable_dir() {
     let out = run(&["--headless", "--dump", "/proc/vkocean-no"]);
     assert_eq!(out.status.code(), Some(1), "{}", stderr(&out));
     assert_eq!(stderr(&out).lines().count(), 1);
+}
+
+#[test]
+fn gerstner_dump_from_a_wave_file() {
+    let dir = scratch("dump-gerstner");
+    let table = dir.join("waves.csv");
+    std::fs::write(
+        &table,
+        "kx,kz,amplitude,phase,steepness\n0.3,-0.46,0.2,0,1\n-0.33,0.4,0.12,0.5,0.5\n",
+    )
+    .unwrap();
+    let out_dir = dir.join("out");
+    let out = run(&[
+        "--headless",
+        "--size",
+        "320x180",
+        "--frames",
+        "2",
+        "--fft-size",
+        "64",
+        "--waves",
+        "gerstner",
+        "--gerstner-waves",
+        table.to_str().unwrap(),
+        "--dump",
+        out_dir.to_str().unwrap(),
+        "--validation",
+    ]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    assert!(!out_dir.join("h0.npy").exists(), "Gerstner mode has no h0");
+    let params: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out_dir.join("params.json")).unwrap())
+            .unwrap();
+    assert_eq!(params["waves"], "gerstner");
+    assert_eq!(params["waves_table"].as_array().unwrap().len(), 2);
+    assert_eq!(params["waves_table"][1]["steepness"], 0.5);
+    assert!(params["origin_m"].as_array().is_some_and(|o| o.len() == 2));
+    let (header, _) = read_npy_f32(&out_dir.join("displacement.npy"));
+    assert!(header.contains("(1, 64, 64, 4)"), "{header}");
 }

@@ -54,10 +54,11 @@ fn gpu_fields_match_the_cpu_reference() {
             cascades,
             choppiness,
             seed: 42,
+            waves: vkocean::ocean::Waves::Fft,
         };
         let mut sim = Simulation::new(&ctx, &settings).unwrap();
         let t = 3.25;
-        sim.submit(0, 1, t).unwrap();
+        sim.submit(0, 1, t, [0.0, 0.0]).unwrap();
         let (displacement, normals) = sim.read_back(&ctx, 0, 1).unwrap();
         let cpu = CpuOcean::new(&settings).fields(t as f64);
         let plane = n * n;
@@ -92,9 +93,9 @@ fn same_seed_same_surface() {
     };
     let mut a = Simulation::new(&ctx, &settings).unwrap();
     let mut b = Simulation::new(&ctx, &settings).unwrap();
-    a.submit(0, 1, 1.5).unwrap();
+    a.submit(0, 1, 1.5, [0.0, 0.0]).unwrap();
     // Each simulation has its own compute timeline: its first frame is value 1.
-    b.submit(0, 1, 1.5).unwrap();
+    b.submit(0, 1, 1.5, [0.0, 0.0]).unwrap();
     let ra = a.read_back(&ctx, 0, 1).unwrap();
     let rb = b.read_back(&ctx, 0, 1).unwrap();
     assert!(
@@ -106,9 +107,69 @@ fn same_seed_same_surface() {
         ..settings
     };
     let mut c = Simulation::new(&ctx, &other).unwrap();
-    c.submit(0, 1, 1.5).unwrap();
+    c.submit(0, 1, 1.5, [0.0, 0.0]).unwrap();
     assert!(
         c.read_back(&ctx, 0, 1).unwrap().0 != ra.0,
         "another seed, another sea"
+    );
+}
+
+#[test]
+fn gerstner_gpu_matches_the_analytic_waves() {
+    use vkocean::ocean::gerstner::{default_waves, evaluate};
+    use vkocean::ocean::Waves;
+    let ctx = context();
+    let waves = default_waves();
+    let (n, window) = (64usize, 100.0f64);
+    let settings = OceanSettings {
+        fft_size: n,
+        patch_size_m: window,
+        waves: Waves::Gerstner(waves.clone()),
+        ..OceanSettings::default()
+    };
+    let mut sim = Simulation::new(&ctx, &settings).unwrap();
+    // Far from the world origin, where a naive float phase would lose precision.
+    let (t, camera) = (2.75f32, [1234.5, -678.25]);
+    sim.submit(0, 1, t, camera).unwrap();
+    let origin = sim.origin_m();
+    let step = window / n as f64;
+    for (o, c) in origin.iter().zip(camera) {
+        assert!(
+            (o + window / 2.0 - c).abs() <= step,
+            "window centred on the camera: origin {origin:?}"
+        );
+        assert!(
+            (o / step - (o / step).round()).abs() < 1e-9,
+            "origin on the world lattice"
+        );
+    }
+    let (displacement, normals) = sim.read_back(&ctx, 0, 1).unwrap();
+    let (mut max_d, mut max_n) = (0.0f64, 0.0f64);
+    for m in 0..n {
+        for col in 0..n {
+            let (a, b) = (origin[0] + col as f64 * step, origin[1] + m as f64 * step);
+            let (p, normal) = evaluate(&waves, a, b, t as f64);
+            let d = displacement[m * n + col];
+            let expected = [p[0] - a, p[1], p[2] - b];
+            for i in 0..3 {
+                max_d = max_d.max((d[i] as f64 - expected[i]).abs());
+            }
+            let s = normals[m * n + col];
+            let g = [-s[0] as f64, 1.0, -s[1] as f64];
+            let len = (g[0] * g[0] + g[1] * g[1] + g[2] * g[2]).sqrt();
+            for i in 0..3 {
+                max_n = max_n.max((g[i] / len - normal[i]).abs());
+            }
+        }
+    }
+    assert!(max_d < 1e-4, "max displacement error {max_d:e} m");
+    assert!(max_n < 1e-4, "max normal error {max_n:e}");
+    let counters = ctx.counters();
+    drop(sim);
+    drop(ctx);
+    assert_eq!(
+        (counters.warnings(), counters.errors()),
+        (0, 0),
+        "validation messages"
     );
 }

@@ -8,13 +8,27 @@ layout(set = 0, binding = 0, std140) uniform FrameUniforms {
     vec4 sun_dir;        // xyz: unit vector toward the sun; w: sun radiance scale
     vec4 viewport;       // xy: target size (px); zw: 1 / size
     vec4 patch_m;        // side of each ocean cascade's patch (m), cascades 0..3
-    vec4 ocean;          // x: number of cascades
+    vec4 ocean;          // x: number of cascades; y: 1 for a bounded window (Gerstner); zw: origin (m)
 } frame;
 
 // The ocean simulation's images of this frame's slot, one layer per cascade (GENERAL layout,
 // repeat sampler): (dx, h, dz, 0) and (dh/dx, dh/dz, Jacobian, foam).
 layout(set = 0, binding = 1) uniform sampler2DArray ocean_displacement;
 layout(set = 0, binding = 2) uniform sampler2DArray ocean_normals;
+
+// Where cascade c's images hold world point xz: (xz - origin) / patch, repeating for the FFT
+// cascades. `weight` fades a cascade out with distance before its waves alias, and a bounded
+// (Gerstner) window toward its edges.
+vec3 ocean_uv(vec2 world_xz, int c, float dist, out float weight) {
+    float patch_m = frame.patch_m[c];
+    vec2 uv = (world_xz - frame.ocean.zw) / patch_m;
+    weight = clamp(2.0 - dist / (patch_m * 4.0), 0.0, 1.0);
+    if (frame.ocean.y > 0.5) {
+        vec2 q = abs(uv - 0.5);
+        weight = 1.0 - smoothstep(0.35, 0.5, max(q.x, q.y));
+    }
+    return vec3(uv, c);
+}
 
 // World-space view ray through a pixel, from the fragment's normalized device coordinates.
 vec3 view_ray(vec2 ndc) {

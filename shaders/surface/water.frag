@@ -20,11 +20,11 @@ vec4 ocean_normal_foam(vec2 world_xz, float dist) {
     float foam = 0.0;
     int cascades = int(frame.ocean.x);
     for (int c = 0; c < cascades; ++c) {
-        float patch_m = frame.patch_m[c];
-        float fade = clamp(2.0 - dist / (patch_m * 4.0), 0.0, 1.0);
-        vec4 s = texture(ocean_normals, vec3(world_xz / patch_m, c));
-        slope += fade * s.xy;
-        foam = max(foam, fade * s.w);
+        float weight;
+        vec3 uv = ocean_uv(world_xz, c, dist, weight);
+        vec4 s = texture(ocean_normals, uv);
+        slope += weight * s.xy;
+        foam = max(foam, weight * s.w);
     }
     return vec4(normalize(vec3(-slope.x, 1.0, -slope.y)), foam);
 }

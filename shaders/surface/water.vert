@@ -17,10 +17,9 @@ vec3 ocean_displacement_at(vec2 world_xz, float dist) {
     vec3 d = vec3(0.0);
     int cascades = int(frame.ocean.x);
     for (int c = 0; c < cascades; ++c) {
-        float patch_m = frame.patch_m[c];
-        // Fade a cascade out where its waves are smaller than the grid can resolve.
-        float fade = clamp(2.0 - dist / (patch_m * 4.0), 0.0, 1.0);
-        d += fade * textureLod(ocean_displacement, vec3(world_xz / patch_m, c), 0.0).xyz;
+        float weight;
+        vec3 uv = ocean_uv(world_xz, c, dist, weight);
+        d += weight * textureLod(ocean_displacement, uv, 0.0).xyz;
     }
     return d;
 }

@@ -63,6 +63,7 @@ pub fn run(s: &RunSettings) -> anyhow::Result<Outcome> {
             format: OUTPUT_FORMAT,
             usage: vk::ImageUsageFlags::COLOR_ATTACHMENT | vk::ImageUsageFlags::TRANSFER_SRC,
             layers: 1,
+            array_view: false,
             shared: false,
         },
     )?;
@@ -86,6 +87,7 @@ pub fn run(s: &RunSettings) -> anyhow::Result<Outcome> {
         let capture = readback.as_ref().filter(|_| i + 1 == frames);
         let inputs = FrameInputs {
             time_s: i as f32 * FIXED_DT_S,
+            ..FrameInputs::default()
         };
         last_value = session.frame(&output, &inputs, &[], &[], |rec| {
             let Some(buffer) = capture else { return };
@@ -132,8 +134,18 @@ pub fn run(s: &RunSettings) -> anyhow::Result<Outcome> {
     if let (Some(file), Some(png)) = (screenshot, png) {
         file.commit(&png)?;
     }
-    for (file, (_, bytes)) in dump.into_iter().zip(dump_contents) {
-        file.commit(&bytes)?;
+    // Gerstner dumps have no h0.npy: commit the files by name.
+    for file in dump {
+        let name = file
+            .path()
+            .file_name()
+            .map(|n| n.to_string_lossy().into_owned());
+        if let Some((_, bytes)) = dump_contents
+            .iter()
+            .find(|(n, _)| Some(n.to_string()) == name)
+        {
+            file.commit(bytes)?;
+        }
     }
     finished.commit(profile, "")?;
     Ok(Outcome { counters })

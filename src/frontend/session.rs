@@ -96,7 +96,19 @@ impl Session {
         let value = frame.signal_value();
         // Compute first (it waits for the frame that last sampled this slot), then graphics,
         // which waits for this frame's compute results where it samples them.
-        self.simulation.submit(frame.slot, value, inputs.time_s)?;
+        let camera = self.renderer.camera.position;
+        self.simulation.submit(
+            frame.slot,
+            value,
+            inputs.time_s,
+            [camera.x as f64, camera.z as f64],
+        )?;
+        let origin = self.simulation.origin_m();
+        let inputs = &FrameInputs {
+            ocean_origin_m: [origin[0] as f32, origin[1] as f32],
+            ocean_window: self.simulation.is_window(),
+            ..*inputs
+        };
         let mut waits = waits.to_vec();
         waits.push(self.simulation.graphics_wait(value));
         {
@@ -153,10 +165,13 @@ impl Session {
         let sim = &self.simulation;
         let (n, k) = (sim.settings.fft_size, sim.cascades.len());
         let (displacement, normals) = sim.read_back(&self.ctx, slot, value)?;
-        let h0 = download(&self.ctx, sim.h0_buffer(), k * n * n * 8)?;
+        let h0 = match sim.h0_buffer() {
+            Some(buffer) => Some(download(&self.ctx, buffer, k * n * n * 8)?),
+            None => None,
+        };
         let s = &sim.settings;
-        let params = serde_json::json!({
-            "waves": "fft",
+        let mut params = serde_json::json!({
+            "waves": if h0.is_some() { "fft" } else { "gerstner" },
             "t": t,
             "g": crate::ocean::spectrum::G,
             "spectrum": s.sea.spectrum.name(),
@@ -177,21 +192,32 @@ impl Session {
             },
             "layout": "h0[c, m, n] has k = (2π(n − N/2), 2π(m − N/2)) / L_c; displacement and normals [c, m, n] are at x = n·L_c/N, z = m·L_c/N",
         });
-        Ok(vec![
-            ("h0.npy", npy("<c8", &[k, n, n], &h0)),
-            (
-                "displacement.npy",
-                npy("<f4", &[k, n, n, 4], bytemuck::cast_slice(&displacement)),
-            ),
-            (
-                "normals.npy",
-                npy("<f4", &[k, n, n, 4], bytemuck::cast_slice(&normals)),
-            ),
-            (
-                "params.json",
-                (serde_json::to_string_pretty(&params)? + "\n").into_bytes(),
-            ),
-        ])
+        if let Some(waves) = sim.gerstner_waves() {
+            params["origin_m"] = serde_json::json!(sim.origin_m());
+            params["g"] = serde_json::json!(crate::ocean::gerstner::G_SEED);
+            params["waves_table"] = waves
+                .iter()
+                .map(|w| serde_json::json!({"kx": w.kx, "kz": w.kz, "amplitude": w.amplitude, "phase": w.phase, "steepness": w.steepness}))
+                .collect();
+            params["layout"] = serde_json::json!("displacement and normals [0, m, n] are at (α, β) = origin_m + (n, m)·window/N; displacement = (x − α, y, z − β, 0)");
+        }
+        let mut files = Vec::new();
+        if let Some(h0) = h0 {
+            files.push(("h0.npy", npy("<c8", &[k, n, n], &h0)));
+        }
+        files.push((
+            "displacement.npy",
+            npy("<f4", &[k, n, n, 4], bytemuck::cast_slice(&displacement)),
+        ));
+        files.push((
+            "normals.npy",
+            npy("<f4", &[k, n, n, 4], bytemuck::cast_slice(&normals)),
+        ));
+        files.push((
+            "params.json",
+            (serde_json::to_string_pretty(&params)? + "\n").into_bytes(),
+        ));
+        Ok(files)
     }
 
     /// Waits for every frame and builds the profile report. Nothing is written or printed:

@@ -239,6 +239,7 @@ impl App {
             .stage_mask(vk::PipelineStageFlags2::ALL_COMMANDS)];
         let inputs = FrameInputs {
             time_s: state.session.started.elapsed().as_secs_f32(),
+            ..FrameInputs::default()
         };
         let range = full_range(vk::ImageAspectFlags::COLOR, 1);
         let value = state

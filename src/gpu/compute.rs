@@ -77,27 +77,7 @@ impl ComputeQueue {
         wait_graphics: Option<u64>,
         record: impl FnOnce(&Recorder),
     ) -> GpuResult<()> {
-        // The slot's previous submission (two frames ago) must be finished before its pool is
-        // reset. The frame loop already waited for that frame's graphics work, which waited for
-        // this compute work; the wait here keeps the type correct on its own.
-        if value > FRAMES_IN_FLIGHT as u64 {
-            let semaphores = [self.timeline];
-            let values = [value - FRAMES_IN_FLIGHT as u64];
-            let info = vk::SemaphoreWaitInfo::default()
-                .semaphores(&semaphores)
-                .values(&values);
-            // SAFETY: the timeline semaphore is live.
-            match unsafe { self.ctx.device.wait_semaphores(&info, 60_000_000_000) } {
-                Ok(()) => {}
-                Err(vk::Result::TIMEOUT) => return Err(GpuError::Timeout { seconds: 60 }),
-                Err(result) => {
-                    return Err(GpuError::Vk {
-                        call: "vkWaitSemaphores",
-                        result,
-                    })
-                }
-            }
-        }
+        self.wait_for_slot(value)?;
         let (pool, cmd) = self.slots[slot];
         // SAFETY: the slot's previous submission has completed (waited above).
         unsafe {
@@ -145,6 +125,32 @@ impl ComputeQueue {
                 .queue_submit2(self.ctx.compute.raw, &[submit], vk::Fence::null())
         }
         .vk("vkQueueSubmit2")
+    }
+
+    /// Waits until the compute work of the frame two before `value` (the previous user of the
+    /// same slot) has finished, so the slot's command buffer and per-slot buffers are free. The
+    /// frame loop already waited for that frame's graphics work, which waited for this compute
+    /// work; the wait here keeps the type correct on its own.
+    pub fn wait_for_slot(&self, value: u64) -> GpuResult<()> {
+        if value > FRAMES_IN_FLIGHT as u64 {
+            let semaphores = [self.timeline];
+            let values = [value - FRAMES_IN_FLIGHT as u64];
+            let info = vk::SemaphoreWaitInfo::default()
+                .semaphores(&semaphores)
+                .values(&values);
+            // SAFETY: the timeline semaphore is live.
+            match unsafe { self.ctx.device.wait_semaphores(&info, 60_000_000_000) } {
+                Ok(()) => {}
+                Err(vk::Result::TIMEOUT) => return Err(GpuError::Timeout { seconds: 60 }),
+                Err(result) => {
+                    return Err(GpuError::Vk {
+                        call: "vkWaitSemaphores",
+                        result,
+                    })
+                }
+            }
+        }
+        Ok(())
     }
 
     /// The wait a graphics submission adds to sample this frame's compute results.

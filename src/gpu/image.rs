@@ -20,6 +20,8 @@ pub struct ImageDesc<'a> {
     pub usage: vk::ImageUsageFlags,
     /// Array layers (1 for a plain 2D image; the view is a 2D array when > 1).
     pub layers: u32,
+    /// View all layers as a 2D array even when there is one (shaders declaring arrays).
+    pub array_view: bool,
     /// Used by both the graphics and the compute queue: CONCURRENT sharing when their families
     /// differ (correct by construction, no ownership transfers).
     pub shared: bool,
@@ -118,7 +120,7 @@ impl Image {
         .vk("vkBindImageMemory")?;
         let view_info = vk::ImageViewCreateInfo::default()
             .image(raw)
-            .view_type(if layers > 1 {
+            .view_type(if layers > 1 || desc.array_view {
                 vk::ImageViewType::TYPE_2D_ARRAY
             } else {
                 vk::ImageViewType::TYPE_2D

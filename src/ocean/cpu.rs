@@ -253,6 +253,7 @@ mod tests {
             cascades: 3,
             choppiness: 1.0,
             seed,
+            waves: crate::ocean::Waves::Fft,
         }
     }
 

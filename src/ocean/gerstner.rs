@@ -53,6 +53,112 @@ pub fn default_waves() -> Vec<Wave> {
         .collect()
 }
 
+/// Parses a wave table: CSV lines `kx,kz,amplitude,phase[,steepness]` (blank lines, `#` comments
+/// and a header line are skipped), or with `toml` a list of `[[wave]]` tables with the keys
+/// `kx`, `kz`, `amplitude`, `phase` and optional `steepness` (default 1). Errors name the line.
+pub fn parse_waves(text: &str, toml: bool) -> Result<Vec<Wave>, String> {
+    let number = |v: &str, line: usize| -> Result<f64, String> {
+        let x: f64 = v
+            .trim()
+            .parse()
+            .map_err(|_| format!("line {line}: '{}' is not a number", v.trim()))?;
+        if x.is_finite() {
+            Ok(x)
+        } else {
+            Err(format!("line {line}: '{}' is not finite", v.trim()))
+        }
+    };
+    let check = |w: Wave, line: usize| -> Result<Wave, String> {
+        if w.kx == 0.0 && w.kz == 0.0 {
+            return Err(format!(
+                "line {line}: the wave vector (kx, kz) must not be zero"
+            ));
+        }
+        if w.amplitude < 0.0 || w.steepness < 0.0 {
+            return Err(format!(
+                "line {line}: amplitude and steepness must not be negative"
+            ));
+        }
+        Ok(w)
+    };
+    let mut waves = Vec::new();
+    if toml {
+        let mut current: Option<(usize, [Option<f64>; 5])> = None;
+        let finish =
+            |cur: Option<(usize, [Option<f64>; 5])>, waves: &mut Vec<Wave>| -> Result<(), String> {
+                if let Some((line, v)) = cur {
+                    let get = |i: usize, name: &str| {
+                        v[i].ok_or(format!("the [[wave]] at line {line} lacks {name}"))
+                    };
+                    let w = Wave {
+                        kx: get(0, "kx")?,
+                        kz: get(1, "kz")?,
+                        amplitude: get(2, "amplitude")?,
+                        phase: get(3, "phase")?,
+                        steepness: v[4].unwrap_or(1.0),
+                    };
+                    waves.push(check(w, line)?);
+                }
+                Ok(())
+            };
+        for (i, raw) in text.lines().enumerate() {
+            let line = raw.split('#').next().unwrap_or("").trim();
+            if line.is_empty() {
+                continue;
+            }
+            if line == "[[wave]]" {
+                finish(current.take(), &mut waves)?;
+                current = Some((i + 1, [None; 5]));
+                continue;
+            }
+            let (key, value) = line
+                .split_once('=')
+                .ok_or(format!("line {}: expected [[wave]] or key = value", i + 1))?;
+            let slot = ["kx", "kz", "amplitude", "phase", "steepness"]
+                .iter()
+                .position(|k| *k == key.trim())
+                .ok_or(format!("line {}: unknown key '{}'", i + 1, key.trim()))?;
+            let (_, values) = current
+                .as_mut()
+                .ok_or(format!("line {}: key outside a [[wave]] table", i + 1))?;
+            values[slot] = Some(number(value, i + 1)?);
+        }
+        finish(current, &mut waves)?;
+    } else {
+        for (i, raw) in text.lines().enumerate() {
+            let line = raw.split('#').next().unwrap_or("").trim();
+            if line.is_empty()
+                || (waves.is_empty() && line.starts_with(|c: char| c.is_ascii_alphabetic()))
+            {
+                continue;
+            }
+            let fields: Vec<&str> = line.split(',').collect();
+            if !(4..=5).contains(&fields.len()) {
+                return Err(format!(
+                    "line {}: expected kx,kz,amplitude,phase[,steepness]",
+                    i + 1
+                ));
+            }
+            let w = Wave {
+                kx: number(fields[0], i + 1)?,
+                kz: number(fields[1], i + 1)?,
+                amplitude: number(fields[2], i + 1)?,
+                phase: number(fields[3], i + 1)?,
+                steepness: if fields.len() == 5 {
+                    number(fields[4], i + 1)?
+                } else {
+                    1.0
+                },
+            };
+            waves.push(check(w, i + 1)?);
+        }
+    }
+    if waves.is_empty() {
+        return Err("no waves in the table".to_string());
+    }
+    Ok(waves)
+}
+
 /// Displaced position (x, y, z) and unit normal of the surface point (α, β) at time t.
 pub fn evaluate(waves: &[Wave], alpha: f64, beta: f64, t: f64) -> ([f64; 3], [f64; 3]) {
     let mut p = [alpha, 0.0, beta];
@@ -125,6 +231,31 @@ mod tests {
             }
             assert!(n[1] > 0.0, "normal points up");
         }
+    }
+
+    #[test]
+    fn wave_tables_parse_and_errors_name_the_line() {
+        let csv = "kx,kz,amplitude,phase\n# comment\n0.3,-0.46,0.2,0\n0.1, 0.2, 0.5, 1.0, 0.5\n";
+        let w = parse_waves(csv, false).unwrap();
+        assert_eq!(w.len(), 2);
+        assert_eq!((w[1].kz, w[1].steepness), (0.2, 0.5));
+        let toml = "[[wave]]\nkx = 0.3\nkz = -0.46\namplitude = 0.2\nphase = 0\n\n[[wave]]\nkx=1\nkz=0\namplitude=0.1\nphase=0.5\nsteepness=0\n";
+        let t = parse_waves(toml, true).unwrap();
+        assert_eq!(t.len(), 2);
+        assert_eq!((t[0].steepness, t[1].steepness), (1.0, 0.0));
+        assert!(parse_waves("1,2,3\n", false)
+            .unwrap_err()
+            .contains("line 1"));
+        assert!(parse_waves("1,2,x,4\n", false)
+            .unwrap_err()
+            .contains("line 1"));
+        assert!(parse_waves("0,0,1,0\n", false)
+            .unwrap_err()
+            .contains("zero"));
+        assert!(parse_waves("[[wave]]\nkx=1\n", true)
+            .unwrap_err()
+            .contains("lacks kz"));
+        assert!(parse_waves("", false).is_err());
     }
 
     #[test]

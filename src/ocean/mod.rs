@@ -9,5 +9,5 @@ pub mod simulation;
 pub mod spectrum;
 pub mod stats;
 
-pub use params::OceanSettings;
+pub use params::{OceanSettings, Waves};
 pub use spectrum::{SeaState, SpectrumKind};

@@ -1,6 +1,17 @@
 //! Ocean settings: the sea state plus the simulation grid (plain data, SI units).
 
+use super::gerstner::Wave;
 use super::spectrum::{cascades, Cascade, SeaState};
+
+/// Which model makes the surface.
+#[derive(Clone, Debug, PartialEq, Default)]
+pub enum Waves {
+    /// The spectrum, evolved and inverse-transformed (FFT), in cascades.
+    #[default]
+    Fft,
+    /// A sum of analytic Gerstner waves over a camera-following window of side `patch_size_m`.
+    Gerstner(Vec<Wave>),
+}
 
 /// Everything that determines the simulated fields.
 #[derive(Clone, Debug, PartialEq)]
@@ -16,6 +27,8 @@ pub struct OceanSettings {
     pub choppiness: f64,
     /// Seed of h0.
     pub seed: u64,
+    /// FFT cascades or Gerstner waves.
+    pub waves: Waves,
 }
 
 impl Default for OceanSettings {
@@ -28,13 +41,17 @@ impl Default for OceanSettings {
             cascades: 3,
             choppiness: 1.0,
             seed: 1,
+            waves: Waves::Fft,
         }
     }
 }
 
 impl OceanSettings {
-    /// Patch sizes and k bands of the cascades.
+    /// Patch sizes and k bands of the cascades (Gerstner: one "cascade", the window).
     pub fn cascade_list(&self) -> Vec<Cascade> {
-        cascades(self.patch_size_m, self.cascades)
+        match self.waves {
+            Waves::Fft => cascades(self.patch_size_m, self.cascades),
+            Waves::Gerstner(_) => cascades(self.patch_size_m, 1),
+        }
     }
 }

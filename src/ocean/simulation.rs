@@ -17,7 +17,8 @@ use std::sync::Arc;
 use ash::vk;
 
 use super::fft::{Direction, GpuFft};
-use super::params::OceanSettings;
+use super::gerstner::{Wave, G_SEED};
+use super::params::{OceanSettings, Waves};
 use super::spectrum::{h0, Cascade};
 use crate::gpu::compute::ComputeQueue;
 use crate::gpu::descriptors::{self, Write};
@@ -27,6 +28,15 @@ use crate::gpu::{
     ImageDesc, MemoryLocation, Pipeline, PipelineLayout, FRAMES_IN_FLIGHT,
 };
 use crate::shaders;
+
+/// Patch sizes padded to four (for shaders).
+fn patch_sizes(cascades: &[Cascade]) -> [f32; 4] {
+    let mut out = [1.0; 4];
+    for (o, c) in out.iter_mut().zip(cascades) {
+        *o = c.patch_m as f32;
+    }
+    out
+}
 
 /// RGBA f32 texels of every cascade, cascade after cascade, `[m][n]`.
 pub type Texels = Vec<[f32; 4]>;
@@ -98,18 +108,57 @@ impl Kernel {
     }
 }
 
+/// The model-specific GPU resources.
+enum Model {
+    Fft {
+        /// h0 of every cascade, (K, N, N) complex.
+        h0: Buffer,
+        /// Boxed: it dwarfs the Gerstner variant.
+        fft: Box<GpuFft>,
+        evolve: Kernel,
+        assemble: Kernel,
+        evolve_set: vk::DescriptorSet,
+        /// Per slot: writes that slot's images, reads the other slot's normals (foam).
+        assemble_sets: Vec<vk::DescriptorSet>,
+    },
+    Gerstner {
+        /// The waves; per slot, as θ at the window origin changes every frame.
+        waves: Vec<Wave>,
+        buffers: Vec<Buffer>,
+        kernel: Kernel,
+        /// Per slot, like `assemble_sets`.
+        sets: Vec<vk::DescriptorSet>,
+    },
+}
+
+/// One wave as gerstner.comp reads it.
+#[repr(C)]
+#[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
+struct GpuWave {
+    wave: [f32; 4],
+    extra: [f32; 4],
+}
+
+#[repr(C)]
+#[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
+struct GerstnerParams {
+    window_m: f32,
+    dt_s: f32,
+    foam_threshold: f32,
+    foam_decay_s: f32,
+    foam_gain: f32,
+    n: u32,
+    count: u32,
+}
+
 pub struct Simulation {
     pub settings: OceanSettings,
     pub cascades: Vec<Cascade>,
-    /// h0 of every cascade, (K, N, N) complex.
-    h0: Buffer,
-    fft: GpuFft,
-    evolve: Kernel,
-    assemble: Kernel,
+    model: Model,
     _pool: DescriptorPool,
-    evolve_set: vk::DescriptorSet,
-    /// Per slot: writes that slot's images, reads the other slot's normals (foam).
-    assemble_sets: Vec<vk::DescriptorSet>,
+    /// World position of texel (0, 0) of the images: 0 for the periodic FFT cascades, the
+    /// camera-following (grid-snapped) window corner for Gerstner waves.
+    origin_m: [f64; 2],
     /// Per slot: (dx, h, dz, 0), one layer per cascade.
     pub displacement: Vec<Image>,
     /// Per slot: (∂h/∂x, ∂h/∂z, J, foam), one layer per cascade.
@@ -127,25 +176,7 @@ impl Simulation {
             "--cascades must be from 1 to {MAX_CASCADES}"
         );
         let cascades = settings.cascade_list();
-        let fft = GpuFft::new(ctx, n, 4 * k)?;
-
-        let h0_values: Vec<[f32; 2]> = cascades
-            .iter()
-            .enumerate()
-            .flat_map(|(c, cascade)| h0(&settings.sea, n, cascade, c as u32, settings.seed))
-            .collect();
-        let h0_bytes: &[u8] = bytemuck::cast_slice(&h0_values);
-        let h0_buffer = Buffer::new(
-            ctx,
-            "h0 (all cascades)",
-            h0_bytes.len() as u64,
-            vk::BufferUsageFlags::STORAGE_BUFFER
-                | vk::BufferUsageFlags::TRANSFER_DST
-                | vk::BufferUsageFlags::TRANSFER_SRC,
-            MemoryLocation::GpuOnly,
-        )?;
-        upload(ctx, &h0_buffer, h0_bytes)?;
-
+        let layers = cascades.len() as u32;
         let image = |name: String| {
             Image::new(
                 ctx,
@@ -160,7 +191,8 @@ impl Simulation {
                         | vk::ImageUsageFlags::SAMPLED
                         | vk::ImageUsageFlags::TRANSFER_SRC
                         | vk::ImageUsageFlags::TRANSFER_DST,
-                    layers: k as u32,
+                    layers,
+                    array_view: true,
                     shared: true,
                 },
             )
@@ -206,85 +238,148 @@ impl Simulation {
 
         let storage = vk::DescriptorType::STORAGE_BUFFER;
         let storage_image = vk::DescriptorType::STORAGE_IMAGE;
-        let evolve = Kernel::new(
-            ctx,
-            "ocean evolve",
-            shaders::OCEAN_EVOLVE_COMP,
-            &[storage, storage],
-            std::mem::size_of::<EvolveParams>(),
-        )?;
-        let assemble = Kernel::new(
-            ctx,
-            "ocean assemble",
-            shaders::OCEAN_ASSEMBLE_COMP,
-            &[storage, storage_image, storage_image, storage_image],
-            std::mem::size_of::<AssembleParams>(),
-        )?;
+        let slots = FRAMES_IN_FLIGHT as u32;
         let pool = DescriptorPool::new(
             ctx,
             "ocean descriptors",
-            1 + FRAMES_IN_FLIGHT as u32,
-            &[
-                (storage, 2 + FRAMES_IN_FLIGHT as u32),
-                (storage_image, 3 * FRAMES_IN_FLIGHT as u32),
-            ],
+            1 + slots,
+            &[(storage, 2 + slots), (storage_image, 3 * slots)],
         )?;
-        let evolve_set = pool.allocate(&evolve.set_layout, "ocean evolve set")?;
-        descriptors::update(
-            ctx,
-            evolve_set,
-            &[
-                Write::StorageBuffer {
-                    binding: 0,
-                    buffer: h0_buffer.raw,
-                },
-                Write::StorageBuffer {
-                    binding: 1,
-                    buffer: fft.data.raw,
-                },
-            ],
-        );
-        let mut assemble_sets = Vec::new();
-        for slot in 0..FRAMES_IN_FLIGHT {
+        // Per slot: write this slot's images, read the other slot's normals (foam).
+        let image_writes = |slot: usize| {
             let previous = (slot + FRAMES_IN_FLIGHT - 1) % FRAMES_IN_FLIGHT;
-            let set = pool.allocate(
-                &assemble.set_layout,
-                &format!("ocean assemble set slot {slot}"),
-            )?;
-            descriptors::update(
-                ctx,
-                set,
-                &[
-                    Write::StorageBuffer {
+            [
+                Write::StorageImage {
+                    binding: 1,
+                    view: displacement[slot].view,
+                },
+                Write::StorageImage {
+                    binding: 2,
+                    view: normals[slot].view,
+                },
+                Write::StorageImage {
+                    binding: 3,
+                    view: normals[previous].view,
+                },
+            ]
+        };
+        let model = match &settings.waves {
+            Waves::Fft => {
+                let fft = GpuFft::new(ctx, n, 4 * k)?;
+                let h0_values: Vec<[f32; 2]> = cascades
+                    .iter()
+                    .enumerate()
+                    .flat_map(|(c, cascade)| h0(&settings.sea, n, cascade, c as u32, settings.seed))
+                    .collect();
+                let h0_bytes: &[u8] = bytemuck::cast_slice(&h0_values);
+                let h0_buffer = Buffer::new(
+                    ctx,
+                    "h0 (all cascades)",
+                    h0_bytes.len() as u64,
+                    vk::BufferUsageFlags::STORAGE_BUFFER
+                        | vk::BufferUsageFlags::TRANSFER_DST
+                        | vk::BufferUsageFlags::TRANSFER_SRC,
+                    MemoryLocation::GpuOnly,
+                )?;
+                upload(ctx, &h0_buffer, h0_bytes)?;
+                let evolve = Kernel::new(
+                    ctx,
+                    "ocean evolve",
+                    shaders::OCEAN_EVOLVE_COMP,
+                    &[storage, storage],
+                    std::mem::size_of::<EvolveParams>(),
+                )?;
+                let assemble = Kernel::new(
+                    ctx,
+                    "ocean assemble",
+                    shaders::OCEAN_ASSEMBLE_COMP,
+                    &[storage, storage_image, storage_image, storage_image],
+                    std::mem::size_of::<AssembleParams>(),
+                )?;
+                let evolve_set = pool.allocate(&evolve.set_layout, "ocean evolve set")?;
+                descriptors::update(
+                    ctx,
+                    evolve_set,
+                    &[
+                        Write::StorageBuffer {
+                            binding: 0,
+                            buffer: h0_buffer.raw,
+                        },
+                        Write::StorageBuffer {
+                            binding: 1,
+                            buffer: fft.data.raw,
+                        },
+                    ],
+                );
+                let mut assemble_sets = Vec::new();
+                for slot in 0..FRAMES_IN_FLIGHT {
+                    let set = pool.allocate(
+                        &assemble.set_layout,
+                        &format!("ocean assemble set slot {slot}"),
+                    )?;
+                    let mut writes = vec![Write::StorageBuffer {
                         binding: 0,
                         buffer: fft.data.raw,
-                    },
-                    Write::StorageImage {
-                        binding: 1,
-                        view: displacement[slot].view,
-                    },
-                    Write::StorageImage {
-                        binding: 2,
-                        view: normals[slot].view,
-                    },
-                    Write::StorageImage {
-                        binding: 3,
-                        view: normals[previous].view,
-                    },
-                ],
-            );
-            assemble_sets.push(set);
-        }
+                    }];
+                    writes.extend(image_writes(slot));
+                    descriptors::update(ctx, set, &writes);
+                    assemble_sets.push(set);
+                }
+                Model::Fft {
+                    h0: h0_buffer,
+                    fft: Box::new(fft),
+                    evolve,
+                    assemble,
+                    evolve_set,
+                    assemble_sets,
+                }
+            }
+            Waves::Gerstner(waves) => {
+                anyhow::ensure!(!waves.is_empty(), "Gerstner mode needs at least one wave");
+                let kernel = Kernel::new(
+                    ctx,
+                    "ocean gerstner",
+                    shaders::OCEAN_GERSTNER_COMP,
+                    &[storage, storage_image, storage_image, storage_image],
+                    std::mem::size_of::<GerstnerParams>(),
+                )?;
+                let mut buffers = Vec::new();
+                let mut sets = Vec::new();
+                for slot in 0..FRAMES_IN_FLIGHT {
+                    let buffer = Buffer::new(
+                        ctx,
+                        &format!("gerstner waves slot {slot}"),
+                        (waves.len() * std::mem::size_of::<GpuWave>()) as u64,
+                        vk::BufferUsageFlags::STORAGE_BUFFER,
+                        MemoryLocation::CpuToGpu,
+                    )?;
+                    let set = pool.allocate(
+                        &kernel.set_layout,
+                        &format!("ocean gerstner set slot {slot}"),
+                    )?;
+                    let mut writes = vec![Write::StorageBuffer {
+                        binding: 0,
+                        buffer: buffer.raw,
+                    }];
+                    writes.extend(image_writes(slot));
+                    descriptors::update(ctx, set, &writes);
+                    buffers.push(buffer);
+                    sets.push(set);
+                }
+                Model::Gerstner {
+                    waves: waves.clone(),
+                    buffers,
+                    kernel,
+                    sets,
+                }
+            }
+        };
         Ok(Simulation {
             settings: settings.clone(),
             cascades,
-            h0: h0_buffer,
-            fft,
-            evolve,
-            assemble,
+            model,
             _pool: pool,
-            evolve_set,
-            assemble_sets,
+            origin_m: [0.0, 0.0],
             displacement,
             normals,
             queue: ComputeQueue::new(ctx)?,
@@ -292,17 +387,30 @@ impl Simulation {
         })
     }
 
+    /// World position of the images' texel (0, 0) for the last submitted frame.
+    pub fn origin_m(&self) -> [f64; 2] {
+        self.origin_m
+    }
+
+    /// True for a bounded window (Gerstner), false for periodic cascades (FFT).
+    pub fn is_window(&self) -> bool {
+        matches!(self.model, Model::Gerstner { .. })
+    }
+
     /// Patch sizes of the cascades, padded to four (for shaders).
     pub fn patch_sizes(&self) -> [f32; 4] {
-        let mut out = [1.0; 4];
-        for (o, c) in out.iter_mut().zip(&self.cascades) {
-            *o = c.patch_m as f32;
-        }
-        out
+        patch_sizes(&self.cascades)
     }
 
     /// Submits frame `value`'s simulation at time `time_s` into `slot` on the compute queue.
-    pub fn submit(&mut self, slot: usize, value: u64, time_s: f32) -> GpuResult<()> {
+    /// `camera_xz` places the Gerstner window (ignored by the periodic FFT cascades).
+    pub fn submit(
+        &mut self,
+        slot: usize,
+        value: u64,
+        time_s: f32,
+        camera_xz: [f64; 2],
+    ) -> GpuResult<()> {
         let dt_s = self
             .last_time_s
             .map(|t| (time_s - t).max(0.0))
@@ -311,67 +419,129 @@ impl Simulation {
         // Frame f − 2 (value − 2) was the last to sample this slot.
         let wait_graphics =
             (value > FRAMES_IN_FLIGHT as u64).then(|| value - FRAMES_IN_FLIGHT as u64);
-        let evolve_params = EvolveParams {
-            patch_m: self.patch_sizes(),
-            time_s,
-            depth_m: self.settings.sea.depth_m.map(|d| d as f32).unwrap_or(0.0),
-            n: self.settings.fft_size as u32,
-        };
-        let assemble_params = AssembleParams {
-            choppiness: self.settings.choppiness as f32,
-            dt_s,
-            foam_threshold: FOAM_THRESHOLD,
-            foam_decay_s: FOAM_DECAY_S,
-            foam_gain: FOAM_GAIN,
-            n: self.settings.fft_size as u32,
-        };
         let n = self.settings.fft_size as u32;
+        let groups = n.div_ceil(8);
         let layers = self.cascades.len() as u32;
         let previous = &self.normals[(slot + FRAMES_IN_FLIGHT - 1) % FRAMES_IN_FLIGHT];
-        let (fft, evolve, assemble) = (&self.fft, &self.evolve, &self.assemble);
-        let (evolve_set, assemble_set) = (self.evolve_set, self.assemble_sets[slot]);
-        // Disjoint field borrows: the queue mutably, the kernels and images shared.
-        self.queue.submit(slot, value, wait_graphics, |rec| {
-            let groups = n.div_ceil(8);
-            // Evolve overwrites the FFT data that the previous frame's FFT and assemble used.
-            rec.begin_label("ocean evolve");
-            rec.barrier(
-                &[],
-                &[(
-                    fft.data.raw,
-                    Access::COMPUTE_READ.or(Access::COMPUTE_WRITE),
-                    Access::COMPUTE_WRITE,
-                )],
-            );
-            rec.bind_pipeline(&evolve.pipeline);
-            rec.bind_sets(&evolve.pipeline, &evolve.layout, &[evolve_set]);
-            rec.push_constants(&evolve.layout, &evolve_params);
-            rec.dispatch(groups, groups, layers);
-            rec.end_label();
+        // The previous frame's normals (foam) → this frame's kernel.
+        let foam_barrier = ImageBarrier {
+            image: previous.raw,
+            range: previous.range(),
+            old_layout: vk::ImageLayout::GENERAL,
+            new_layout: vk::ImageLayout::GENERAL,
+            src: Access::COMPUTE_WRITE,
+            dst: Access::COMPUTE_READ,
+        };
+        match &mut self.model {
+            Model::Fft {
+                fft,
+                evolve,
+                assemble,
+                evolve_set,
+                assemble_sets,
+                ..
+            } => {
+                let evolve_params = EvolveParams {
+                    patch_m: patch_sizes(&self.cascades),
+                    time_s,
+                    depth_m: self.settings.sea.depth_m.map(|d| d as f32).unwrap_or(0.0),
+                    n,
+                };
+                let assemble_params = AssembleParams {
+                    choppiness: self.settings.choppiness as f32,
+                    dt_s,
+                    foam_threshold: FOAM_THRESHOLD,
+                    foam_decay_s: FOAM_DECAY_S,
+                    foam_gain: FOAM_GAIN,
+                    n,
+                };
+                let (fft, evolve, assemble) = (&*fft, &*evolve, &*assemble);
+                let (evolve_set, assemble_set) = (*evolve_set, assemble_sets[slot]);
+                self.queue.submit(slot, value, wait_graphics, |rec| {
+                    // Evolve overwrites the FFT data the previous frame's FFT and assemble used.
+                    rec.begin_label("ocean evolve");
+                    rec.barrier(
+                        &[],
+                        &[(
+                            fft.data.raw,
+                            Access::COMPUTE_READ.or(Access::COMPUTE_WRITE),
+                            Access::COMPUTE_WRITE,
+                        )],
+                    );
+                    rec.bind_pipeline(&evolve.pipeline);
+                    rec.bind_sets(&evolve.pipeline, &evolve.layout, &[evolve_set]);
+                    rec.push_constants(&evolve.layout, &evolve_params);
+                    rec.dispatch(groups, groups, layers);
+                    rec.end_label();
 
-            rec.begin_label("ocean fft");
-            fft.record(rec, Direction::Inverse, Access::COMPUTE_WRITE);
-            rec.end_label();
+                    rec.begin_label("ocean fft");
+                    fft.record(rec, Direction::Inverse, Access::COMPUTE_WRITE);
+                    rec.end_label();
 
-            rec.begin_label("ocean assemble");
-            // FFT output → assemble; the previous frame's normals (foam) → assemble.
-            rec.barrier(
-                &[ImageBarrier {
-                    image: previous.raw,
-                    range: previous.range(),
-                    old_layout: vk::ImageLayout::GENERAL,
-                    new_layout: vk::ImageLayout::GENERAL,
-                    src: Access::COMPUTE_WRITE,
-                    dst: Access::COMPUTE_READ,
-                }],
-                &[(fft.data.raw, Access::COMPUTE_WRITE, Access::COMPUTE_READ)],
-            );
-            rec.bind_pipeline(&assemble.pipeline);
-            rec.bind_sets(&assemble.pipeline, &assemble.layout, &[assemble_set]);
-            rec.push_constants(&assemble.layout, &assemble_params);
-            rec.dispatch(groups, groups, layers);
-            rec.end_label();
-        })
+                    rec.begin_label("ocean assemble");
+                    rec.barrier(
+                        &[foam_barrier],
+                        &[(fft.data.raw, Access::COMPUTE_WRITE, Access::COMPUTE_READ)],
+                    );
+                    rec.bind_pipeline(&assemble.pipeline);
+                    rec.bind_sets(&assemble.pipeline, &assemble.layout, &[assemble_set]);
+                    rec.push_constants(&assemble.layout, &assemble_params);
+                    rec.dispatch(groups, groups, layers);
+                    rec.end_label();
+                })
+            }
+            Model::Gerstner {
+                waves,
+                buffers,
+                kernel,
+                sets,
+            } => {
+                // The window follows the camera in whole grid steps, so texels stay on a fixed
+                // world lattice (no swimming) and the camera sits at its centre.
+                let window = self.settings.patch_size_m;
+                let step = window / n as f64;
+                let origin = camera_xz.map(|c| ((c - window / 2.0) / step).floor() * step);
+                self.origin_m = origin;
+                let gpu_waves: Vec<GpuWave> = waves
+                    .iter()
+                    .map(|w| {
+                        let k = (w.kx * w.kx + w.kz * w.kz).sqrt();
+                        let omega = (G_SEED * k).sqrt();
+                        // θ at the origin, reduced in f64 so the shader's float phase stays exact.
+                        let theta0 =
+                            (w.kx * origin[0] + w.kz * origin[1] - omega * time_s as f64 - w.phase)
+                                .rem_euclid(2.0 * std::f64::consts::PI);
+                        GpuWave {
+                            wave: [w.kx as f32, w.kz as f32, w.amplitude as f32, theta0 as f32],
+                            extra: [w.steepness as f32, omega as f32, k as f32, 0.0],
+                        }
+                    })
+                    .collect();
+                // The slot's previous compute work (two frames ago) must be done before the
+                // host rewrites its wave buffer.
+                self.queue.wait_for_slot(value)?;
+                buffers[slot].write(bytemuck::cast_slice(&gpu_waves));
+                let params = GerstnerParams {
+                    window_m: window as f32,
+                    dt_s,
+                    foam_threshold: FOAM_THRESHOLD,
+                    foam_decay_s: FOAM_DECAY_S,
+                    foam_gain: FOAM_GAIN,
+                    n,
+                    count: waves.len() as u32,
+                };
+                let (kernel, set) = (&*kernel, sets[slot]);
+                self.queue.submit(slot, value, wait_graphics, |rec| {
+                    rec.begin_label("ocean gerstner");
+                    rec.barrier(&[foam_barrier], &[]);
+                    rec.bind_pipeline(&kernel.pipeline);
+                    rec.bind_sets(&kernel.pipeline, &kernel.layout, &[set]);
+                    rec.push_constants(&kernel.layout, &params);
+                    rec.dispatch(groups, groups, 1);
+                    rec.end_label();
+                })
+            }
+        }
     }
 
     /// The wait a graphics submission adds before sampling frame `value`'s images.
@@ -468,8 +638,19 @@ impl Simulation {
         Ok((read(&buffers[0]), read(&buffers[1])))
     }
 
-    /// h0 as uploaded (for tests and dumps).
-    pub fn h0_buffer(&self) -> &Buffer {
-        &self.h0
+    /// h0 as uploaded (FFT mode; for tests and dumps).
+    pub fn h0_buffer(&self) -> Option<&Buffer> {
+        match &self.model {
+            Model::Fft { h0, .. } => Some(h0),
+            Model::Gerstner { .. } => None,
+        }
+    }
+
+    /// The Gerstner waves (Gerstner mode).
+    pub fn gerstner_waves(&self) -> Option<&[Wave]> {
+        match &self.model {
+            Model::Fft { .. } => None,
+            Model::Gerstner { waves, .. } => Some(waves),
+        }
     }
 }

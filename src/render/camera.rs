@@ -73,7 +73,7 @@ pub struct FrameUniforms {
     pub viewport: [f32; 4],
     /// Patch side of each ocean cascade (m).
     pub patch_m: [f32; 4],
-    /// x: number of cascades.
+    /// x: number of cascades; y: 1 for a bounded window (Gerstner); zw: origin of the images (m).
     pub ocean: [f32; 4],
 }
 
@@ -85,6 +85,7 @@ impl FrameUniforms {
         time_s: f32,
         size: (u32, u32),
         ocean: &OceanBindings,
+        inputs: &super::renderer::FrameInputs,
     ) -> Self {
         let (w, h) = (size.0.max(1) as f32, size.1.max(1) as f32);
         let view_proj = camera.view_proj(w / h);
@@ -95,7 +96,12 @@ impl FrameUniforms {
             sun_dir: sun_dir.normalize().extend(sun_scale).to_array(),
             viewport: Vec4::new(w, h, 1.0 / w, 1.0 / h).to_array(),
             patch_m: ocean.patch_m,
-            ocean: [ocean.cascades as f32, 0.0, 0.0, 0.0],
+            ocean: [
+                ocean.cascades as f32,
+                if inputs.ocean_window { 1.0 } else { 0.0 },
+                inputs.ocean_origin_m[0],
+                inputs.ocean_origin_m[1],
+            ],
         }
     }
 }

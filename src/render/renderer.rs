@@ -35,10 +35,14 @@ pub struct OutputTarget {
 }
 
 /// Per-frame inputs.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, Default)]
 pub struct FrameInputs {
     /// Simulation time in seconds.
     pub time_s: f32,
+    /// World position of the ocean images' texel (0, 0) (0 for periodic cascades).
+    pub ocean_origin_m: [f32; 2],
+    /// The images cover one bounded window (Gerstner) rather than repeating tiles.
+    pub ocean_window: bool,
 }
 
 pub struct Renderer {
@@ -197,6 +201,7 @@ impl Renderer {
             inputs.time_s,
             (extent.width, extent.height),
             &self.ocean,
+            inputs,
         );
         let (buffer, frame_set) = &mut self.frame_uniforms[frame.slot];
         buffer.write(bytemuck::bytes_of(&uniforms));
