@@ -1,4 +1,6 @@
-//! `--profile PATH`: GPU timestamps per pass and per frame, CPU frame times, as JSON:
+//! `--profile PATH`: GPU timestamps per pass (compute passes first, then graphics) and per frame
+//! (`frame_gpu_ms`: the graphics submission; `compute_gpu_ms`: the compute submission), CPU frame
+//! times, as JSON:
 //! `{"device","driver","frames","warmup_frames","size":[w,h],"passes":[{"name","gpu_ms":{min,median,mean,p95,max},"samples"}],
 //!   "frame_gpu_ms":{..},"frame_cpu_ms":{..}}`. The first `WARMUP_FRAMES` frames are excluded.
 
@@ -57,6 +59,8 @@ pub struct ProfileReport<'a> {
     pub frames: u64,
     pub size: (u32, u32),
     pub gpu: &'a GpuTimings,
+    /// The compute submission's passes (the simulation), timed in its own query pools.
+    pub compute: &'a GpuTimings,
     /// CPU frame times (ms) after warm-up: wall time from one frame's start to the next.
     pub cpu_frame_ms: &'a [f64],
 }
@@ -64,9 +68,10 @@ pub struct ProfileReport<'a> {
 impl ProfileReport<'_> {
     pub fn to_json(&self) -> String {
         let passes: Vec<Value> = self
-            .gpu
+            .compute
             .passes
             .iter()
+            .chain(&self.gpu.passes)
             .map(|(name, samples)| json!({"name": name, "gpu_ms": Stats::json(samples), "samples": samples.len()}))
             .collect();
         let report = json!({
@@ -77,6 +82,7 @@ impl ProfileReport<'_> {
             "size": [self.size.0, self.size.1],
             "passes": passes,
             "frame_gpu_ms": Stats::json(&self.gpu.frames),
+            "compute_gpu_ms": Stats::json(&self.compute.frames),
             "frame_cpu_ms": Stats::json(self.cpu_frame_ms),
         });
         serde_json::to_string_pretty(&report).expect("a JSON value always serializes") + "\n"
@@ -85,17 +91,23 @@ impl ProfileReport<'_> {
     /// A short human-readable table (logged at the end of a profiled run).
     pub fn summary(&self) -> String {
         let mut out = String::new();
-        for (name, samples) in &self.gpu.passes {
+        for (name, samples) in self.compute.passes.iter().chain(&self.gpu.passes) {
             if let Some(s) = Stats::of(samples) {
                 out += &format!(
-                    "  {name:<12} median {:7.3} ms  p95 {:7.3} ms\n",
+                    "  {name:<16} median {:7.3} ms  p95 {:7.3} ms\n",
                     s.median, s.p95
                 );
             }
         }
+        if let Some(s) = Stats::of(&self.compute.frames) {
+            out += &format!(
+                "  {:<16} median {:7.3} ms  p95 {:7.3} ms\n",
+                "compute (GPU)", s.median, s.p95
+            );
+        }
         if let Some(s) = Stats::of(&self.gpu.frames) {
             out += &format!(
-                "  {:<12} median {:7.3} ms  p95 {:7.3} ms\n",
+                "  {:<16} median {:7.3} ms  p95 {:7.3} ms\n",
                 "frame (GPU)", s.median, s.p95
             );
         }

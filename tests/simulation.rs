@@ -58,7 +58,7 @@ fn gpu_fields_match_the_cpu_reference() {
         };
         let mut sim = Simulation::new(&ctx, &settings).unwrap();
         let t = 3.25;
-        sim.submit(0, 1, t, [0.0, 0.0]).unwrap();
+        sim.submit(0, 1, t, [0.0, 0.0], None).unwrap();
         let (displacement, normals) = sim.read_back(&ctx, 0, 1).unwrap();
         let cpu = CpuOcean::new(&settings).fields(t as f64);
         let plane = n * n;
@@ -93,9 +93,9 @@ fn same_seed_same_surface() {
     };
     let mut a = Simulation::new(&ctx, &settings).unwrap();
     let mut b = Simulation::new(&ctx, &settings).unwrap();
-    a.submit(0, 1, 1.5, [0.0, 0.0]).unwrap();
+    a.submit(0, 1, 1.5, [0.0, 0.0], None).unwrap();
     // Each simulation has its own compute timeline: its first frame is value 1.
-    b.submit(0, 1, 1.5, [0.0, 0.0]).unwrap();
+    b.submit(0, 1, 1.5, [0.0, 0.0], None).unwrap();
     let ra = a.read_back(&ctx, 0, 1).unwrap();
     let rb = b.read_back(&ctx, 0, 1).unwrap();
     assert!(
@@ -107,7 +107,7 @@ fn same_seed_same_surface() {
         ..settings
     };
     let mut c = Simulation::new(&ctx, &other).unwrap();
-    c.submit(0, 1, 1.5, [0.0, 0.0]).unwrap();
+    c.submit(0, 1, 1.5, [0.0, 0.0], None).unwrap();
     assert!(
         c.read_back(&ctx, 0, 1).unwrap().0 != ra.0,
         "another seed, another sea"
@@ -130,7 +130,7 @@ fn gerstner_gpu_matches_the_analytic_waves() {
     let mut sim = Simulation::new(&ctx, &settings).unwrap();
     // Far from the world origin, where a naive float phase would lose precision.
     let (t, camera) = (2.75f32, [1234.5, -678.25]);
-    sim.submit(0, 1, t, camera).unwrap();
+    sim.submit(0, 1, t, camera, None).unwrap();
     let origin = sim.origin_m();
     let step = window / n as f64;
     for (o, c) in origin.iter().zip(camera) {

@@ -20,6 +20,8 @@ pub struct Session {
     pub ctx: Arc<Context>,
     pub frames: Frames,
     pub profiler: Profiler,
+    /// Timestamps of the compute passes (their own query pools, in the compute submission).
+    pub compute_profiler: Profiler,
     pub renderer: Renderer,
     /// The FFT ocean on the compute queue.
     pub simulation: Simulation,
@@ -63,6 +65,7 @@ impl Session {
             ctx: ctx.clone(),
             frames: Frames::new(ctx)?,
             profiler,
+            compute_profiler: Profiler::for_compute(ctx, WARMUP_FRAMES)?,
             renderer: Renderer::new(ctx, output_format, extent, ocean)?,
             simulation,
             hazard,
@@ -102,6 +105,7 @@ impl Session {
             value,
             inputs.time_s,
             [camera.x as f64, camera.z as f64],
+            Some((&mut self.compute_profiler, &frame)),
         )?;
         let origin = self.simulation.origin_m();
         let inputs = &FrameInputs {
@@ -225,11 +229,13 @@ impl Session {
     pub fn finish(&mut self, size: (u32, u32)) -> anyhow::Result<Finished> {
         self.frames.wait_all()?;
         let timings = self.profiler.finish()?;
+        let compute = self.compute_profiler.finish()?;
         let report = ProfileReport {
             device: &self.ctx.info,
             frames: self.frames.submitted(),
             size,
             gpu: &timings,
+            compute: &compute,
             cpu_frame_ms: &self.cpu_frame_ms,
         };
         Ok(Finished {

@@ -75,7 +75,7 @@ impl ComputeQueue {
         slot: usize,
         value: u64,
         wait_graphics: Option<u64>,
-        record: impl FnOnce(&Recorder),
+        record: impl FnOnce(&Recorder) -> GpuResult<()>,
     ) -> GpuResult<()> {
         self.wait_for_slot(value)?;
         let (pool, cmd) = self.slots[slot];
@@ -95,8 +95,13 @@ impl ComputeQueue {
         {
             let rec = Recorder::new(&self.ctx, cmd);
             rec.begin_label(&format!("compute frame value {value}"));
-            record(&rec);
+            let recorded = record(&rec);
             rec.end_label();
+            if let Err(e) = recorded {
+                // SAFETY: recording began above; the command buffer is never submitted.
+                let _ = unsafe { self.ctx.device.end_command_buffer(cmd) };
+                return Err(e);
+            }
         }
         // SAFETY: recording began above.
         unsafe { self.ctx.device.end_command_buffer(cmd) }.vk("vkEndCommandBuffer")?;

@@ -21,6 +21,8 @@ pub struct DeviceInfo {
     pub limits: vk::PhysicalDeviceLimits,
     /// Valid bits of timestamps on the graphics queue family (0: no timestamps).
     pub timestamp_valid_bits: u32,
+    /// The same for the compute queue's family.
+    pub compute_timestamp_valid_bits: u32,
     pub fill_mode_non_solid: bool,
     pub sampler_anisotropy: bool,
 }
@@ -195,6 +197,7 @@ pub(crate) fn inspect(
         api_version: props.api_version,
         limits: props.limits,
         timestamp_valid_bits: families[graphics_family as usize].timestamp_valid_bits,
+        compute_timestamp_valid_bits: families[compute_family as usize].timestamp_valid_bits,
         fill_mode_non_solid: f.fill_mode_non_solid == vk::TRUE,
         sampler_anisotropy: f.sampler_anisotropy == vk::TRUE,
     };

@@ -50,7 +50,31 @@ pub struct Profiler {
 impl Profiler {
     /// `warmup_frames`: leading frames whose timings are discarded (pipeline JIT, first uploads).
     pub fn new(ctx: &Arc<Context>, warmup_frames: u64) -> GpuResult<Profiler> {
-        let bits = ctx.info.timestamp_valid_bits;
+        Self::for_queue(
+            ctx,
+            warmup_frames,
+            ctx.info.timestamp_valid_bits,
+            "graphics",
+        )
+    }
+
+    /// A profiler for the compute queue's command buffers (its own query pools, reset in the
+    /// compute submission; slots are read back on the same schedule as the graphics ones).
+    pub fn for_compute(ctx: &Arc<Context>, warmup_frames: u64) -> GpuResult<Profiler> {
+        Self::for_queue(
+            ctx,
+            warmup_frames,
+            ctx.info.compute_timestamp_valid_bits,
+            "compute",
+        )
+    }
+
+    fn for_queue(
+        ctx: &Arc<Context>,
+        warmup_frames: u64,
+        bits: u32,
+        queue: &str,
+    ) -> GpuResult<Profiler> {
         // Pools are pushed as they are made, so an error drops (and frees) the earlier ones.
         let mut profiler = Profiler {
             ctx: ctx.clone(),
@@ -77,7 +101,7 @@ impl Profiler {
                 // SAFETY: valid create info on a live device.
                 let pool =
                     unsafe { ctx.device.create_query_pool(&info, None) }.vk("vkCreateQueryPool")?;
-                ctx.name(pool, &format!("timestamps slot {i}"));
+                ctx.name(pool, &format!("{queue} timestamps slot {i}"));
                 profiler.pools.push(pool);
             }
         }

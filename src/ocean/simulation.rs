@@ -24,10 +24,28 @@ use crate::gpu::compute::ComputeQueue;
 use crate::gpu::descriptors::{self, Write};
 use crate::gpu::oneshot::{run_once, run_once_waiting, upload};
 use crate::gpu::{
-    Access, Buffer, Context, DescriptorPool, DescriptorSetLayout, GpuResult, Image, ImageBarrier,
-    ImageDesc, MemoryLocation, Pipeline, PipelineLayout, FRAMES_IN_FLIGHT,
+    Access, Buffer, Context, DescriptorPool, DescriptorSetLayout, Frame, GpuResult, Image,
+    ImageBarrier, ImageDesc, MemoryLocation, Pipeline, PipelineLayout, Profiler, Recorder,
+    FRAMES_IN_FLIGHT,
 };
 use crate::shaders;
+
+/// A named compute pass: timestamps when a profiler is given, a debug label always.
+fn scope(
+    timer: &mut Option<(&mut Profiler, &Frame)>,
+    rec: &Recorder,
+    name: &'static str,
+    body: impl FnOnce(),
+) {
+    match timer {
+        Some((profiler, _)) => profiler.pass(rec, name, body),
+        None => {
+            rec.begin_label(name);
+            body();
+            rec.end_label();
+        }
+    }
+}
 
 /// Patch sizes padded to four (for shaders).
 fn patch_sizes(cascades: &[Cascade]) -> [f32; 4] {
@@ -403,13 +421,15 @@ impl Simulation {
     }
 
     /// Submits frame `value`'s simulation at time `time_s` into `slot` on the compute queue.
-    /// `camera_xz` places the Gerstner window (ignored by the periodic FFT cascades).
+    /// `camera_xz` places the Gerstner window (ignored by the periodic FFT cascades); `timing`
+    /// times the passes with a compute-queue profiler (`Profiler::for_compute`) for `frame`.
     pub fn submit(
         &mut self,
         slot: usize,
         value: u64,
         time_s: f32,
         camera_xz: [f64; 2],
+        timing: Option<(&mut Profiler, &Frame)>,
     ) -> GpuResult<()> {
         let dt_s = self
             .last_time_s
@@ -458,36 +478,42 @@ impl Simulation {
                 let (fft, evolve, assemble) = (&*fft, &*evolve, &*assemble);
                 let (evolve_set, assemble_set) = (*evolve_set, assemble_sets[slot]);
                 self.queue.submit(slot, value, wait_graphics, |rec| {
-                    // Evolve overwrites the FFT data the previous frame's FFT and assemble used.
-                    rec.begin_label("ocean evolve");
-                    rec.barrier(
-                        &[],
-                        &[(
-                            fft.data.raw,
-                            Access::COMPUTE_READ.or(Access::COMPUTE_WRITE),
-                            Access::COMPUTE_WRITE,
-                        )],
-                    );
-                    rec.bind_pipeline(&evolve.pipeline);
-                    rec.bind_sets(&evolve.pipeline, &evolve.layout, &[evolve_set]);
-                    rec.push_constants(&evolve.layout, &evolve_params);
-                    rec.dispatch(groups, groups, layers);
-                    rec.end_label();
-
-                    rec.begin_label("ocean fft");
-                    fft.record(rec, Direction::Inverse, Access::COMPUTE_WRITE);
-                    rec.end_label();
-
-                    rec.begin_label("ocean assemble");
-                    rec.barrier(
-                        &[foam_barrier],
-                        &[(fft.data.raw, Access::COMPUTE_WRITE, Access::COMPUTE_READ)],
-                    );
-                    rec.bind_pipeline(&assemble.pipeline);
-                    rec.bind_sets(&assemble.pipeline, &assemble.layout, &[assemble_set]);
-                    rec.push_constants(&assemble.layout, &assemble_params);
-                    rec.dispatch(groups, groups, layers);
-                    rec.end_label();
+                    let mut timer = timing;
+                    if let Some((profiler, frame)) = timer.as_mut() {
+                        profiler.begin_frame(rec, frame)?;
+                    }
+                    scope(&mut timer, rec, "ocean evolve", || {
+                        // Evolve overwrites the FFT data the previous frame's FFT and assemble used.
+                        rec.barrier(
+                            &[],
+                            &[(
+                                fft.data.raw,
+                                Access::COMPUTE_READ.or(Access::COMPUTE_WRITE),
+                                Access::COMPUTE_WRITE,
+                            )],
+                        );
+                        rec.bind_pipeline(&evolve.pipeline);
+                        rec.bind_sets(&evolve.pipeline, &evolve.layout, &[evolve_set]);
+                        rec.push_constants(&evolve.layout, &evolve_params);
+                        rec.dispatch(groups, groups, layers);
+                    });
+                    scope(&mut timer, rec, "ocean fft", || {
+                        fft.record(rec, Direction::Inverse, Access::COMPUTE_WRITE)
+                    });
+                    scope(&mut timer, rec, "ocean assemble", || {
+                        rec.barrier(
+                            &[foam_barrier],
+                            &[(fft.data.raw, Access::COMPUTE_WRITE, Access::COMPUTE_READ)],
+                        );
+                        rec.bind_pipeline(&assemble.pipeline);
+                        rec.bind_sets(&assemble.pipeline, &assemble.layout, &[assemble_set]);
+                        rec.push_constants(&assemble.layout, &assemble_params);
+                        rec.dispatch(groups, groups, layers);
+                    });
+                    if let Some((profiler, _)) = timer.as_mut() {
+                        profiler.end_frame(rec);
+                    }
+                    Ok(())
                 })
             }
             Model::Gerstner {
@@ -532,13 +558,21 @@ impl Simulation {
                 };
                 let (kernel, set) = (&*kernel, sets[slot]);
                 self.queue.submit(slot, value, wait_graphics, |rec| {
-                    rec.begin_label("ocean gerstner");
-                    rec.barrier(&[foam_barrier], &[]);
-                    rec.bind_pipeline(&kernel.pipeline);
-                    rec.bind_sets(&kernel.pipeline, &kernel.layout, &[set]);
-                    rec.push_constants(&kernel.layout, &params);
-                    rec.dispatch(groups, groups, 1);
-                    rec.end_label();
+                    let mut timer = timing;
+                    if let Some((profiler, frame)) = timer.as_mut() {
+                        profiler.begin_frame(rec, frame)?;
+                    }
+                    scope(&mut timer, rec, "ocean gerstner", || {
+                        rec.barrier(&[foam_barrier], &[]);
+                        rec.bind_pipeline(&kernel.pipeline);
+                        rec.bind_sets(&kernel.pipeline, &kernel.layout, &[set]);
+                        rec.push_constants(&kernel.layout, &params);
+                        rec.dispatch(groups, groups, 1);
+                    });
+                    if let Some((profiler, _)) = timer.as_mut() {
+                        profiler.end_frame(rec);
+                    }
+                    Ok(())
                 })
             }
         }
