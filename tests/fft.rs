@@ -1,25 +1,18 @@
 //! Our GPU Stockham FFT against rustfft (f64) on random complex input, for every supported N and
 //! a few batch sizes, plus a forward/inverse round trip; validation-clean throughout.
 
+mod common;
+
 use std::sync::Arc;
 
 use rustfft::num_complex::Complex64;
 use vkocean::gpu::oneshot::{download, run_once, upload};
-use vkocean::gpu::{Access, Context, ContextDesc};
+use vkocean::gpu::{Access, Context};
 use vkocean::ocean::cpu::inverse_2d;
 use vkocean::ocean::fft::{check_plan, Direction, GpuFft};
 
 fn context() -> Arc<Context> {
-    // Validation messages go to the log: show them when a test fails.
-    let _ = env_logger::builder()
-        .is_test(true)
-        .filter_level(log::LevelFilter::Warn)
-        .try_init();
-    Context::new(&ContextDesc {
-        validation: true,
-        ..Default::default()
-    })
-    .expect("a Vulkan device (tools/setup installs lavapipe)")
+    common::gpu_context()
 }
 
 /// Deterministic pseudo-random complex values in [-1, 1]².
@@ -94,13 +87,7 @@ fn inverse_fft_matches_rustfft_for_every_size() {
             );
         }
     }
-    let counters = ctx.counters();
-    drop(ctx);
-    assert_eq!(
-        (counters.warnings(), counters.errors()),
-        (0, 0),
-        "validation messages"
-    );
+    common::assert_validation_clean(ctx);
 }
 
 #[test]
@@ -124,13 +111,7 @@ fn forward_then_inverse_is_identity() {
         let err = relative_l2(&out, &reference);
         assert!(err < 1e-5, "N = {n}: round trip relative L2 error {err:e}");
     }
-    let counters = ctx.counters();
-    drop(ctx);
-    assert_eq!(
-        (counters.warnings(), counters.errors()),
-        (0, 0),
-        "validation messages"
-    );
+    common::assert_validation_clean(ctx);
 }
 
 #[test]

@@ -2,24 +2,17 @@
 //! (rustfft, f64) from the same h0: displacement and normals within relative L2 < 1e-4, for
 //! several spectra, depths and sizes; validation-clean.
 
+mod common;
+
 use std::sync::Arc;
 
-use vkocean::gpu::{Context, ContextDesc};
+use vkocean::gpu::Context;
 use vkocean::ocean::cpu::CpuOcean;
 use vkocean::ocean::simulation::Simulation;
 use vkocean::ocean::{OceanSettings, SeaState, SpectrumKind};
 
 fn context() -> Arc<Context> {
-    // Validation messages go to the log: show them when a test fails.
-    let _ = env_logger::builder()
-        .is_test(true)
-        .filter_level(log::LevelFilter::Warn)
-        .try_init();
-    Context::new(&ContextDesc {
-        validation: true,
-        ..Default::default()
-    })
-    .expect("a Vulkan device (tools/setup installs lavapipe)")
+    common::gpu_context()
 }
 
 /// Relative L2 error of components `comps` of GPU values against CPU values.
@@ -75,13 +68,7 @@ fn gpu_fields_match_the_cpu_reference() {
             );
         }
     }
-    let counters = ctx.counters();
-    drop(ctx);
-    assert_eq!(
-        (counters.warnings(), counters.errors()),
-        (0, 0),
-        "validation messages"
-    );
+    common::assert_validation_clean(ctx);
 }
 
 #[test]
@@ -164,12 +151,6 @@ fn gerstner_gpu_matches_the_analytic_waves() {
     }
     assert!(max_d < 1e-4, "max displacement error {max_d:e} m");
     assert!(max_n < 1e-4, "max normal error {max_n:e}");
-    let counters = ctx.counters();
     drop(sim);
-    drop(ctx);
-    assert_eq!(
-        (counters.warnings(), counters.errors()),
-        (0, 0),
-        "validation messages"
-    );
+    common::assert_validation_clean(ctx);
 }

@@ -11,7 +11,7 @@ use ash::vk;
 use super::command::Recorder;
 use super::context::Context;
 use super::error::{GpuError, GpuResult, VkResultExt};
-use super::frame::FRAMES_IN_FLIGHT;
+use super::frame::{command_slot, FRAMES_IN_FLIGHT};
 use super::garbage::Garbage;
 
 pub struct ComputeQueue {
@@ -39,34 +39,11 @@ impl ComputeQueue {
             timeline,
         };
         for i in 0..FRAMES_IN_FLIGHT {
-            let pool_info = vk::CommandPoolCreateInfo::default()
-                .queue_family_index(ctx.compute.family)
-                .flags(vk::CommandPoolCreateFlags::TRANSIENT);
-            // SAFETY: valid create info on a live device.
-            let pool = unsafe { ctx.device.create_command_pool(&pool_info, None) }
-                .vk("vkCreateCommandPool")?;
-            let alloc = vk::CommandBufferAllocateInfo::default()
-                .command_pool(pool)
-                .level(vk::CommandBufferLevel::PRIMARY)
-                .command_buffer_count(1);
-            // SAFETY: the pool is live.
-            let cmd = match unsafe { ctx.device.allocate_command_buffers(&alloc) } {
-                Ok(c) => c[0],
-                Err(result) => {
-                    ctx.defer(Garbage::CommandPool(pool));
-                    return Err(GpuError::Vk {
-                        call: "vkAllocateCommandBuffers",
-                        result,
-                    });
-                }
-            };
-            ctx.name(pool, &format!("compute slot {i} command pool"));
-            ctx.name(cmd, &format!("compute slot {i} commands"));
-            queue.slots.push((pool, cmd));
+            let slot = command_slot(ctx, ctx.compute.family, &format!("compute slot {i}"))?;
+            queue.slots.push(slot);
         }
         Ok(queue)
     }
-
     /// Records compute work for the frame with timeline `value` in `slot` and submits it to the
     /// compute queue: waits for the graphics timeline to reach `wait_graphics` (if any) at the
     /// compute stage, and signals the compute timeline with `value`.

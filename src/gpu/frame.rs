@@ -20,6 +20,38 @@ pub const FRAMES_IN_FLIGHT: usize = 2;
 /// How long a timeline wait may take before the device is declared hung.
 const WAIT_TIMEOUT_S: u64 = 60;
 
+/// Creates a transient command pool on `family` with one primary command buffer, both named
+/// after `label` (frame slots here, compute slots in `compute.rs`).
+pub(crate) fn command_slot(
+    ctx: &Context,
+    family: u32,
+    label: &str,
+) -> GpuResult<(vk::CommandPool, vk::CommandBuffer)> {
+    let info = vk::CommandPoolCreateInfo::default()
+        .queue_family_index(family)
+        .flags(vk::CommandPoolCreateFlags::TRANSIENT);
+    // SAFETY: valid create info on a live device.
+    let pool = unsafe { ctx.device.create_command_pool(&info, None) }.vk("vkCreateCommandPool")?;
+    let alloc = vk::CommandBufferAllocateInfo::default()
+        .command_pool(pool)
+        .level(vk::CommandBufferLevel::PRIMARY)
+        .command_buffer_count(1);
+    // SAFETY: the pool is live.
+    let cmd = match unsafe { ctx.device.allocate_command_buffers(&alloc) } {
+        Ok(c) => c[0],
+        Err(result) => {
+            ctx.defer(Garbage::CommandPool(pool));
+            return Err(GpuError::Vk {
+                call: "vkAllocateCommandBuffers",
+                result,
+            });
+        }
+    };
+    ctx.name(pool, &format!("{label} command pool"));
+    ctx.name(cmd, &format!("{label} commands"));
+    Ok((pool, cmd))
+}
+
 /// A command pool and its one primary command buffer.
 struct Slot {
     pool: vk::CommandPool,
@@ -71,29 +103,7 @@ impl Frames {
             next: 0,
         };
         for i in 0..FRAMES_IN_FLIGHT {
-            let info = vk::CommandPoolCreateInfo::default()
-                .queue_family_index(ctx.graphics.family)
-                .flags(vk::CommandPoolCreateFlags::TRANSIENT);
-            // SAFETY: valid create info on a live device.
-            let pool =
-                unsafe { ctx.device.create_command_pool(&info, None) }.vk("vkCreateCommandPool")?;
-            let alloc = vk::CommandBufferAllocateInfo::default()
-                .command_pool(pool)
-                .level(vk::CommandBufferLevel::PRIMARY)
-                .command_buffer_count(1);
-            // SAFETY: the pool is live.
-            let cmd = match unsafe { ctx.device.allocate_command_buffers(&alloc) } {
-                Ok(c) => c[0],
-                Err(result) => {
-                    ctx.defer(Garbage::CommandPool(pool));
-                    return Err(GpuError::Vk {
-                        call: "vkAllocateCommandBuffers",
-                        result,
-                    });
-                }
-            };
-            ctx.name(pool, &format!("frame slot {i} command pool"));
-            ctx.name(cmd, &format!("frame slot {i} commands"));
+            let (pool, cmd) = command_slot(ctx, ctx.graphics.family, &format!("frame slot {i}"))?;
             frames.slots.push(Slot { pool, cmd });
         }
         Ok(frames)

@@ -207,13 +207,20 @@ impl CpuOcean {
 }
 
 /// Periodic bilinear interpolation of component `comp` of a `[m][n]` grid over a patch.
-fn bilinear(grid: &[[f64; 4]], n: usize, patch: f64, x: f64, z: f64, comp: usize) -> f64 {
+pub(crate) fn bilinear<T: Copy + Into<f64>>(
+    grid: &[[T; 4]],
+    n: usize,
+    patch: f64,
+    x: f64,
+    z: f64,
+    comp: usize,
+) -> f64 {
     let fx = (x / patch * n as f64).rem_euclid(n as f64);
     let fz = (z / patch * n as f64).rem_euclid(n as f64);
     let (x0, z0) = (fx.floor() as usize % n, fz.floor() as usize % n);
     let (x1, z1) = ((x0 + 1) % n, (z0 + 1) % n);
     let (tx, tz) = (fx - fx.floor(), fz - fz.floor());
-    let v = |xi: usize, zi: usize| grid[zi * n + xi][comp];
+    let v = |xi: usize, zi: usize| -> f64 { grid[zi * n + xi][comp].into() };
     (v(x0, z0) * (1.0 - tx) + v(x1, z0) * tx) * (1.0 - tz)
         + (v(x0, z1) * (1.0 - tx) + v(x1, z1) * tx) * tz
 }

@@ -2,6 +2,7 @@
 
 use serde_json::{json, Value};
 
+use super::cpu::bilinear;
 use super::simulation::Texels;
 
 /// mean, standard deviation, significant wave height Hs = 4σ, min, max of a height set.
@@ -33,16 +34,15 @@ pub fn stats_line(frame: u64, t: f32, displacement: &Texels, n: usize, patch_m: 
             )
         })
         .collect();
-    let height = |c: usize, x: f64, z: f64| -> f64 {
-        let grid = &displacement[c * plane..(c + 1) * plane];
-        let fx = (x / patch_m[c] * n as f64).rem_euclid(n as f64);
-        let fz = (z / patch_m[c] * n as f64).rem_euclid(n as f64);
-        let (x0, z0) = (fx.floor() as usize % n, fz.floor() as usize % n);
-        let (x1, z1) = ((x0 + 1) % n, (z0 + 1) % n);
-        let (tx, tz) = (fx - fx.floor(), fz - fz.floor());
-        let v = |xi: usize, zi: usize| grid[zi * n + xi][1] as f64;
-        (v(x0, z0) * (1.0 - tx) + v(x1, z0) * tx) * (1.0 - tz)
-            + (v(x0, z1) * (1.0 - tx) + v(x1, z1) * tx) * tz
+    let height = |c: usize, x: f64, z: f64| {
+        bilinear(
+            &displacement[c * plane..(c + 1) * plane],
+            n,
+            patch_m[c],
+            x,
+            z,
+            1,
+        )
     };
     let step = patch_m[0] / n as f64;
     let surface = height_stats((0..plane).map(|i| {

@@ -81,3 +81,28 @@ pub fn read_png(path: &Path) -> (u32, u32, Vec<u8>) {
         .to_rgba8();
     (img.width(), img.height(), img.into_raw())
 }
+
+/// A validation-enabled Vulkan context; its messages go to the log, shown when a test fails.
+pub fn gpu_context() -> std::sync::Arc<vkocean::gpu::Context> {
+    let _ = env_logger::builder()
+        .is_test(true)
+        .filter_level(log::LevelFilter::Warn)
+        .try_init();
+    vkocean::gpu::Context::new(&vkocean::gpu::ContextDesc {
+        validation: true,
+        ..Default::default()
+    })
+    .expect("a Vulkan device (tools/setup installs lavapipe)")
+}
+
+/// Destroys the context (so destruction is validated too) and asserts that validation reported
+/// nothing. Drop every object created from it first.
+pub fn assert_validation_clean(ctx: std::sync::Arc<vkocean::gpu::Context>) {
+    let counters = ctx.counters();
+    drop(ctx);
+    assert_eq!(
+        (counters.warnings(), counters.errors()),
+        (0, 0),
+        "validation messages"
+    );
+}
