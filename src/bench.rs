@@ -101,8 +101,8 @@ pub fn fft(s: &FftBenchSettings) -> anyhow::Result<Outcome> {
     Ok(Outcome { counters })
 }
 
-/// Deterministic complex test signal in [-1, 1]².
-fn test_signal(len: usize, seed: u64) -> Vec<Complex32> {
+/// Deterministic complex test signal in [-1, 1]² (also the FFT tests' input).
+pub fn test_signal(len: usize, seed: u64) -> Vec<Complex32> {
     let mut state = seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1;
     let mut next = || {
         state ^= state << 13;

@@ -15,16 +15,12 @@ fn context() -> Arc<Context> {
     common::gpu_context()
 }
 
-/// Deterministic pseudo-random complex values in [-1, 1]².
+/// Deterministic pseudo-random complex values in [-1, 1]² (the benchmark's signal).
 fn random_input(len: usize, seed: u64) -> Vec<[f32; 2]> {
-    let mut state = seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1;
-    let mut next = || {
-        state ^= state << 13;
-        state ^= state >> 7;
-        state ^= state << 17;
-        (state >> 40) as f32 / (1u64 << 23) as f32 * 2.0 - 1.0
-    };
-    (0..len).map(|_| [next(), next()]).collect()
+    vkocean::bench::test_signal(len, seed)
+        .iter()
+        .map(|c| [c.re, c.im])
+        .collect()
 }
 
 fn run_gpu(

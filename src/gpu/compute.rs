@@ -10,7 +10,7 @@ use ash::vk;
 
 use super::command::Recorder;
 use super::context::Context;
-use super::error::{GpuError, GpuResult, VkResultExt};
+use super::error::{GpuResult, VkResultExt};
 use super::frame::{command_slot, FRAMES_IN_FLIGHT};
 use super::garbage::Garbage;
 
@@ -115,22 +115,8 @@ impl ComputeQueue {
     /// work; the wait here keeps the type correct on its own.
     pub fn wait_for_slot(&self, value: u64) -> GpuResult<()> {
         if value > FRAMES_IN_FLIGHT as u64 {
-            let semaphores = [self.timeline];
-            let values = [value - FRAMES_IN_FLIGHT as u64];
-            let info = vk::SemaphoreWaitInfo::default()
-                .semaphores(&semaphores)
-                .values(&values);
-            // SAFETY: the timeline semaphore is live.
-            match unsafe { self.ctx.device.wait_semaphores(&info, 60_000_000_000) } {
-                Ok(()) => {}
-                Err(vk::Result::TIMEOUT) => return Err(GpuError::Timeout { seconds: 60 }),
-                Err(result) => {
-                    return Err(GpuError::Vk {
-                        call: "vkWaitSemaphores",
-                        result,
-                    })
-                }
-            }
+            self.ctx
+                .wait_timeline(self.timeline, value - FRAMES_IN_FLIGHT as u64)?;
         }
         Ok(())
     }

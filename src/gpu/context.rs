@@ -17,6 +17,9 @@ use raw_window_handle::{RawDisplayHandle, RawWindowHandle};
 use super::debug::{self, DebugNames, MessageCounters};
 use super::error::{GpuError, GpuResult, VkResultExt};
 use super::garbage::Garbage;
+
+/// How long a GPU wait may take before the device is declared hung (s).
+pub const WAIT_TIMEOUT_S: u64 = 60;
 use super::instance::{create_instance, load_entry};
 use super::physical::{inspect, type_name, type_rank, Candidate};
 pub use super::physical::{list_devices, DeviceInfo, DeviceSummary};
@@ -275,6 +278,30 @@ impl Context {
         // SAFETY: the semaphore is a live timeline semaphore of this device.
         unsafe { self.device.get_semaphore_counter_value(self.frame_timeline) }
             .vk("vkGetSemaphoreCounterValue")
+    }
+
+    /// Blocks until the timeline `semaphore` reaches `value`; a device that does not get there
+    /// within `WAIT_TIMEOUT_S` is reported as hung.
+    pub fn wait_timeline(&self, semaphore: vk::Semaphore, value: u64) -> GpuResult<()> {
+        let semaphores = [semaphore];
+        let values = [value];
+        let info = vk::SemaphoreWaitInfo::default()
+            .semaphores(&semaphores)
+            .values(&values);
+        // SAFETY: the semaphore is a live timeline semaphore of this device.
+        match unsafe {
+            self.device
+                .wait_semaphores(&info, WAIT_TIMEOUT_S * 1_000_000_000)
+        } {
+            Ok(()) => Ok(()),
+            Err(vk::Result::TIMEOUT) => Err(GpuError::Timeout {
+                seconds: WAIT_TIMEOUT_S,
+            }),
+            Err(result) => Err(GpuError::Vk {
+                call: "vkWaitSemaphores",
+                result,
+            }),
+        }
     }
 
     /// Destroys the garbage whose frames the GPU has finished.

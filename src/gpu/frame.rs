@@ -17,9 +17,6 @@ use super::garbage::Garbage;
 /// Number of frames the CPU may record ahead of the GPU.
 pub const FRAMES_IN_FLIGHT: usize = 2;
 
-/// How long a timeline wait may take before the device is declared hung.
-const WAIT_TIMEOUT_S: u64 = 60;
-
 /// Creates a transient command pool on `family` with one primary command buffer, both named
 /// after `label` (frame slots here, compute slots in `compute.rs`).
 pub(crate) fn command_slot(
@@ -199,26 +196,7 @@ impl Frames {
 
     /// Blocks until the frame timeline reaches `value`.
     pub fn wait_for(&self, value: u64) -> GpuResult<()> {
-        let semaphores = [self.ctx.frame_timeline];
-        let values = [value];
-        let info = vk::SemaphoreWaitInfo::default()
-            .semaphores(&semaphores)
-            .values(&values);
-        // SAFETY: the timeline semaphore is live.
-        match unsafe {
-            self.ctx
-                .device
-                .wait_semaphores(&info, WAIT_TIMEOUT_S * 1_000_000_000)
-        } {
-            Ok(()) => Ok(()),
-            Err(vk::Result::TIMEOUT) => Err(GpuError::Timeout {
-                seconds: WAIT_TIMEOUT_S,
-            }),
-            Err(result) => Err(GpuError::Vk {
-                call: "vkWaitSemaphores",
-                result,
-            }),
-        }
+        self.ctx.wait_timeline(self.ctx.frame_timeline, value)
     }
 
     /// Waits for every submitted frame.

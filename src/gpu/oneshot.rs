@@ -71,9 +71,17 @@ pub fn run_once_waiting<R>(
         // SAFETY: the fence was submitted (or the submit failed and it stays unsignalled, in which
         // case we do not wait on it).
         let waited = submitted.and_then(|()| {
-            match unsafe { ctx.device.wait_for_fences(&[fence], true, 60_000_000_000) } {
+            match unsafe {
+                ctx.device.wait_for_fences(
+                    &[fence],
+                    true,
+                    super::context::WAIT_TIMEOUT_S * 1_000_000_000,
+                )
+            } {
                 Ok(()) => Ok(()),
-                Err(vk::Result::TIMEOUT) => Err(GpuError::Timeout { seconds: 60 }),
+                Err(vk::Result::TIMEOUT) => Err(GpuError::Timeout {
+                    seconds: super::context::WAIT_TIMEOUT_S,
+                }),
                 Err(result) => Err(GpuError::Vk {
                     call: "vkWaitForFences",
                     result,
