@@ -3,8 +3,11 @@
 //! GPU: each measured "frame" restores the input (a copy outside the timed scope, so values never
 //! grow without bound), then runs the batch of 2D inverse transforms inside one profiler pass;
 //! times are GPU timestamps, the first `WARMUP_FRAMES` frames (pipeline JIT) excluded, median of
-//! the rest. CPU: rustfft (one thread) on the same data and batch — rows, transpose, rows,
-//! transpose back, which is the work the GPU does — median of the same number of runs.
+//! the rest. CPU: rustfft (one thread) on the same data and batch: rows, transpose, rows,
+//! transpose back, which is the work the GPU does. `rustfft_ms` (the ratio's denominator) counts
+//! the 2·batch·N one-dimensional transforms only, the measure of the anchors in MEASURED.md
+//! (VkFFT ≈ 9× rustfft at N = 256); `rustfft_2d_ms` adds the transposes. Medians of the same
+//! number of runs.
 
 use std::path::PathBuf;
 use std::sync::Arc;
@@ -18,7 +21,7 @@ use serde_json::json;
 use crate::frontend::Outcome;
 use crate::gpu::oneshot::upload;
 use crate::gpu::{Access, Buffer, Context, ContextDesc, Frames, MemoryLocation, Profiler};
-use crate::ocean::fft::{Direction, GpuFft};
+use crate::ocean::fft::{Direction, GpuFft, Kernel};
 use crate::output::PendingFile;
 use crate::profile::{Stats, WARMUP_FRAMES};
 
@@ -35,12 +38,17 @@ pub struct FftBenchSettings {
 }
 
 /// One line of the table.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Debug)]
 pub struct FftRow {
     pub n: usize,
     pub batch: usize,
     pub gpu_ms: f64,
+    /// The 1D transforms only.
     pub rustfft_ms: f64,
+    /// With the transposes between the axes.
+    pub rustfft_2d_ms: f64,
+    /// The GPU kernel, e.g. "registers, 1 lane per row".
+    pub kernel: String,
 }
 
 pub fn fft(s: &FftBenchSettings) -> anyhow::Result<Outcome> {
@@ -63,27 +71,31 @@ pub fn fft(s: &FftBenchSettings) -> anyhow::Result<Outcome> {
         ctx.info.name, ctx.info.driver, s.batch, s.runs
     );
     println!(
-        "{:>6} {:>6} {:>10} {:>12} {:>8}",
-        "N", "batch", "gpu_ms", "rustfft_ms", "ratio"
+        "{:>6} {:>6} {:>10} {:>12} {:>8} {:>14}  kernel",
+        "N", "batch", "gpu_ms", "rustfft_ms", "ratio", "rustfft_2d_ms"
     );
     let mut rows = Vec::new();
     for &n in &s.sizes {
         let input = test_signal(s.batch * n * n, n as u64);
-        let gpu_ms = gpu_median(&ctx, n, s.batch, s.runs, &input)?;
-        let rustfft_ms = rustfft_median(n, s.runs, &input);
+        let (gpu_ms, kernel, rustfft_ms, rustfft_2d_ms) =
+            measure(&ctx, n, s.batch, s.runs, &input)?;
         let row = FftRow {
             n,
             batch: s.batch,
             gpu_ms,
             rustfft_ms,
+            rustfft_2d_ms,
+            kernel: kernel_name(kernel),
         };
         println!(
-            "{:>6} {:>6} {:>10.3} {:>12.3} {:>8.2}",
+            "{:>6} {:>6} {:>10.3} {:>12.3} {:>8.2} {:>14.3}  {}",
             n,
             s.batch,
             gpu_ms,
             rustfft_ms,
-            gpu_ms / rustfft_ms
+            gpu_ms / rustfft_ms,
+            rustfft_2d_ms,
+            row.kernel
         );
         rows.push(row);
     }
@@ -93,7 +105,8 @@ pub fn fft(s: &FftBenchSettings) -> anyhow::Result<Outcome> {
             .iter()
             .map(|r| {
                 json!({"n": r.n, "batch": r.batch, "gpu_ms": r.gpu_ms, "rustfft_ms": r.rustfft_ms,
-                       "ratio": r.gpu_ms / r.rustfft_ms})
+                       "ratio": r.gpu_ms / r.rustfft_ms, "rustfft_2d_ms": r.rustfft_2d_ms,
+                       "kernel": r.kernel})
             })
             .collect();
         file.commit((serde_json::to_string_pretty(&value)? + "\n").as_bytes())?;
@@ -113,14 +126,18 @@ pub fn test_signal(len: usize, seed: u64) -> Vec<Complex32> {
     (0..len).map(|_| Complex32::new(next(), next())).collect()
 }
 
-fn gpu_median(
+/// Medians of the GPU transform and of rustfft (1D transforms only; with transposes), in ms,
+/// and the GPU kernel. Runs alternate: one GPU frame, waited for, then one CPU run, so both see
+/// the same machine (this 2-core VM's speed drifts by 2× over minutes).
+fn measure(
     ctx: &Arc<Context>,
     n: usize,
     batch: usize,
     runs: usize,
     input: &[Complex32],
-) -> anyhow::Result<f64> {
+) -> anyhow::Result<(f64, Kernel, f64, f64)> {
     let fft = GpuFft::new(ctx, n, batch)?;
+    let mut cpu = RustFft::new(n, input);
     let bytes: Vec<u8> = input
         .iter()
         .flat_map(|c| [c.re.to_ne_bytes(), c.im.to_ne_bytes()])
@@ -142,7 +159,9 @@ fn gpu_median(
             ctx.info.name
         );
     }
-    for _ in 0..WARMUP_FRAMES as usize + runs {
+    let mut cpu_fft = Vec::with_capacity(runs);
+    let mut cpu_2d = Vec::with_capacity(runs);
+    for run in 0..WARMUP_FRAMES as usize + runs {
         let frame = frames.begin()?;
         {
             let rec = frame.recorder(ctx);
@@ -163,8 +182,13 @@ fn gpu_median(
             profiler.end_frame(&rec);
         }
         frames.submit(frame, &[], &[])?;
+        frames.wait_all()?;
+        let (fft_ms, total_ms) = cpu.run();
+        if run >= WARMUP_FRAMES as usize {
+            cpu_fft.push(fft_ms);
+            cpu_2d.push(total_ms);
+        }
     }
-    frames.wait_all()?;
     let timings = profiler.finish()?;
     let samples = timings
         .passes
@@ -172,32 +196,76 @@ fn gpu_median(
         .find(|(name, _)| *name == "fft")
         .map(|(_, s)| s.clone())
         .unwrap_or_default();
-    Ok(Stats::of(&samples)
+    let median = Stats::of(&samples)
         .ok_or_else(|| anyhow::anyhow!("no GPU FFT timing was measured"))?
-        .median)
+        .median;
+    let cpu_median = |v: &[f64]| Stats::of(v).expect("runs > 0").median;
+    Ok((
+        median,
+        fft.kernel,
+        cpu_median(&cpu_fft),
+        cpu_median(&cpu_2d),
+    ))
 }
 
-fn rustfft_median(n: usize, runs: usize, input: &[Complex32]) -> f64 {
-    let fft = FftPlanner::<f32>::new().plan_fft_inverse(n);
-    let mut scratch = vec![Complex32::new(0.0, 0.0); fft.get_inplace_scratch_len()];
-    let mut data = input.to_vec();
-    let mut transposed = vec![Complex32::new(0.0, 0.0); n * n];
-    let mut samples = Vec::with_capacity(runs);
-    for run in 0..3 + runs {
-        data.copy_from_slice(input);
-        let start = Instant::now();
-        for array in data.chunks_exact_mut(n * n) {
-            fft.process_with_scratch(array, &mut scratch);
-            transpose(array, &mut transposed, n);
-            fft.process_with_scratch(&mut transposed, &mut scratch);
-            transpose(&transposed, array, n);
+fn kernel_name(kernel: Kernel) -> String {
+    match kernel {
+        Kernel::Shared { threads } => format!("shared memory, {threads} invocations per row"),
+        Kernel::Registers { log2_lanes } => {
+            let lanes = 1u32 << log2_lanes;
+            format!(
+                "registers, {lanes} lane{} per row",
+                if lanes == 1 { "" } else { "s" }
+            )
         }
-        if run >= 3 {
-            samples.push(start.elapsed().as_secs_f64() * 1e3);
-        }
-        std::hint::black_box(&data);
     }
-    Stats::of(&samples).expect("runs > 0").median
+}
+
+/// rustfft (one thread) on the benchmark's batch: rows, transpose, rows, transpose back.
+struct RustFft<'a> {
+    fft: Arc<dyn rustfft::Fft<f32>>,
+    n: usize,
+    input: &'a [Complex32],
+    data: Vec<Complex32>,
+    transposed: Vec<Complex32>,
+    scratch: Vec<Complex32>,
+}
+
+impl<'a> RustFft<'a> {
+    fn new(n: usize, input: &'a [Complex32]) -> RustFft<'a> {
+        let fft = FftPlanner::<f32>::new().plan_fft_inverse(n);
+        let zero = Complex32::new(0.0, 0.0);
+        RustFft {
+            scratch: vec![zero; fft.get_inplace_scratch_len()],
+            fft,
+            n,
+            input,
+            data: input.to_vec(),
+            transposed: vec![zero; n * n],
+        }
+    }
+
+    /// One run: (1D transforms only, whole 2D transforms) in ms.
+    fn run(&mut self) -> (f64, f64) {
+        let n = self.n;
+        self.data.copy_from_slice(self.input);
+        let start = Instant::now();
+        let mut fft_s = 0.0;
+        for array in self.data.chunks_exact_mut(n * n) {
+            let t = Instant::now();
+            self.fft.process_with_scratch(array, &mut self.scratch);
+            fft_s += t.elapsed().as_secs_f64();
+            transpose(array, &mut self.transposed, n);
+            let t = Instant::now();
+            self.fft
+                .process_with_scratch(&mut self.transposed, &mut self.scratch);
+            fft_s += t.elapsed().as_secs_f64();
+            transpose(&self.transposed, array, n);
+        }
+        let total_s = start.elapsed().as_secs_f64();
+        std::hint::black_box(&self.data);
+        (fft_s * 1e3, total_s * 1e3)
+    }
 }
 
 /// Blocked out-of-place transpose of an n×n array.

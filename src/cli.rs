@@ -164,7 +164,7 @@ pub struct BenchFftArgs {
     /// Measured runs per size (after 5 warm-up runs on the GPU, 3 on the CPU).
     #[arg(long, value_name = "R", value_parser = parse_runs, allow_hyphen_values = true, default_value = "30")]
     pub runs: usize,
-    /// Also write the table as JSON: [{"n","batch","gpu_ms","rustfft_ms","ratio"}, ...].
+    /// Also write the table as JSON: [{"n","batch","gpu_ms","rustfft_ms","ratio","rustfft_2d_ms","kernel"}, ...].
     #[arg(long, value_name = "PATH")]
     pub json: Option<PathBuf>,
 }

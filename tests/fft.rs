@@ -9,7 +9,7 @@ use rustfft::num_complex::Complex64;
 use vkocean::gpu::oneshot::{download, run_once, upload};
 use vkocean::gpu::{Access, Context};
 use vkocean::ocean::cpu::inverse_2d;
-use vkocean::ocean::fft::{check_plan, Direction, GpuFft};
+use vkocean::ocean::fft::{check_plan, threads_for, Direction, GpuFft, Kernel};
 
 fn context() -> Arc<Context> {
     common::gpu_context()
@@ -54,6 +54,35 @@ fn relative_l2(ours: &[[f32; 2]], reference: &[Complex64]) -> f64 {
     (err / norm).sqrt()
 }
 
+/// Both kernels wherever the device can run them: the shared-memory one (for GPUs) always, the
+/// register one (for CPU drivers) for N <= 512.
+fn kernels(ctx: &Context, n: usize, batch: usize) -> Vec<Kernel> {
+    let mut all = vec![Kernel::Shared {
+        threads: threads_for(ctx, n),
+    }];
+    all.extend(Kernel::registers(ctx, n, batch));
+    all
+}
+
+#[test]
+fn lavapipe_gets_the_register_kernel_up_to_512() {
+    let ctx = context();
+    if ctx.info.device_type != vkocean::gpu::vk::PhysicalDeviceType::CPU {
+        return; // GPUs keep the shared-memory kernel; nothing to check
+    }
+    for log2 in 6..=10 {
+        let n = 1usize << log2;
+        let kernel = Kernel::for_device(&ctx, n, 12);
+        match kernel {
+            Kernel::Registers { log2_lanes } => {
+                assert!(n <= 512, "N = {n}");
+                assert_eq!(log2_lanes, u32::from(n > 256), "N = {n}");
+            }
+            Kernel::Shared { .. } => assert_eq!(n, 1024),
+        }
+    }
+}
+
 #[test]
 fn inverse_fft_matches_rustfft_for_every_size() {
     let ctx = context();
@@ -66,21 +95,23 @@ fn inverse_fft_matches_rustfft_for_every_size() {
             );
         }
         for batch in [1usize, 3] {
-            let fft = GpuFft::new(&ctx, n, batch).unwrap();
-            let input = random_input(batch * n * n, (n * 31 + batch) as u64);
-            let ours = run_gpu(&ctx, &fft, &input, &[Direction::Inverse]);
-            let mut reference: Vec<Complex64> = input
-                .iter()
-                .map(|c| Complex64::new(c[0] as f64, c[1] as f64))
-                .collect();
-            for array in reference.chunks_exact_mut(n * n) {
-                inverse_2d(array, n);
+            for kernel in kernels(&ctx, n, batch) {
+                let fft = GpuFft::with_kernel(&ctx, n, batch, kernel).unwrap();
+                let input = random_input(batch * n * n, (n * 31 + batch) as u64);
+                let ours = run_gpu(&ctx, &fft, &input, &[Direction::Inverse]);
+                let mut reference: Vec<Complex64> = input
+                    .iter()
+                    .map(|c| Complex64::new(c[0] as f64, c[1] as f64))
+                    .collect();
+                for array in reference.chunks_exact_mut(n * n) {
+                    inverse_2d(array, n);
+                }
+                let err = relative_l2(&ours, &reference);
+                assert!(
+                    err < 1e-5,
+                    "N = {n}, batch {batch}, {kernel:?}: relative L2 error {err:e}"
+                );
             }
-            let err = relative_l2(&ours, &reference);
-            assert!(
-                err < 1e-5,
-                "N = {n}, batch {batch}: relative L2 error {err:e}"
-            );
         }
     }
     common::assert_validation_clean(ctx);
@@ -89,9 +120,12 @@ fn inverse_fft_matches_rustfft_for_every_size() {
 #[test]
 fn forward_then_inverse_is_identity() {
     let ctx = context();
-    for n in [64usize, 256, 1024] {
+    for (n, kernel) in [64usize, 256, 512, 1024]
+        .into_iter()
+        .flat_map(|n| kernels(&ctx, n, 2).into_iter().map(move |k| (n, k)))
+    {
         let batch = 2;
-        let fft = GpuFft::new(&ctx, n, batch).unwrap();
+        let fft = GpuFft::with_kernel(&ctx, n, batch, kernel).unwrap();
         let input = random_input(batch * n * n, n as u64);
         let out = run_gpu(
             &ctx,
@@ -105,7 +139,10 @@ fn forward_then_inverse_is_identity() {
             .map(|c| Complex64::new(c[0] as f64, c[1] as f64) / scale)
             .collect();
         let err = relative_l2(&out, &reference);
-        assert!(err < 1e-5, "N = {n}: round trip relative L2 error {err:e}");
+        assert!(
+            err < 1e-5,
+            "N = {n}, {kernel:?}: round trip relative L2 error {err:e}"
+        );
     }
     common::assert_validation_clean(ctx);
 }

@@ -5,15 +5,11 @@
 // then columns, and leaves the 2D transform in A in its original orientation, with both passes
 // reading contiguous rows.
 //
-// Radix-2 butterflies throughout, in the Stockham formulation of Govindaraju et al. 2008 ("High
-// Performance Discrete Fourier Transforms on Graphics Processors"). Consecutive stages are fused
-// in registers: each thread loads R = 8 or 16 values, applies the inter-pass twiddles and runs
-// log2(R) radix-2 stages on them, so shared memory is touched once per pass (2 passes for N <= 256,
-// 3 for N <= 1024) instead of once per stage, and global memory only on the first load and the
-// last store. A pass with Ns = product of the earlier passes' R:
-//   for j < N/R: k = j mod Ns, v_q = x[j + q N/R] w^{qk}, w = e^{±2πi/(Ns R)},
-//                v = DFT_R(v) by radix-2 stages, y[(j - k) R + k + q Ns] = v_q.
-// Unnormalized. Mirrors `stockham_model` and `pass_schedule` in src/ocean/fft.rs.
+// The kernel for GPUs (fft_rows.comp is the one for CPU drivers). Radix-2 Stockham stages fused
+// in registers (common/fft.glsl): each thread loads R = 8 or 16 values, applies the inter-pass
+// twiddles and runs log2(R) radix-2 stages on them, so shared memory is touched once per pass
+// (2 passes for N <= 256, 3 for N <= 1024) instead of once per stage, and global memory only on
+// the first load and the last store. Unnormalized.
 //
 // Inputs: src (batch, N, N) vec2; twiddles e^{+2πi m/N}, m < N (computed once, in f64).
 // Output: dst (batch, N, N) vec2, transposed. Push constant: +1 inverse, -1 forward.
@@ -27,18 +23,10 @@ layout(std430, set = 0, binding = 1) writeonly buffer Dst { vec2 dst[]; };
 layout(std430, set = 0, binding = 2) readonly buffer Twiddles { vec2 twiddle[]; };
 layout(push_constant) uniform Params { float direction; } params;
 
+#include "common/fft.glsl"
+
 const uint N = 1u << LOG2_N;
 shared vec2 buf[2][N];
-
-// e^{+2πi m/16}, m < 16: the roots inside an 8- or 16-point group.
-const vec2 ROOTS16[16] = vec2[](
-    vec2(1.0, 0.0), vec2(0.92387953, 0.38268343), vec2(0.70710678, 0.70710678), vec2(0.38268343, 0.92387953),
-    vec2(0.0, 1.0), vec2(-0.38268343, 0.92387953), vec2(-0.70710678, 0.70710678), vec2(-0.92387953, 0.38268343),
-    vec2(-1.0, 0.0), vec2(-0.92387953, -0.38268343), vec2(-0.70710678, -0.70710678), vec2(-0.38268343, -0.92387953),
-    vec2(0.0, -1.0), vec2(0.38268343, -0.92387953), vec2(0.70710678, -0.70710678), vec2(0.92387953, -0.38268343));
-
-vec2 cmul(vec2 a, vec2 b) { return vec2(a.x * b.x - a.y * b.y, a.x * b.y + a.y * b.x); }
-vec2 conj_if_forward(vec2 w) { return vec2(w.x, w.y * params.direction); }
 
 // One pass with R = 2^LOG_R values per group. `in_slot`/`out_slot` pick the shared buffers;
 // the first pass reads src, the last writes dst (transposed). A macro keeps the register arrays
@@ -61,18 +49,7 @@ vec2 conj_if_forward(vec2 w) { return vec2(w.x, w.y * params.direction); }
                     w = cmul(w, w1);                                                         \
                 }                                                                            \
             }                                                                                \
-            [[unroll]] for (uint ls = 0u; ls < LOG_R; ++ls) {                                \
-                uint s = 1u << ls;                                                           \
-                vec2 u[R];                                                                   \
-                [[unroll]] for (uint jj = 0u; jj < R / 2u; ++jj) {                           \
-                    uint kk = jj & (s - 1u);                                                 \
-                    vec2 a = v[jj];                                                          \
-                    vec2 b = cmul(v[jj + R / 2u], conj_if_forward(ROOTS16[kk * (16u / (2u * s))])); \
-                    u[2u * jj - kk] = a + b;                                                 \
-                    u[2u * jj - kk + s] = a - b;                                             \
-                }                                                                            \
-                v = u;                                                                       \
-            }                                                                                \
+            DFT_IN_REGISTERS(v, LOG_R)                                                       \
             uint o = (j - k) * R + k;                                                        \
             [[unroll]] for (uint q = 0u; q < R; ++q) {                                       \
                 uint i = o + q * ns;                                                         \

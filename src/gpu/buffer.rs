@@ -105,3 +105,39 @@ impl Drop for Buffer {
         }
     }
 }
+
+/// A typed view of a buffer for texel-buffer descriptors (`samplerBuffer` / `imageBuffer`).
+pub struct BufferView {
+    ctx: Arc<Context>,
+    pub raw: vk::BufferView,
+}
+
+impl BufferView {
+    /// Views the whole of `buffer` as texels of `format`. The buffer must have been created with
+    /// the matching UNIFORM_/STORAGE_TEXEL_BUFFER usage and fit in maxTexelBufferElements.
+    pub fn new(
+        ctx: &Arc<Context>,
+        name: &str,
+        buffer: &Buffer,
+        format: vk::Format,
+    ) -> GpuResult<BufferView> {
+        let info = vk::BufferViewCreateInfo::default()
+            .buffer(buffer.raw)
+            .format(format)
+            .offset(0)
+            .range(vk::WHOLE_SIZE);
+        // SAFETY: `buffer` is live and the create info is valid for it (caller's usage contract).
+        let raw = unsafe { ctx.device.create_buffer_view(&info, None) }.vk("vkCreateBufferView")?;
+        ctx.name(raw, name);
+        Ok(BufferView {
+            ctx: ctx.clone(),
+            raw,
+        })
+    }
+}
+
+impl Drop for BufferView {
+    fn drop(&mut self) {
+        self.ctx.defer(Garbage::BufferView(self.raw));
+    }
+}

@@ -61,9 +61,13 @@ impl Access {
         stage: vk::PipelineStageFlags2::CLEAR,
         access: vk::AccessFlags2::TRANSFER_WRITE,
     };
+    /// Storage reads and texel fetches (uniform texel buffers, sampled images) in compute.
     pub const COMPUTE_READ: Access = Access {
         stage: vk::PipelineStageFlags2::COMPUTE_SHADER,
-        access: vk::AccessFlags2::SHADER_STORAGE_READ,
+        access: vk::AccessFlags2::from_raw(
+            vk::AccessFlags2::SHADER_STORAGE_READ.as_raw()
+                | vk::AccessFlags2::SHADER_SAMPLED_READ.as_raw(),
+        ),
     };
     pub const COMPUTE_WRITE: Access = Access {
         stage: vk::PipelineStageFlags2::COMPUTE_SHADER,

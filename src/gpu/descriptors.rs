@@ -129,6 +129,16 @@ pub enum Write {
         binding: u32,
         view: vk::ImageView,
     },
+    /// `samplerBuffer` / `textureBuffer`.
+    UniformTexelBuffer {
+        binding: u32,
+        view: vk::BufferView,
+    },
+    /// `imageBuffer`.
+    StorageTexelBuffer {
+        binding: u32,
+        view: vk::BufferView,
+    },
 }
 
 /// Writes descriptors into `set`. The caller guarantees the set is not in use by pending GPU work
@@ -168,6 +178,15 @@ pub fn update(ctx: &Context, set: vk::DescriptorSet, writes: &[Write]) {
             _ => [vk::DescriptorImageInfo::default()],
         })
         .collect();
+    let texel_views: Vec<[vk::BufferView; 1]> = writes
+        .iter()
+        .map(|w| match w {
+            Write::UniformTexelBuffer { view, .. } | Write::StorageTexelBuffer { view, .. } => {
+                [*view]
+            }
+            _ => [vk::BufferView::null()],
+        })
+        .collect();
     let vk_writes: Vec<_> = writes
         .iter()
         .enumerate()
@@ -190,6 +209,14 @@ pub fn update(ctx: &Context, set: vk::DescriptorSet, writes: &[Write]) {
                     .dst_binding(*binding)
                     .descriptor_type(vk::DescriptorType::STORAGE_IMAGE)
                     .image_info(&image_infos[i]),
+                Write::UniformTexelBuffer { binding, .. } => base
+                    .dst_binding(*binding)
+                    .descriptor_type(vk::DescriptorType::UNIFORM_TEXEL_BUFFER)
+                    .texel_buffer_view(&texel_views[i]),
+                Write::StorageTexelBuffer { binding, .. } => base
+                    .dst_binding(*binding)
+                    .descriptor_type(vk::DescriptorType::STORAGE_TEXEL_BUFFER)
+                    .texel_buffer_view(&texel_views[i]),
             }
         })
         .collect();

@@ -16,6 +16,7 @@ pub(crate) enum Garbage {
         allocation: Allocation,
     },
     Sampler(vk::Sampler),
+    BufferView(vk::BufferView),
     Pipeline(vk::Pipeline),
     PipelineLayout(vk::PipelineLayout),
     DescriptorSetLayout(vk::DescriptorSetLayout),
@@ -48,6 +49,7 @@ impl Garbage {
                     free(ctx, allocation);
                 }
                 Garbage::Sampler(s) => d.destroy_sampler(s, None),
+                Garbage::BufferView(v) => d.destroy_buffer_view(v, None),
                 Garbage::Pipeline(p) => d.destroy_pipeline(p, None),
                 Garbage::PipelineLayout(l) => d.destroy_pipeline_layout(l, None),
                 Garbage::DescriptorSetLayout(l) => d.destroy_descriptor_set_layout(l, None),

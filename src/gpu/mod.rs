@@ -21,7 +21,7 @@ pub mod swapchain;
 pub mod timestamps;
 
 pub use ash::vk;
-pub use buffer::Buffer;
+pub use buffer::{Buffer, BufferView};
 pub use command::{Access, Attachment, ImageBarrier, Load, Recorder};
 pub use context::{Context, ContextDesc, DeviceInfo, DeviceSummary};
 pub use debug::MessageCounters;

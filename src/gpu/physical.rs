@@ -25,6 +25,10 @@ pub struct DeviceInfo {
     pub compute_timestamp_valid_bits: u32,
     pub fill_mode_non_solid: bool,
     pub sampler_anisotropy: bool,
+    /// Invocations per subgroup (SIMD width on CPU drivers).
+    pub subgroup_size: u32,
+    /// Compute shaders can use subgroup shuffles (GL_KHR_shader_subgroup_shuffle).
+    pub compute_subgroup_shuffle: bool,
 }
 
 /// One line of `--list-gpus`.
@@ -121,6 +125,17 @@ pub(crate) fn inspect(
         .map(|s| s.to_string_lossy().into_owned())
         .unwrap_or_default();
     let driver = driver_string(instance, physical);
+    let mut subgroup = vk::PhysicalDeviceSubgroupProperties::default();
+    let mut props2 = vk::PhysicalDeviceProperties2::default().push_next(&mut subgroup);
+    // SAFETY: `physical` belongs to `instance`; the chain points to a local.
+    unsafe { instance.get_physical_device_properties2(physical, &mut props2) };
+    let compute_subgroup_shuffle = subgroup
+        .supported_stages
+        .contains(vk::ShaderStageFlags::COMPUTE)
+        && subgroup
+            .supported_operations
+            .contains(vk::SubgroupFeatureFlags::SHUFFLE);
+    let subgroup_size = subgroup.subgroup_size;
     let parts = DeviceSummaryParts {
         name: name.clone(),
         device_type: props.device_type,
@@ -200,6 +215,8 @@ pub(crate) fn inspect(
         compute_timestamp_valid_bits: families[compute_family as usize].timestamp_valid_bits,
         fill_mode_non_solid: f.fill_mode_non_solid == vk::TRUE,
         sampler_anisotropy: f.sampler_anisotropy == vk::TRUE,
+        subgroup_size,
+        compute_subgroup_shuffle,
     };
     (
         parts,

@@ -1,8 +1,18 @@
-//! Our GPU FFT: 2D complex transforms of a batch of N×N arrays with a Stockham radix-2 autosort
-//! kernel (shaders/ocean/fft.comp). One dispatch per axis covers the whole batch (every packed
-//! field of every cascade); each workgroup transforms one row in shared memory (no round trip
-//! through global memory between stages) and writes it transposed, so the second dispatch reads
-//! contiguous rows too and leaves the result in the original orientation.
+//! Our GPU FFT: 2D complex transforms of a batch of N×N arrays by Stockham radix-2 autosort
+//! passes. One dispatch per axis covers the whole batch (every packed field of every cascade);
+//! each dispatch transforms rows without a round trip through global memory between stages and
+//! writes them transposed, so the second dispatch reads contiguous rows too and leaves the result
+//! in the original orientation.
+//!
+//! Two kernels share the butterfly code (shaders/common/fft.glsl), picked per device by
+//! [`Kernel::for_device`]:
+//! - [`Kernel::Shared`] (shaders/ocean/fft.comp), for GPUs: a workgroup per row, radix-8/16
+//!   groups in registers exchanged through shared memory, coalesced loads.
+//! - [`Kernel::Registers`] (shaders/ocean/fft_rows.comp), for CPU drivers (lavapipe): a row per
+//!   SIMD lane (two lanes joined by subgroup shuffles for N = 512), all passes in registers,
+//!   loads as RGBA32F texel fetches. On llvmpipe a storage or shared memory access costs a branch
+//!   per lane and component while arithmetic is 8-wide, so this kernel minimizes memory
+//!   operations; it is 4–6× faster there (`vkocean bench fft`, README).
 //!
 //! Transforms are unnormalized: inverse out[j] = Σ_n in[n] e^{+2πi nj/N} per axis (rustfft's
 //! convention); forward uses e^{−2πi nj/N}.
@@ -13,8 +23,8 @@ use ash::vk;
 
 use crate::gpu::descriptors::{self, Write};
 use crate::gpu::{
-    Access, Buffer, Context, DescriptorPool, DescriptorSetLayout, MemoryLocation, Pipeline,
-    PipelineLayout, Recorder,
+    Access, Buffer, BufferView, Context, DescriptorPool, DescriptorSetLayout, MemoryLocation,
+    Pipeline, PipelineLayout, Recorder,
 };
 use crate::shaders;
 
@@ -22,8 +32,19 @@ use crate::shaders;
 pub const MIN_N: usize = 64;
 pub const MAX_N: usize = 1024;
 
-/// Environment variable overriding the invocations per workgroup (tuning experiments).
+/// Environment variable overriding the invocations per workgroup of the shared-memory kernel
+/// (tuning experiments).
 pub const THREADS_ENV: &str = "VKOCEAN_FFT_THREADS";
+/// Environment variable forcing a kernel: `shared` or `registers` (experiments, comparisons).
+pub const KERNEL_ENV: &str = "VKOCEAN_FFT_KERNEL";
+
+/// Rows per workgroup of the register kernel (one SIMD vector of lanes per row slot).
+const REGISTER_ROWS: u32 = 8;
+/// Largest row the register kernel keeps in the registers of one invocation; larger rows are
+/// split over 2 subgroup lanes. N = 1024 would need 2 lanes of 512 values, which llvmpipe takes
+/// about 20 s to compile, so it uses the shared-memory kernel.
+const REGISTER_MAX_M: usize = 256;
+const REGISTER_MAX_N: usize = 2 * REGISTER_MAX_M;
 
 /// Direction of a transform.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -32,6 +53,51 @@ pub enum Direction {
     Inverse,
     /// e^{−2πi nj/N}.
     Forward,
+}
+
+/// Which shader does the transforms.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Kernel {
+    /// fft.comp: a workgroup of `threads` invocations per row, shared memory between passes.
+    Shared { threads: u32 },
+    /// fft_rows.comp: 2^`log2_lanes` invocations (subgroup lanes) per row, registers only.
+    Registers { log2_lanes: u32 },
+}
+
+impl Kernel {
+    /// The kernel for this device and size: the register kernel on CPU drivers when it applies
+    /// (see [`Kernel::registers`]), the shared-memory kernel otherwise. `VKOCEAN_FFT_KERNEL`
+    /// overrides the choice when the forced kernel can run.
+    pub fn for_device(ctx: &Context, n: usize, batch: usize) -> Kernel {
+        let shared = Kernel::Shared {
+            threads: threads_for(ctx, n),
+        };
+        let registers = Kernel::registers(ctx, n, batch);
+        match std::env::var(KERNEL_ENV).as_deref() {
+            Ok("shared") => return shared,
+            Ok("registers") => return registers.unwrap_or(shared),
+            _ => {}
+        }
+        match registers {
+            Some(kernel) if ctx.info.device_type == vk::PhysicalDeviceType::CPU => kernel,
+            _ => shared,
+        }
+    }
+
+    /// The register kernel, if the device can run it for N and this batch: N ≤ 512, subgroup
+    /// shuffles (two lanes per row above 256) and the batch within maxTexelBufferElements.
+    pub fn registers(ctx: &Context, n: usize, batch: usize) -> Option<Kernel> {
+        let lanes = n.div_ceil(REGISTER_MAX_M).max(1);
+        let info = &ctx.info;
+        let texels = batch * n * n / 2;
+        let fits = n <= REGISTER_MAX_N
+            && texels <= info.limits.max_texel_buffer_elements as usize
+            && (lanes == 1
+                || (info.compute_subgroup_shuffle && info.subgroup_size as usize >= lanes));
+        fits.then_some(Kernel::Registers {
+            log2_lanes: lanes.trailing_zeros(),
+        })
+    }
 }
 
 /// Checks N (a power of two in MIN_N..=MAX_N) and the device limits for a batch.
@@ -69,10 +135,11 @@ pub fn check_plan(ctx: &Context, n: usize, batch: usize) -> Result<(), String> {
     Ok(())
 }
 
-/// Invocations per workgroup. GPUs: one per group of 16 values (N/16), so every thread of the
-/// 16-point passes has one group and the 8-point passes two. CPU drivers (lavapipe): 8, one SIMD
-/// vector of lanes, which measured fastest (N = 256, batch 4: 1 → 85 ms, 4 → 34, 8 → 23,
-/// 16 → 29, 32 → 43). Capped by the device; `VKOCEAN_FFT_THREADS` overrides it for experiments.
+/// Invocations per workgroup of the shared-memory kernel. GPUs: one per group of 16 values
+/// (N/16), so every thread of the 16-point passes has one group and the 8-point passes two. CPU
+/// drivers: 8, one SIMD vector of lanes, which measured fastest for this kernel (N = 256,
+/// batch 4: 1 → 85 ms, 4 → 34, 8 → 23, 16 → 29, 32 → 43). Capped by the device;
+/// `VKOCEAN_FFT_THREADS` overrides it for experiments.
 pub fn threads_for(ctx: &Context, n: usize) -> u32 {
     let limits = &ctx.info.limits;
     let cap = limits
@@ -89,26 +156,30 @@ pub fn threads_for(ctx: &Context, n: usize) -> u32 {
     wanted.clamp(1, cap).min((n / 8) as u32).next_power_of_two()
 }
 
-/// A batch of N×N 2D transforms on the GPU: buffers, twiddles and the pipeline.
+/// A batch of N×N 2D transforms on the GPU: buffers, the kernel's pipeline and descriptors.
 pub struct GpuFft {
     pub n: usize,
     pub batch: usize,
-    pub threads: u32,
+    pub kernel: Kernel,
     /// Input and output, (batch, N, N) complex f32 (vec2).
     pub data: Buffer,
     /// The intermediate (row-transformed, transposed) arrays.
     scratch: Buffer,
-    /// e^{+2πi m/N}, m < N, computed once in f64.
-    _twiddles: Buffer,
+    /// The shared kernel's e^{+2πi m/N}, m < N, computed once in f64; the register kernel's
+    /// RGBA32F views of `data` and `scratch` (its twiddles are compile-time constants).
+    _inputs: Vec<BufferView>,
+    _twiddles: Option<Buffer>,
     _set_layout: DescriptorSetLayout,
     layout: PipelineLayout,
     pipeline: Pipeline,
     _pool: DescriptorPool,
     /// data → scratch, scratch → data.
     sets: [vk::DescriptorSet; 2],
+    /// Workgroups per batch entry along x.
+    groups_x: u32,
 }
 
-/// Push constants of fft.comp.
+/// Push constants of both kernels.
 #[repr(C)]
 #[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
 struct FftParams {
@@ -116,91 +187,151 @@ struct FftParams {
 }
 
 impl GpuFft {
-    /// Plans transforms of `batch` N×N arrays. `extra_usage` is added to the data buffer's usage
-    /// (TRANSFER_SRC/DST are always there).
+    /// Plans transforms of `batch` N×N arrays with the device's kernel ([`Kernel::for_device`]).
     pub fn new(ctx: &Arc<Context>, n: usize, batch: usize) -> anyhow::Result<GpuFft> {
+        GpuFft::with_kernel(ctx, n, batch, Kernel::for_device(ctx, n, batch))
+    }
+
+    /// Plans transforms with a given kernel (tests run both on every device that can).
+    pub fn with_kernel(
+        ctx: &Arc<Context>,
+        n: usize,
+        batch: usize,
+        kernel: Kernel,
+    ) -> anyhow::Result<GpuFft> {
         check_plan(ctx, n, batch).map_err(anyhow::Error::msg)?;
         let bytes = (batch * n * n * 8) as u64;
         let usage = vk::BufferUsageFlags::STORAGE_BUFFER
+            | vk::BufferUsageFlags::UNIFORM_TEXEL_BUFFER
             | vk::BufferUsageFlags::TRANSFER_SRC
             | vk::BufferUsageFlags::TRANSFER_DST;
         let data = Buffer::new(ctx, "fft data", bytes, usage, MemoryLocation::GpuOnly)?;
         let scratch = Buffer::new(ctx, "fft scratch", bytes, usage, MemoryLocation::GpuOnly)?;
-        let twiddle_values: Vec<f32> = (0..n)
-            .flat_map(|j| {
-                let a = 2.0 * std::f64::consts::PI * j as f64 / n as f64;
-                [a.cos() as f32, a.sin() as f32]
-            })
-            .collect();
-        let mut twiddles = Buffer::new(
-            ctx,
-            &format!("fft twiddles N={n}"),
-            (n * 8) as u64,
-            vk::BufferUsageFlags::STORAGE_BUFFER,
-            MemoryLocation::CpuToGpu,
-        )?;
-        twiddles.write(bytemuck::cast_slice(&twiddle_values));
-
         let storage = vk::DescriptorType::STORAGE_BUFFER;
+        let texel = vk::DescriptorType::UNIFORM_TEXEL_BUFFER;
         let stage = vk::ShaderStageFlags::COMPUTE;
-        let set_layout = DescriptorSetLayout::new(
-            ctx,
-            "fft set layout",
-            &[
-                (0, storage, stage),
-                (1, storage, stage),
-                (2, storage, stage),
-            ],
-        )?;
+        let log2_n = n.trailing_zeros();
+
+        let mut inputs = Vec::new();
+        let mut twiddles = None;
+        let (bindings, spirv, constants, groups_x): (Vec<_>, _, Vec<u32>, u32) = match kernel {
+            Kernel::Shared { threads } => (
+                vec![
+                    (0, storage, stage),
+                    (1, storage, stage),
+                    (2, storage, stage),
+                ],
+                shaders::OCEAN_FFT_COMP,
+                vec![log2_n, threads],
+                n as u32,
+            ),
+            Kernel::Registers { log2_lanes } => (
+                vec![(0, texel, stage), (1, storage, stage)],
+                shaders::OCEAN_FFT_ROWS_COMP,
+                vec![
+                    log2_n,
+                    log2_lanes,
+                    REGISTER_ROWS,
+                    REGISTER_ROWS << log2_lanes,
+                ],
+                n as u32 / REGISTER_ROWS,
+            ),
+        };
+        let set_layout = DescriptorSetLayout::new(ctx, "fft set layout", &bindings)?;
         let layout = PipelineLayout::new(
             ctx,
             "fft layout",
             &[&set_layout],
             Some((stage, std::mem::size_of::<FftParams>() as u32)),
         )?;
-        let threads = threads_for(ctx, n);
         let pipeline = Pipeline::compute(
             ctx,
             &layout,
-            &format!("fft N={n}"),
-            shaders::OCEAN_FFT_COMP,
-            &[n.trailing_zeros(), threads],
+            &format!("fft N={n} {kernel:?}"),
+            spirv,
+            &constants,
         )?;
-        let pool = DescriptorPool::new(ctx, "fft descriptors", 2, &[(storage, 6)])?;
+        let pool = DescriptorPool::new(ctx, "fft descriptors", 2, &[(storage, 6), (texel, 2)])?;
         let forward = pool.allocate(&set_layout, "fft rows: data -> scratch")?;
         let back = pool.allocate(&set_layout, "fft columns: scratch -> data")?;
-        for (set, from, to) in [(forward, &data, &scratch), (back, &scratch, &data)] {
-            descriptors::update(
-                ctx,
-                set,
-                &[
-                    Write::StorageBuffer {
-                        binding: 0,
-                        buffer: from.raw,
-                    },
-                    Write::StorageBuffer {
-                        binding: 1,
-                        buffer: to.raw,
-                    },
-                    Write::StorageBuffer {
-                        binding: 2,
-                        buffer: twiddles.raw,
-                    },
-                ],
-            );
+        match kernel {
+            Kernel::Shared { .. } => {
+                let values: Vec<f32> = (0..n)
+                    .flat_map(|j| {
+                        let a = 2.0 * std::f64::consts::PI * j as f64 / n as f64;
+                        [a.cos() as f32, a.sin() as f32]
+                    })
+                    .collect();
+                let mut buffer = Buffer::new(
+                    ctx,
+                    &format!("fft twiddles N={n}"),
+                    (n * 8) as u64,
+                    vk::BufferUsageFlags::STORAGE_BUFFER,
+                    MemoryLocation::CpuToGpu,
+                )?;
+                buffer.write(bytemuck::cast_slice(&values));
+                for (set, from, to) in [(forward, &data, &scratch), (back, &scratch, &data)] {
+                    descriptors::update(
+                        ctx,
+                        set,
+                        &[
+                            Write::StorageBuffer {
+                                binding: 0,
+                                buffer: from.raw,
+                            },
+                            Write::StorageBuffer {
+                                binding: 1,
+                                buffer: to.raw,
+                            },
+                            Write::StorageBuffer {
+                                binding: 2,
+                                buffer: buffer.raw,
+                            },
+                        ],
+                    );
+                }
+                twiddles = Some(buffer);
+            }
+            Kernel::Registers { .. } => {
+                let rgba = vk::Format::R32G32B32A32_SFLOAT;
+                let data_view = BufferView::new(ctx, "fft data as RGBA32F", &data, rgba)?;
+                let scratch_view = BufferView::new(ctx, "fft scratch as RGBA32F", &scratch, rgba)?;
+                for (set, from, to) in [
+                    (forward, &data_view, &scratch),
+                    (back, &scratch_view, &data),
+                ] {
+                    descriptors::update(
+                        ctx,
+                        set,
+                        &[
+                            Write::UniformTexelBuffer {
+                                binding: 0,
+                                view: from.raw,
+                            },
+                            Write::StorageBuffer {
+                                binding: 1,
+                                buffer: to.raw,
+                            },
+                        ],
+                    );
+                }
+                inputs = vec![data_view, scratch_view];
+            }
         }
         Ok(GpuFft {
             n,
             batch,
-            threads,
+            kernel,
             data,
             scratch,
+            _inputs: inputs,
             _twiddles: twiddles,
             _set_layout: set_layout,
             layout,
             pipeline,
             _pool: pool,
             sets: [forward, back],
+            groups_x,
         })
     }
 
@@ -232,7 +363,7 @@ impl GpuFft {
             ],
         );
         rec.bind_sets(&self.pipeline, &self.layout, &[self.sets[0]]);
-        rec.dispatch(self.n as u32, self.batch as u32, 1);
+        rec.dispatch(self.groups_x, self.batch as u32, 1);
         rec.barrier(
             &[],
             &[
@@ -245,7 +376,7 @@ impl GpuFft {
             ],
         );
         rec.bind_sets(&self.pipeline, &self.layout, &[self.sets[1]]);
-        rec.dispatch(self.n as u32, self.batch as u32, 1);
+        rec.dispatch(self.groups_x, self.batch as u32, 1);
     }
 }
 
