@@ -24,7 +24,7 @@ const vec2 ROOTS16[16] = vec2[](
 // register array of R vec2 and every loop unrolled, so every index is a constant.
 #define DFT_IN_REGISTERS(v, LOG_R)                                                           \
     [[unroll]] for (uint ls = 0u; ls < LOG_R; ++ls) {                                        \
-        uint s_ = 1u << ls;                                                            \
+        uint s_ = 1u << ls;                                                                  \
         const uint R_ = 1u << LOG_R;                                                         \
         vec2 u_[R_];                                                                         \
         [[unroll]] for (uint jj = 0u; jj < R_ / 2u; ++jj) {                                  \

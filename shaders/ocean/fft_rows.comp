@@ -12,10 +12,10 @@
 // fetch, one vector gather per texel on llvmpipe, where a storage-buffer load is a branch per
 // lane and component); no shared memory and no barrier.
 //
-// T > 1 is one step of a four-step FFT (Bailey 1990, "FFTs in external or hierarchical memory"):
-// lane t transforms x[t + T i], i < M, in registers (Y_t), scales Y_t[k1] by w_N^{t k1}, and the
-// T lanes of a row finish T-point DFTs over t with subgroup shuffles:
-//   X[k1 + M k2] = Σ_t w_T^{t k2} (w_N^{t k1} Y_t[k1]),  w_n = e^{±2πi/n}.
+// T = 2 is one step of a four-step FFT (Bailey 1990, "FFTs in external or hierarchical memory"):
+// lane t transforms x[t + 2i], i < M, in registers (Y_t), and the pair finishes with one radix-2
+// butterfly over t through a subgroup shuffle:
+//   X[k1 + M k2] = Σ_t (-1)^{t k2} (w_N^{t k1} Y_t[k1]),  w_n = e^{±2πi/n}.
 //
 // Inputs: src4 = the source as RGBA32F texels (x[2i], x[2i+1]). Output: dst (batch, N, N) vec2,
 // transposed. Push constant: +1 inverse, -1 forward. Twiddles are compile-time constants
@@ -83,17 +83,17 @@ void main() {
     uint row_base = (batch * N + row) * N;
     uint out_base = batch * N * N + row;
 
-    // x[i] = row[t + T i]: texel (t + T i) / 2, half (t + T i) % 2.
-    [[unroll]] for (uint i = 0u; i < M; ++i) {
-        if (T == 1u && (i & 1u) == 1u) {
-            continue;
+    // x[i] = row[t + T i]; texel j holds row[2j] and row[2j + 1].
+    if (T == 1u) {
+        [[unroll]] for (uint j = 0u; j < M / 2u; ++j) {
+            vec4 pair = texelFetch(src4, int((row_base >> 1u) + j));
+            x[2u * j] = pair.xy;
+            x[2u * j + 1u] = pair.zw;
         }
-        vec4 pair = texelFetch(src4, int((row_base + t + T * i) >> 1u));
-        if (T == 1u) {
-            x[i] = pair.xy;
-            x[i + 1u] = pair.zw;
-        } else {
-            x[i] = (t & 1u) == 0u ? pair.xy : pair.zw;
+    } else {
+        [[unroll]] for (uint i = 0u; i < M; ++i) {
+            vec4 pair = texelFetch(src4, int((row_base >> 1u) + i));
+            x[i] = t == 0u ? pair.xy : pair.zw;
         }
     }
 
@@ -117,33 +117,12 @@ void main() {
         return;
     }
 
-    // Scale by w_N^{t k1} (t picks among constants), then the T-point DFTs over t in log2(T)
-    // decimation-in-frequency rounds between partner lanes (subgroup shuffles, no memory).
-    // Round b pairs lanes differing in bit h = T >> (b + 1) inside sub-DFTs of S = 2h lanes:
-    //   lower lane: z + z_partner;  upper lane: w_S^{t mod h} (z_partner - z)
-    // and fixes bit b of k2 (upper = 1), so each lane ends with one X[k1 + M k2].
+    // Two lanes: lane 1 scales Y_1[k1] by w_N^{k1}, then one radix-2 butterfly across the pair
+    // (a subgroup shuffle, no memory): X[k1] = Y_0 + Y'_1 on lane 0, X[k1 + M] = Y_0 - Y'_1 on
+    // lane 1.
     [[unroll]] for (uint k1 = 0u; k1 < M; ++k1) {
-        vec2 w = vec2(1.0, 0.0);
-        [[unroll]] for (uint tt = 1u; tt < T; ++tt) {
-            if (t == tt) {
-                w = root(tt * k1, N);
-            }
-        }
-        vec2 z = cmul(x[k1], w);
-        uint k2 = 0u;
-        [[unroll]] for (uint b = 0u; b < LOG2_T; ++b) {
-            const uint h = T >> (b + 1u);
-            vec2 partner = subgroupShuffleXor(z, h);
-            bool upper = (t & h) != 0u;
-            vec2 tw = vec2(1.0, 0.0);
-            [[unroll]] for (uint j = 1u; j < h; ++j) {
-                if ((t & (h - 1u)) == j) {
-                    tw = root(j, 2u * h);
-                }
-            }
-            z = upper ? cmul(partner - z, tw) : z + partner;
-            k2 |= upper ? 1u << b : 0u;
-        }
-        dst[out_base + (k1 + M * k2) * N] = z;
+        vec2 z = t == 0u ? x[k1] : cmul(x[k1], root(k1, N));
+        vec2 partner = subgroupShuffleXor(z, 1u);
+        dst[out_base + (k1 + M * t) * N] = t == 0u ? z + partner : partner - z;
     }
 }
