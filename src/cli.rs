@@ -9,6 +9,8 @@ use crate::frontend::RunSettings;
 use crate::gpu::PresentMode;
 use crate::ocean::{gerstner, OceanSettings, SeaState, SpectrumKind, Waves};
 use crate::profile::WARMUP_FRAMES;
+use crate::render::{default_sun_dir, Camera, FresnelModel, SceneLayout, SceneSettings, ViewMode};
+use glam::Vec3;
 
 /// Largest accepted `--size` side; the device limit is checked again at run time.
 pub const MAX_SIDE: u32 = 16384;
@@ -131,6 +133,72 @@ pub struct Cli {
     #[arg(long, value_name = "DIR")]
     pub dump: Option<PathBuf>,
 
+    /// Simulation time of the first frame (s); with --dt, pictures are reproducible.
+    #[arg(long, value_name = "T", default_value = "0", allow_hyphen_values = true,
+          value_parser = |s: &str| parse_real(s, 0.0, 1.0e6, true), help_heading = "Scene")]
+    pub time: f64,
+
+    /// Simulation time step per frame (s); default 1/60 headless, wall-clock time in a window.
+    #[arg(long, value_name = "DT", allow_hyphen_values = true,
+          value_parser = |s: &str| parse_real(s, 0.0, 10.0, false), help_heading = "Scene")]
+    pub dt: Option<f64>,
+
+    /// Camera position in metres (y up, water at y = 0); default 0,12,0.
+    #[arg(long, value_name = "X,Y,Z", value_parser = parse_vec3, allow_hyphen_values = true, help_heading = "Scene")]
+    pub camera: Option<[f32; 3]>,
+
+    /// Point the camera looks at; default: toward -z, slightly down.
+    #[arg(long, value_name = "X,Y,Z", value_parser = parse_vec3, allow_hyphen_values = true, help_heading = "Scene")]
+    pub look_at: Option<[f32; 3]>,
+
+    /// Show the final picture or one intermediate full screen.
+    #[arg(long, value_enum, value_name = "VIEW", default_value_t = ViewArg::Final, help_heading = "Scene")]
+    pub view: ViewArg,
+
+    /// Reflection/refraction weight: schlick (approximation), exact (Fresnel equations, seed
+    /// 004), power (seed 001: refraction weight cos θ^0.5).
+    #[arg(long, value_enum, value_name = "MODEL", default_value_t = FresnelArg::Schlick, help_heading = "Scene")]
+    pub fresnel: FresnelArg,
+
+    /// Size of the reflection and refraction textures relative to the window (0.1 to 1).
+    #[arg(long, value_name = "S", default_value = "0.5", allow_hyphen_values = true,
+          value_parser = |s: &str| parse_real(s, 0.1, 1.0, true), help_heading = "Scene")]
+    pub rtt_scale: f64,
+
+    /// Target on-screen length of a tessellated ocean edge (px, 2 to 256); smaller is finer.
+    #[arg(long, value_name = "PX", default_value = "16", allow_hyphen_values = true,
+          value_parser = |s: &str| parse_real(s, 2.0, 256.0, true), help_heading = "Scene")]
+    pub tess_edge: f64,
+
+    /// Sun direction: azimuth (degrees from +x toward +z) and elevation (degrees above the
+    /// horizon, 0 to 90); default -70.7,11.7.
+    #[arg(long, value_name = "AZ,EL", value_parser = parse_sun, allow_hyphen_values = true, help_heading = "Scene")]
+    pub sun: Option<[f32; 2]>,
+
+    /// DU/DV map PNG (red = du, green = dv, 128 = no offset), tiled over the water; default:
+    /// generated at start-up.
+    #[arg(long, value_name = "FILE.png", help_heading = "Scene")]
+    pub dudv: Option<PathBuf>,
+
+    /// Skybox: a directory of six PNG faces px nx py ny pz nz (square, same size); default: the
+    /// analytic sky.
+    #[arg(long, value_name = "DIR", help_heading = "Scene")]
+    pub skybox: Option<PathBuf>,
+
+    /// Where the buoy floats (m).
+    #[arg(long, value_name = "X,Z", value_parser = parse_vec2, allow_hyphen_values = true,
+          default_value = "9,-55", help_heading = "Scene")]
+    pub buoy: [f32; 2],
+
+    /// Depth of the sea floor around the island (m, 1 to 500).
+    #[arg(long, value_name = "M", default_value = "18", allow_hyphen_values = true,
+          value_parser = |s: &str| parse_real(s, 1.0, 500.0, true), help_heading = "Scene")]
+    pub sea_floor: f64,
+
+    /// Test only: paint the main view's sky in this solid linear colour (0..1 each).
+    #[arg(long, hide = true, value_name = "R,G,B", value_parser = parse_vec3)]
+    pub background: Option<[f32; 3]>,
+
     /// Test only: record a deliberate synchronization hazard (validation must catch it).
     #[arg(long, hide = true)]
     pub inject_sync_hazard: bool,
@@ -248,6 +316,65 @@ fn parse_real(s: &str, lo: f64, hi: f64, closed: bool) -> Result<f64, String> {
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum ViewArg {
+    Final,
+    Reflection,
+    Refraction,
+    Displacement,
+    Normals,
+    Foam,
+    Dudv,
+    Wireframe,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum FresnelArg {
+    Schlick,
+    Exact,
+    Power,
+}
+
+/// `N,N,...`: exactly `len` finite numbers.
+fn parse_list(s: &str, len: usize) -> Result<Vec<f32>, String> {
+    let values: Vec<&str> = s.split(',').collect();
+    let expected = || {
+        format!(
+            "expected {len} comma-separated numbers, e.g. {}",
+            ["10", "-5", "2"][..len].join(",")
+        )
+    };
+    if values.len() != len {
+        return Err(expected());
+    }
+    values
+        .iter()
+        .map(|v| match v.trim().parse::<f32>() {
+            Ok(x) if x.is_finite() && x.abs() <= 1.0e6 => Ok(x),
+            Ok(_) => Err("each number must be finite and at most 1e6 in size".to_string()),
+            Err(_) => Err(expected()),
+        })
+        .collect()
+}
+
+fn parse_vec3(s: &str) -> Result<[f32; 3], String> {
+    let v = parse_list(s, 3)?;
+    Ok([v[0], v[1], v[2]])
+}
+
+fn parse_vec2(s: &str) -> Result<[f32; 2], String> {
+    let v = parse_list(s, 2)?;
+    Ok([v[0], v[1]])
+}
+
+fn parse_sun(s: &str) -> Result<[f32; 2], String> {
+    let v = parse_list(s, 2)?;
+    if !(0.0..=90.0).contains(&v[1]) {
+        return Err("the elevation must be from 0 to 90 degrees".to_string());
+    }
+    Ok([v[0], v[1]])
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum PresentModeArg {
     Fifo,
     Mailbox,
@@ -281,6 +408,108 @@ fn parse_size(s: &str) -> Result<(u32, u32), String> {
 pub struct UsageError(pub String);
 
 impl Cli {
+    /// The camera of `--camera` / `--look-at` (`None`: the default camera).
+    fn camera_setting(&self) -> Result<Option<Camera>, UsageError> {
+        if self.camera.is_none() && self.look_at.is_none() {
+            return Ok(None);
+        }
+        let default = Camera::default();
+        let position = self.camera.map(Vec3::from).unwrap_or(default.position);
+        if position.y < 0.5 {
+            return Err(UsageError(format!(
+                "--camera {},{},{}: the camera must be at least 0.5 m above the water (y >= 0.5)",
+                position.x, position.y, position.z
+            )));
+        }
+        let target = self
+            .look_at
+            .map(Vec3::from)
+            .unwrap_or(position + default.forward * 100.0);
+        Camera::looking_at(position, target).map(Some).ok_or_else(|| {
+            UsageError(format!(
+                "--look-at {},{},{}: must differ from the camera position and not be straight above or below it",
+                target.x, target.y, target.z
+            ))
+        })
+    }
+
+    fn scene_settings(&self) -> Result<SceneSettings, UsageError> {
+        for (flag, path) in [("--dudv", &self.dudv)] {
+            if let Some(path) = path {
+                let ext = path
+                    .extension()
+                    .and_then(|e| e.to_str())
+                    .map(str::to_ascii_lowercase);
+                if ext.as_deref() != Some("png") {
+                    return Err(UsageError(format!(
+                        "{flag} {}: the file name must end in .png",
+                        path.display()
+                    )));
+                }
+                if !path.is_file() {
+                    return Err(UsageError(format!(
+                        "{flag} {}: no such file",
+                        path.display()
+                    )));
+                }
+            }
+        }
+        if let Some(dir) = &self.skybox {
+            for face in crate::render::passes::sky::SKYBOX_FACES {
+                let file = dir.join(format!("{face}.png"));
+                if !file.is_file() {
+                    return Err(UsageError(format!(
+                        "--skybox {}: missing face {}",
+                        dir.display(),
+                        file.display()
+                    )));
+                }
+            }
+        }
+        if let Some(c) = self.background {
+            if c.iter().any(|v| !(0.0..=1.0).contains(v)) {
+                return Err(UsageError(
+                    "--background: each component must be from 0 to 1".to_string(),
+                ));
+            }
+        }
+        let sun_dir = match self.sun {
+            None => default_sun_dir(),
+            Some([az, el]) => {
+                let (az, el) = (az.to_radians(), el.to_radians());
+                Vec3::new(el.cos() * az.cos(), el.sin(), el.cos() * az.sin())
+            }
+        };
+        Ok(SceneSettings {
+            view: match self.view {
+                ViewArg::Final => ViewMode::Final,
+                ViewArg::Reflection => ViewMode::Reflection,
+                ViewArg::Refraction => ViewMode::Refraction,
+                ViewArg::Displacement => ViewMode::Displacement,
+                ViewArg::Normals => ViewMode::Normals,
+                ViewArg::Foam => ViewMode::Foam,
+                ViewArg::Dudv => ViewMode::Dudv,
+                ViewArg::Wireframe => ViewMode::Wireframe,
+            },
+            fresnel: match self.fresnel {
+                FresnelArg::Schlick => FresnelModel::Schlick,
+                FresnelArg::Exact => FresnelModel::Exact,
+                FresnelArg::Power => FresnelModel::Power,
+            },
+            rtt_scale: self.rtt_scale as f32,
+            tess_edge_px: self.tess_edge as f32,
+            layout: SceneLayout {
+                buoy_xz: self.buoy,
+                sea_floor_m: self.sea_floor as f32,
+                ..SceneLayout::default()
+            },
+            sun_dir,
+            dudv: self.dudv.clone(),
+            skybox: self.skybox.clone(),
+            background: self.background,
+        })
+    }
+
     /// Cross-checks the options and resolves defaults.
     pub fn settings(&self) -> Result<RunSettings, UsageError> {
         for (flag, path) in [
@@ -354,7 +583,13 @@ impl Cli {
             (None, true, false) => Some(1),
             (None, false, _) => None,
         };
+        let scene = self.scene_settings()?;
+        let camera = self.camera_setting()?;
         Ok(RunSettings {
+            scene,
+            camera,
+            start_time_s: self.time,
+            dt_s: self.dt,
             headless: self.headless,
             frames,
             size: self.size,

@@ -143,7 +143,9 @@ fn profile_has_every_pass() {
             "ocean evolve",
             "ocean fft",
             "ocean assemble",
-            "sky",
+            "reflection",
+            "refraction",
+            "scene",
             "water",
             "composite"
         ]

@@ -1,20 +1,45 @@
-// Per-frame uniforms shared by every scene pass (set 0, binding 0).
-// Filled by src/render/frame_uniforms.rs (`FrameUniforms`, std140). Rendering is camera-relative:
-// vertex positions are world positions minus camera_pos, so view_proj holds no translation.
+// Per-frame uniforms shared by every scene pass (set 0, binding 0), filled by
+// src/render/camera.rs (`FrameUniforms`, std140). Rendering is camera-relative: vertex positions
+// are world positions minus the view's eye, so view_proj holds no translation.
+struct View {
+    mat4 view_proj;      // eye-relative world position -> clip space (reversed-Z, infinite far)
+    mat4 inv_view_proj;  // clip space -> eye-relative position (used to build view rays)
+    vec4 eye;            // xyz: world position positions are relative to
+    vec4 clip_plane;     // world plane: dot(plane, vec4(world, 1)) < 0 is clipped (seed 001 eq. 2)
+};
+
 layout(set = 0, binding = 0, std140) uniform FrameUniforms {
-    mat4 view_proj;      // camera-relative world position -> clip space (reversed-Z, infinite far)
-    mat4 inv_view_proj;  // clip space -> camera-relative position (used to build view rays)
-    vec4 camera_pos;     // xyz: world camera position (m); w: simulation time (s)
+    View views[3];       // 0: camera, 1: reflection (mirrored about the water), 2: refraction
+    vec4 time;           // x: simulation time (s); y: water level (m); z: debug view; w: Fresnel model
     vec4 sun_dir;        // xyz: unit vector toward the sun; w: sun radiance scale
-    vec4 viewport;       // xy: target size (px); zw: 1 / size
+    vec4 viewport;       // xy: main target size (px); zw: 1 / size
     vec4 patch_m;        // side of each ocean cascade's patch (m), cascades 0..3
     vec4 ocean;          // x: number of cascades; y: 1 for a bounded window (Gerstner); zw: origin (m)
+    vec4 lod;            // x: focal length (px); y: target edge (px); z: max displacement (m); w: solid background
+    vec4 terrain;        // xy: island centre (m); z: sea floor depth (m); w: island radius (m)
+    vec4 objects[4];     // (x, z, radius, top height) of the objects in the water; 0 height = none
+    vec4 background;     // xyz: the solid test background (lod.w = 1)
 } frame;
+
+// Which view a draw renders (ViewIndex in src/render/camera.rs).
+layout(push_constant) uniform Pass { uint view; } pass;
+
+#define VIEW frame.views[pass.view]
+
+// Debug views (`--view`, ViewMode in src/render/mod.rs) the scene shaders react to.
+const int VIEW_FINAL = 0;
+const int VIEW_DISPLACEMENT = 4;
+const int VIEW_NORMALS = 5;
+const int VIEW_FOAM = 6;
+const int VIEW_WIREFRAME = 7;
+int debug_view() { return int(frame.time.z + 0.5); }
 
 // The ocean simulation's images of this frame's slot, one layer per cascade (GENERAL layout,
 // repeat sampler): (dx, h, dz, 0) and (dh/dx, dh/dz, Jacobian, foam).
 layout(set = 0, binding = 1) uniform sampler2DArray ocean_displacement;
 layout(set = 0, binding = 2) uniform sampler2DArray ocean_normals;
+// The sky cubemap (rendered when the sun changes, or loaded with --skybox).
+layout(set = 0, binding = 3) uniform samplerCube sky_cube;
 
 // Where cascade c's images hold world point xz: (xz - origin) / patch, repeating for the FFT
 // cascades. `weight` fades a cascade out with distance before its waves alias, and a bounded
@@ -30,8 +55,12 @@ vec3 ocean_uv(vec2 world_xz, int c, float dist, out float weight) {
     return vec3(uv, c);
 }
 
-// World-space view ray through a pixel, from the fragment's normalized device coordinates.
+// World-space direction of the view ray through a pixel, from normalized device coordinates.
 vec3 view_ray(vec2 ndc) {
-    vec4 p = frame.inv_view_proj * vec4(ndc, 0.5, 1.0);
+    vec4 p = VIEW.inv_view_proj * vec4(ndc, 0.5, 1.0);
     return normalize(p.xyz / p.w);
 }
+
+// Sky radiance along a world direction, from the cubemap (faces as Vulkan addresses them;
+// shaders/sky/sky_cube.frag renders them with the inverse mapping).
+vec3 sky_lookup(vec3 dir) { return textureLod(sky_cube, dir, 0.0).rgb; }

@@ -1,14 +1,17 @@
 #version 460
-// Sky pass: every pixel gets the radiance of its view ray (common/sky.glsl).
-// Inputs: frame uniforms (inverse view-projection, sun). Output: HDR colour.
+// Sky pass: every pixel gets the sky cubemap's radiance along its view ray (in the reflection
+// view the ray is mirrored, so the reflection shows the sky the water reflects). With the test
+// background on (lod.w), the main view paints a solid colour found nowhere else instead.
 #include "common/frame.glsl"
-#include "common/sky.glsl"
 
 layout(location = 0) in vec2 in_uv;
 layout(location = 1) in vec2 in_ndc;
 layout(location = 0) out vec4 out_colour;
 
 void main() {
-    vec3 dir = view_ray(in_ndc);
-    out_colour = vec4(sky_radiance(dir, frame.sun_dir.xyz, frame.sun_dir.w), 1.0);
+    if (frame.lod.w > 0.5 && pass.view == 0u) {
+        out_colour = vec4(frame.background.rgb, 1.0);
+        return;
+    }
+    out_colour = vec4(sky_lookup(view_ray(in_ndc)), 1.0);
 }

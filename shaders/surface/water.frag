@@ -1,20 +1,35 @@
 #version 460
-// Ocean surface shading (the full treatment comes with the rendering issue): normals from the
-// simulation's slopes, Schlick Fresnel (F0 = 0.02, water n = 1.33) between the sky's reflection and
-// a deep-water body colour, a Blinn-Phong sun highlight, foam from the simulation, and a distance
-// haze that blends into the horizon sky.
+// Ocean surface shading (seed 001 §3.3–3.6, seed 003, seed 004):
+// - normal from the simulation's slopes (summed over cascades, each fading out with distance);
+// - reflection and refraction textures at this pixel's screen position, offset by a scrolling
+//   DU/DV map (seed 001 eq. 4–5) plus the normal's slope; both offsets fade with distance;
+// - water depth along the view ray from the refraction depth texture, Beer-Lambert colour;
+// - Fresnel weight between reflection and refraction (`--fresnel`: Schlick, exact (seed 004),
+//   or seed 001 eq. 6 r = cos θ^0.5);
+// - Blinn-Phong sun highlight (seed 003), foam from the simulation, haze toward the horizon.
 #include "common/frame.glsl"
-#include "common/sky.glsl"
 
 layout(location = 0) in vec3 in_rel_pos;
 layout(location = 1) in vec2 in_world_xz;
+layout(location = 2) in vec3 in_displacement;
 layout(location = 0) out vec4 out_colour;
 
-const vec3 WATER_BODY = vec3(0.004, 0.035, 0.06);
-const float F0 = 0.02;
+layout(set = 1, binding = 0) uniform sampler2D reflection_colour;
+layout(set = 1, binding = 1) uniform sampler2D refraction_colour;
+layout(set = 1, binding = 2) uniform sampler2D refraction_depth;
+layout(set = 1, binding = 3) uniform sampler2D dudv_map;
 
-// Slopes add across cascades (normals do not): n = normalize(-Σ ∂h/∂x, 1, -Σ ∂h/∂z). Each
-// cascade fades out with distance before its waves alias. Returns (normal, foam).
+const vec3 WATER_COLOUR = vec3(0.004, 0.045, 0.075); // c_o: deep water, seen through nothing
+const vec3 ABSORPTION = vec3(0.45, 0.09, 0.06);      // 1/m, red absorbed first
+const float N_WATER = 1.333;
+const float F0 = 0.02;               // ((n - 1) / (n + 1))^2
+const float DUDV_TILE_M = 24.0;      // world size of one DU/DV tile
+const float DUDV_STRENGTH = 0.012;   // screen-space offset at full strength
+const float DUDV_SPEED = 0.03;       // tiles per second (seed 001 eq. 5: t cycles in (0, 1))
+const float SLOPE_STRENGTH = 0.05;   // screen-space offset per unit slope
+const float SHININESS = 720.0;
+const float NEAR_M = 0.1;            // Camera::near_m (depth = near / view distance)
+
 vec4 ocean_normal_foam(vec2 world_xz, float dist) {
     vec2 slope = vec2(0.0);
     float foam = 0.0;
@@ -29,29 +44,92 @@ vec4 ocean_normal_foam(vec2 world_xz, float dist) {
     return vec4(normalize(vec3(-slope.x, 1.0, -slope.y)), foam);
 }
 
+// Fraction of light reflected at incidence cos θ (θ between normal and view).
+float fresnel(float cos_theta) {
+    int model = int(frame.time.w + 0.5);
+    if (model == 1) {
+        // Exact unpolarised Fresnel equations (seed 004 §2.5), Snell: sin θt = sin θi / n.
+        float ti = acos(clamp(cos_theta, 1e-4, 1.0));
+        if (ti < 1e-3) {
+            return F0;
+        }
+        float tt = asin(sin(ti) / N_WATER);
+        float s = sin(tt - ti) / sin(tt + ti);
+        float t = tan(tt - ti) / tan(tt + ti);
+        return clamp(0.5 * (s * s + t * t), 0.0, 1.0);
+    }
+    if (model == 2) {
+        // Seed 001 eq. 6: r_refract = θ^r with r = 0.5, θ taken as cos θ = N·V (the angle itself
+        // would make straight-down views fully reflective).
+        return 1.0 - pow(cos_theta, 0.5);
+    }
+    // Schlick's approximation.
+    return F0 + (1.0 - F0) * pow(1.0 - cos_theta, 5.0);
+}
+
 void main() {
     float dist = length(in_rel_pos);
     vec3 v = -in_rel_pos / dist; // toward the camera
     vec4 nf = ocean_normal_foam(in_world_xz, dist);
     vec3 n = nf.xyz;
+    int view = debug_view();
+    if (view == VIEW_DISPLACEMENT) {
+        out_colour = vec4(0.5 + 0.25 * in_displacement.xzy * vec3(1.0, 1.0, 1.0), 1.0);
+        return;
+    }
+    if (view == VIEW_NORMALS) {
+        out_colour = vec4(n * 0.5 + 0.5, 1.0);
+        return;
+    }
+    if (view == VIEW_FOAM) {
+        out_colour = vec4(vec3(nf.w), 1.0);
+        return;
+    }
+    if (view == VIEW_WIREFRAME) {
+        out_colour = vec4(0.9, 0.95, 1.0, 1.0);
+        return;
+    }
     vec3 sun = frame.sun_dir.xyz;
 
-    vec3 r = reflect(-v, n);
-    r.y = abs(r.y); // a reflected ray never enters the water
+    // Distortion (seed 001 eq. 4-5): DU/DV sampled twice, scrolling in opposite directions.
+    float t = fract(frame.time.x * DUDV_SPEED);
+    vec2 tile = in_world_xz / DUDV_TILE_M;
+    vec2 dudv = texture(dudv_map, tile + vec2(t, 0.0)).rg * 2.0 - 1.0;
+    dudv += texture(dudv_map, tile * 0.73 + vec2(-t, t)).rg * 2.0 - 1.0;
+    float fade = clamp(1.0 - dist / 3000.0, 0.0, 1.0) / max(1.0, dist / 40.0);
+    vec2 offset = (dudv * DUDV_STRENGTH + n.xz * SLOPE_STRENGTH) * fade;
+    vec2 screen = gl_FragCoord.xy * frame.viewport.zw;
+
+    vec3 c_reflect = texture(reflection_colour, clamp(screen + offset, 0.001, 0.999)).rgb;
+
+    // Water thickness along the ray: refraction depth behind the surface minus the surface's.
+    float water_view = NEAR_M / gl_FragCoord.z;
+    vec2 refr_uv = clamp(screen + offset, 0.001, 0.999);
+    float floor_ndc = texture(refraction_depth, refr_uv).r;
+    if (NEAR_M / max(floor_ndc, 1e-30) < water_view) {
+        // The offset reached something in front of the water: use the undistorted point.
+        refr_uv = screen;
+        floor_ndc = texture(refraction_depth, refr_uv).r;
+    }
+    vec3 c_refract = texture(refraction_colour, refr_uv).rgb;
+    float floor_view = floor_ndc > 0.0 ? NEAR_M / floor_ndc : 1e9;
+    float thickness = max(floor_view - water_view, 0.0) * dist / water_view;
+    // Seed 001 eq. 7 fades the whole colour toward c_o with depth, which removes reflections
+    // over deep water; the depth fade belongs to the refracted light only (Beer-Lambert).
+    vec3 transmitted = mix(WATER_COLOUR, c_refract, exp(-thickness * ABSORPTION));
+
     float cos_theta = clamp(dot(n, v), 0.0, 1.0);
-    float fresnel = F0 + (1.0 - F0) * pow(1.0 - cos_theta, 5.0);
+    float f = fresnel(cos_theta);
+    vec3 colour = mix(transmitted, c_reflect, f);
 
-    vec3 reflected = sky_gradient(r, sun);
-    float diffuse = max(dot(n, sun), 0.0) * 0.5 + 0.5;
-    vec3 body = WATER_BODY * diffuse * (SKY_HORIZON + SUN_COLOUR);
-    vec3 colour = mix(body, reflected, fresnel);
+    // Foam: white, lit by the sun and sky.
     colour = mix(colour, vec3(0.85, 0.9, 0.92) * (0.6 + 0.4 * max(sun.y, 0.0)), nf.w * 0.8);
-
+    // c_h: Blinn-Phong sun highlight (seed 003).
     vec3 h = normalize(v + sun);
-    float spec = pow(max(dot(n, h), 0.0), 720.0) * frame.sun_dir.w * 0.25;
-    colour += SUN_COLOUR * spec * fresnel / F0 * 0.2;
+    float spec = pow(max(dot(n, h), 0.0), SHININESS) * frame.sun_dir.w * 0.05;
+    colour += vec3(1.0, 0.9, 0.72) * spec;
 
-    vec3 horizon = sky_gradient(normalize(vec3(-v.x, 0.0, -v.z) + vec3(0.0, 0.002, 0.0)), sun);
+    vec3 horizon = sky_lookup(normalize(vec3(-v.x, 0.0, -v.z) + vec3(0.0, 0.002, 0.0)));
     float haze = 1.0 - exp(-dist / 9000.0);
     out_colour = vec4(mix(colour, horizon, haze), 1.0);
 }

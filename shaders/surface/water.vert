@@ -1,38 +1,19 @@
 #version 460
-// Ocean surface as a displaced grid (the tessellated tiles come with the rendering issue): a
-// camera-centred grid whose spacing grows with distance (|u|^3 warp: 0.1 m cells under the camera,
-// reaching 20 km), displaced by the sum of every cascade's displacement image at the vertex's
-// world position. Positions are camera-relative (frame.glsl).
-// Outputs: camera-relative position, undisplaced world xz (for the normal lookup).
+// Ocean patches: instance r draws row r of the patch grid (common/water.glsl); vertex i is
+// corner i % 4 of patch i / 4 of the row. No vertex buffers. Output: the corner's undisplaced
+// world xz. (One instance per row: lavapipe drops patches of a draw whose tessellated output
+// grows too large, so each instance stays small.)
 #include "common/frame.glsl"
+#include "common/water.glsl"
 
-layout(location = 0) out vec3 out_rel_pos;
-layout(location = 1) out vec2 out_world_xz;
+layout(location = 0) out vec2 out_world_xz;
 
-const uint GRID = 192;           // quads per side
-const float FAR_M = 20000.0;
-const uvec2 CORNERS[6] = uvec2[](uvec2(0, 0), uvec2(1, 1), uvec2(1, 0), uvec2(0, 0), uvec2(0, 1), uvec2(1, 1));
-
-vec3 ocean_displacement_at(vec2 world_xz, float dist) {
-    vec3 d = vec3(0.0);
-    int cascades = int(frame.ocean.x);
-    for (int c = 0; c < cascades; ++c) {
-        float weight;
-        vec3 uv = ocean_uv(world_xz, c, dist, weight);
-        d += weight * textureLod(ocean_displacement, uv, 0.0).xyz;
-    }
-    return d;
-}
+const uvec2 CORNERS[4] = uvec2[](uvec2(0, 0), uvec2(1, 0), uvec2(1, 1), uvec2(0, 1));
 
 void main() {
-    uint quad = uint(gl_VertexIndex) / 6u;
-    uvec2 cell = uvec2(quad % GRID, quad / GRID) + CORNERS[uint(gl_VertexIndex) % 6u];
-    vec2 u = vec2(cell) / float(GRID) * 2.0 - 1.0;
-    vec2 offset = sign(u) * abs(u) * abs(u) * abs(u) * FAR_M;
-    vec2 world_xz = frame.camera_pos.xz + offset;
-    vec3 d = ocean_displacement_at(world_xz, length(offset));
-    vec3 rel = vec3(offset.x + d.x, d.y - frame.camera_pos.y, offset.y + d.z);
-    out_rel_pos = rel;
-    out_world_xz = world_xz;
-    gl_Position = frame.view_proj * vec4(rel, 1.0);
+    uint patch_index = uint(gl_VertexIndex) / 4u;
+    uvec2 cell = uvec2(patch_index, uint(gl_InstanceIndex)) + CORNERS[uint(gl_VertexIndex) % 4u];
+    vec2 u = vec2(cell) / float(PATCHES) * 2.0 - 1.0;
+    vec2 centre = floor(frame.views[0].eye.xz / SNAP_M) * SNAP_M;
+    out_world_xz = centre + vec2(warp(u.x), warp(u.y));
 }

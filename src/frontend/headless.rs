@@ -1,6 +1,6 @@
 //! Headless frontend: renders `--frames` frames into an offscreen target, reads the last one back
-//! and writes `--screenshot` as PNG. Time advances by a fixed 1/60 s per frame, so a run is
-//! reproducible.
+//! and writes `--screenshot` as PNG. Time starts at `--time` and advances by a fixed `--dt`
+//! (default 1/60 s) per frame, so a run is reproducible.
 
 use std::time::{Duration, Instant};
 
@@ -65,6 +65,7 @@ pub fn run(s: &RunSettings) -> anyhow::Result<Outcome> {
             layers: 1,
             array_view: false,
             shared: false,
+            cube: false,
         },
     )?;
     let readback = if screenshot.is_some() {
@@ -86,7 +87,7 @@ pub fn run(s: &RunSettings) -> anyhow::Result<Outcome> {
     for i in 0..frames {
         let capture = readback.as_ref().filter(|_| i + 1 == frames);
         let inputs = FrameInputs {
-            time_s: i as f32 * FIXED_DT_S,
+            time_s: (s.start_time_s + i as f64 * s.dt_s.unwrap_or(FIXED_DT_S as f64)) as f32,
             ..FrameInputs::default()
         };
         last_value = session.frame(&output, &inputs, &[], &[], |rec| {

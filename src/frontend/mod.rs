@@ -30,6 +30,14 @@ pub struct RunSettings {
     pub stats: bool,
     /// `--dump DIR`: the last frame's h0, displacement, normals (.npy) and params.json.
     pub dump: Option<PathBuf>,
+    /// How the scene looks (views, Fresnel, island, sky, DU/DV).
+    pub scene: crate::render::SceneSettings,
+    /// `--camera` / `--look-at` (`None`: the default camera).
+    pub camera: Option<crate::render::Camera>,
+    /// Simulation time of the first frame (s).
+    pub start_time_s: f64,
+    /// Time step per frame (s); `None`: 1/60 headless, wall-clock time in a window.
+    pub dt_s: Option<f64>,
 }
 
 /// What a finished run reports back to `main`.

@@ -60,13 +60,18 @@ impl Session {
             normals: simulation.normals.iter().map(|i| i.view).collect(),
             patch_m: simulation.patch_sizes(),
             cascades: simulation.cascades.len() as u32,
+            max_displacement_m: simulation.max_displacement_m as f32,
         };
+        let mut renderer = Renderer::new(ctx, output_format, extent, ocean, &s.scene)?;
+        if let Some(camera) = s.camera {
+            renderer.camera = camera;
+        }
         Ok(Session {
             ctx: ctx.clone(),
             frames: Frames::new(ctx)?,
             profiler,
             compute_profiler: Profiler::for_compute(ctx, WARMUP_FRAMES)?,
-            renderer: Renderer::new(ctx, output_format, extent, ocean)?,
+            renderer,
             simulation,
             hazard,
             cpu_frame_ms: Vec::new(),

@@ -238,7 +238,16 @@ impl App {
             .semaphore(image.ready)
             .stage_mask(vk::PipelineStageFlags2::ALL_COMMANDS)];
         let inputs = FrameInputs {
-            time_s: state.session.started.elapsed().as_secs_f32(),
+            time_s: match self.settings.dt_s {
+                Some(dt) => {
+                    (self.settings.start_time_s + state.session.frames.submitted() as f64 * dt)
+                        as f32
+                }
+                None => {
+                    (self.settings.start_time_s + state.session.started.elapsed().as_secs_f64())
+                        as f32
+                }
+            },
             ..FrameInputs::default()
         };
         let range = full_range(vk::ImageAspectFlags::COLOR, 1);

@@ -374,6 +374,38 @@ impl<'a> Recorder<'a> {
         };
     }
 
+    /// Copies a tightly packed buffer into every layer of a colour image in TRANSFER_DST_OPTIMAL.
+    pub fn copy_buffer_to_image_layers(&self, buffer: &Buffer, image: &super::image::Image) {
+        let region = vk::BufferImageCopy {
+            buffer_offset: 0,
+            buffer_row_length: 0,
+            buffer_image_height: 0,
+            image_subresource: vk::ImageSubresourceLayers {
+                aspect_mask: vk::ImageAspectFlags::COLOR,
+                mip_level: 0,
+                base_array_layer: 0,
+                layer_count: image.layers,
+            },
+            image_offset: vk::Offset3D::default(),
+            image_extent: vk::Extent3D {
+                width: image.extent.width,
+                height: image.extent.height,
+                depth: 1,
+            },
+        };
+        // SAFETY: recording-state invariant; the image is in TRANSFER_DST_OPTIMAL (caller's
+        // barrier) and the buffer holds all layers (caller's sizing).
+        unsafe {
+            self.ctx.device.cmd_copy_buffer_to_image(
+                self.cmd,
+                buffer.raw,
+                image.raw,
+                vk::ImageLayout::TRANSFER_DST_OPTIMAL,
+                &[region],
+            )
+        };
+    }
+
     /// Clears every layer of a colour image in GENERAL layout to zero.
     pub fn clear_image(&self, image: &super::image::Image) {
         let range = image.range();

@@ -25,6 +25,9 @@ pub struct ImageDesc<'a> {
     /// Used by both the graphics and the compute queue: CONCURRENT sharing when their families
     /// differ (correct by construction, no ownership transfers).
     pub shared: bool,
+    /// A cubemap: 6 layers (+x, -x, +y, -y, +z, -z), a cube view for sampling and one 2D view
+    /// per face for rendering into it (`Image::layer_views`).
+    pub cube: bool,
 }
 
 /// A 2D (array) image in device memory with a view of all its layers.
@@ -32,6 +35,8 @@ pub struct Image {
     ctx: Arc<Context>,
     pub raw: vk::Image,
     pub view: vk::ImageView,
+    /// One 2D view per layer (cubemaps only: render targets of the faces).
+    pub layer_views: Vec<vk::ImageView>,
     allocation: Option<Allocation>,
     pub format: vk::Format,
     pub extent: vk::Extent2D,
@@ -57,8 +62,13 @@ pub fn aspect_of(format: vk::Format) -> vk::ImageAspectFlags {
 impl Image {
     /// Creates a named image (optimal tiling, device-local) and its view.
     pub fn new(ctx: &Arc<Context>, desc: &ImageDesc) -> GpuResult<Image> {
-        let layers = desc.layers.max(1);
+        let layers = if desc.cube { 6 } else { desc.layers.max(1) };
         let info = vk::ImageCreateInfo::default()
+            .flags(if desc.cube {
+                vk::ImageCreateFlags::CUBE_COMPATIBLE
+            } else {
+                vk::ImageCreateFlags::empty()
+            })
             .image_type(vk::ImageType::TYPE_2D)
             .format(desc.format)
             .extent(vk::Extent3D {
@@ -105,6 +115,7 @@ impl Image {
             ctx: ctx.clone(),
             raw,
             view: vk::ImageView::null(),
+            layer_views: Vec::new(),
             allocation: Some(allocation),
             format: desc.format,
             extent: desc.extent,
@@ -120,7 +131,9 @@ impl Image {
         .vk("vkBindImageMemory")?;
         let view_info = vk::ImageViewCreateInfo::default()
             .image(raw)
-            .view_type(if layers > 1 || desc.array_view {
+            .view_type(if desc.cube {
+                vk::ImageViewType::CUBE
+            } else if layers > 1 || desc.array_view {
                 vk::ImageViewType::TYPE_2D_ARRAY
             } else {
                 vk::ImageViewType::TYPE_2D
@@ -132,6 +145,22 @@ impl Image {
             unsafe { ctx.device.create_image_view(&view_info, None) }.vk("vkCreateImageView")?;
         ctx.name(raw, desc.name);
         ctx.name(image.view, &format!("{} view", desc.name));
+        if desc.cube {
+            for layer in 0..layers {
+                let info = view_info
+                    .view_type(vk::ImageViewType::TYPE_2D)
+                    .subresource_range(vk::ImageSubresourceRange {
+                        base_array_layer: layer,
+                        layer_count: 1,
+                        ..full_range(aspect, 1)
+                    });
+                // SAFETY: as above; the range is one layer of the image.
+                let view =
+                    unsafe { ctx.device.create_image_view(&info, None) }.vk("vkCreateImageView")?;
+                ctx.name(view, &format!("{} face {layer}", desc.name));
+                image.layer_views.push(view);
+            }
+        }
         Ok(image)
     }
 
@@ -155,11 +184,10 @@ pub fn full_range(aspect: vk::ImageAspectFlags, layers: u32) -> vk::ImageSubreso
 impl Drop for Image {
     fn drop(&mut self) {
         if let Some(allocation) = self.allocation.take() {
-            let views = if self.view == vk::ImageView::null() {
-                vec![]
-            } else {
-                vec![self.view]
-            };
+            let mut views = std::mem::take(&mut self.layer_views);
+            if self.view != vk::ImageView::null() {
+                views.push(self.view);
+            }
             self.ctx.defer(Garbage::Image {
                 image: self.raw,
                 views,
@@ -182,10 +210,25 @@ impl Sampler {
         name: &str,
         address: vk::SamplerAddressMode,
     ) -> GpuResult<Sampler> {
+        Sampler::new(ctx, name, vk::Filter::LINEAR, address)
+    }
+
+    /// Nearest or linear filtering with the given addressing (nearest for depth textures, whose
+    /// formats need not support linear filtering).
+    pub fn new(
+        ctx: &Arc<Context>,
+        name: &str,
+        filter: vk::Filter,
+        address: vk::SamplerAddressMode,
+    ) -> GpuResult<Sampler> {
         let info = vk::SamplerCreateInfo::default()
-            .mag_filter(vk::Filter::LINEAR)
-            .min_filter(vk::Filter::LINEAR)
-            .mipmap_mode(vk::SamplerMipmapMode::LINEAR)
+            .mag_filter(filter)
+            .min_filter(filter)
+            .mipmap_mode(if filter == vk::Filter::NEAREST {
+                vk::SamplerMipmapMode::NEAREST
+            } else {
+                vk::SamplerMipmapMode::LINEAR
+            })
             .address_mode_u(address)
             .address_mode_v(address)
             .address_mode_w(address)

@@ -7,9 +7,10 @@ use ash::vk;
 use gpu_allocator::MemoryLocation;
 
 use super::buffer::Buffer;
-use super::command::{Access, Recorder};
+use super::command::{Access, ImageBarrier, Recorder};
 use super::context::Context;
 use super::error::{GpuError, GpuResult, VkResultExt};
+use super::image::Image;
 
 /// Records commands with `record`, submits them and blocks until the GPU has finished.
 pub fn run_once<R>(
@@ -112,6 +113,44 @@ pub fn upload(ctx: &Arc<Context>, dst: &Buffer, bytes: &[u8]) -> GpuResult<()> {
         rec.barrier(
             &[],
             &[(dst.raw, Access::COPY_WRITE, Access::ALL_READ_WRITE)],
+        );
+    })
+}
+
+/// Fills every layer of a colour image from tightly packed texels (layer after layer), leaving it
+/// in SHADER_READ_ONLY_OPTIMAL for fragment shaders. Waits.
+pub fn upload_image(ctx: &Arc<Context>, image: &Image, bytes: &[u8]) -> GpuResult<()> {
+    let mut staging = Buffer::new(
+        ctx,
+        "image upload staging",
+        bytes.len().max(4) as u64,
+        vk::BufferUsageFlags::TRANSFER_SRC,
+        MemoryLocation::CpuToGpu,
+    )?;
+    staging.write(bytes);
+    run_once(ctx, "image upload", |rec| {
+        rec.barrier(
+            &[ImageBarrier {
+                image: image.raw,
+                range: image.range(),
+                old_layout: vk::ImageLayout::UNDEFINED,
+                new_layout: vk::ImageLayout::TRANSFER_DST_OPTIMAL,
+                src: Access::NONE,
+                dst: Access::COPY_WRITE,
+            }],
+            &[],
+        );
+        rec.copy_buffer_to_image_layers(&staging, image);
+        rec.barrier(
+            &[ImageBarrier {
+                image: image.raw,
+                range: image.range(),
+                old_layout: vk::ImageLayout::TRANSFER_DST_OPTIMAL,
+                new_layout: vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL,
+                src: Access::COPY_WRITE,
+                dst: Access::FRAGMENT_SAMPLED,
+            }],
+            &[],
         );
     })
 }

@@ -183,6 +183,8 @@ pub struct Simulation {
     pub normals: Vec<Image>,
     queue: ComputeQueue,
     last_time_s: Option<f32>,
+    /// Bound on how far the surface moves from its rest position (m): culling margin.
+    pub max_displacement_m: f64,
 }
 
 impl Simulation {
@@ -212,6 +214,7 @@ impl Simulation {
                     layers,
                     array_view: true,
                     shared: true,
+                    cube: false,
                 },
             )
         };
@@ -281,6 +284,7 @@ impl Simulation {
                 },
             ]
         };
+        let max_displacement_m;
         let model = match &settings.waves {
             Waves::Fft => {
                 let fft = GpuFft::new(ctx, n, 4 * k)?;
@@ -289,6 +293,14 @@ impl Simulation {
                     .enumerate()
                     .flat_map(|(c, cascade)| h0(&settings.sea, n, cascade, c as u32, settings.seed))
                     .collect();
+                // Parseval: the height variance is Σ_k E|h(k,t)|² = 2 Σ_k |h0(k)|² (item 3's two
+                // terms); crests rarely pass 4σ, and choppiness moves points sideways by about
+                // λ times the height's scale.
+                let variance: f64 = h0_values
+                    .iter()
+                    .map(|[re, im]| 2.0 * (*re as f64 * *re as f64 + *im as f64 * *im as f64))
+                    .sum();
+                max_displacement_m = 4.0 * variance.sqrt() * (1.0 + settings.choppiness) + 0.5;
                 let h0_bytes: &[u8] = bytemuck::cast_slice(&h0_values);
                 let h0_buffer = Buffer::new(
                     ctx,
@@ -384,6 +396,12 @@ impl Simulation {
                     buffers.push(buffer);
                     sets.push(set);
                 }
+                // Each wave moves a point by at most a vertically and Q·a sideways.
+                max_displacement_m = waves
+                    .iter()
+                    .map(|w| w.amplitude.abs() * (1.0 + w.steepness.abs()))
+                    .sum::<f64>()
+                    + 0.5;
                 Model::Gerstner {
                     waves: waves.clone(),
                     buffers,
@@ -393,6 +411,7 @@ impl Simulation {
             }
         };
         Ok(Simulation {
+            max_displacement_m,
             settings: settings.clone(),
             cascades,
             model,

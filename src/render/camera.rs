@@ -29,6 +29,20 @@ impl Default for Camera {
 }
 
 impl Camera {
+    /// A camera at `position` looking at `target` (`None` if they coincide or the view is
+    /// straight up or down, where the horizon has no direction).
+    pub fn looking_at(position: Vec3, target: Vec3) -> Option<Camera> {
+        let forward = (target - position).normalize_or_zero();
+        if forward == Vec3::ZERO || forward.cross(Vec3::Y).length() < 1e-4 {
+            return None;
+        }
+        Some(Camera {
+            position,
+            forward,
+            ..Camera::default()
+        })
+    }
+
     /// Rotation-only view matrix (camera-relative rendering).
     pub fn view_rotation(&self) -> Mat4 {
         Mat4::look_to_rh(Vec3::ZERO, self.forward, Vec3::Y)
@@ -57,51 +71,201 @@ pub struct OceanBindings {
     /// Patch side of each cascade (m), padded to four.
     pub patch_m: [f32; 4],
     pub cascades: u32,
+    /// Bound on the surface's displacement from its rest position (m), for patch culling.
+    pub max_displacement_m: f32,
+}
+
+/// The views a frame renders: the camera, its mirror image below the water plane (reflection)
+/// and the camera again clipped to what lies under the water (refraction). Indices into
+/// `FrameUniforms::views`, picked per draw with a push constant (`common/frame.glsl`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[repr(u32)]
+pub enum ViewIndex {
+    Main = 0,
+    Reflection = 1,
+    Refraction = 2,
+}
+
+/// Mean water level (m): the plane the reflection mirrors about and the clip planes cut at.
+pub const WATER_LEVEL_M: f32 = 0.0;
+/// The clip planes sit this far past the water plane (m), so waves crossing the plane do not
+/// open gaps at the shoreline (the textures are distorted by the waves anyway).
+pub const CLIP_OFFSET_M: f32 = 0.3;
+
+/// One view (std140, 160 bytes): see `View` in shaders/common/frame.glsl.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct ViewUniforms {
+    /// Position relative to `eye` -> clip space.
+    pub view_proj: [[f32; 4]; 4],
+    pub inv_view_proj: [[f32; 4]; 4],
+    /// xyz: world position positions are made relative to; w: unused.
+    pub eye: [f32; 4],
+    /// World-space plane (a, b, c, d): geometry with a·x + b·y + c·z + d < 0 is clipped.
+    pub clip_plane: [f32; 4],
+}
+
+impl ViewUniforms {
+    fn new(view_proj: Mat4, eye: Vec3, clip_plane: Vec4) -> Self {
+        ViewUniforms {
+            view_proj: view_proj.to_cols_array_2d(),
+            inv_view_proj: view_proj.inverse().to_cols_array_2d(),
+            eye: eye.extend(0.0).to_array(),
+            clip_plane: clip_plane.to_array(),
+        }
+    }
+}
+
+/// The three views of a frame (seed 001 §3.2, eq. 1–3).
+///
+/// The reflection camera is the camera mirrored about the water plane y = d: its position
+/// C_y ← C_y − 2(C_y − d) (eq. 3), and its view-projection is the main one times the mirror
+/// diag(1, −1, 1). Rendering with that matrix puts the reflection of what the main camera sees
+/// at screen point s at the same s, so the water samples both textures at its own screen
+/// position (the seed's pitch-inverted camera gives the same picture upside down). Clip
+/// distances (eq. 2, p · v_world) keep what lies above the water for the reflection and below
+/// it for the refraction.
+pub fn frame_views(camera: &Camera, aspect: f32) -> [ViewUniforms; 3] {
+    let d = WATER_LEVEL_M;
+    let vp = camera.view_proj(aspect);
+    let mirror = Mat4::from_scale(Vec3::new(1.0, -1.0, 1.0));
+    let mut mirrored_eye = camera.position;
+    mirrored_eye.y -= 2.0 * (camera.position.y - d);
+    [
+        ViewUniforms::new(vp, camera.position, Vec4::new(0.0, 0.0, 0.0, 1.0)),
+        ViewUniforms::new(
+            vp * mirror,
+            mirrored_eye,
+            Vec4::new(0.0, 1.0, 0.0, -(d - CLIP_OFFSET_M)),
+        ),
+        ViewUniforms::new(
+            vp,
+            camera.position,
+            Vec4::new(0.0, -1.0, 0.0, d + CLIP_OFFSET_M),
+        ),
+    ]
 }
 
 /// Mirrors `shaders/common/frame.glsl` (std140: matrices and vec4s only, so no padding).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct FrameUniforms {
-    pub view_proj: [[f32; 4]; 4],
-    pub inv_view_proj: [[f32; 4]; 4],
-    /// xyz: camera position (m); w: time (s).
-    pub camera_pos: [f32; 4],
+    pub views: [ViewUniforms; 3],
+    /// x: simulation time (s); y: water level (m); z: debug view (`ViewMode` as f32); w: Fresnel
+    /// model (`FresnelModel` as f32).
+    pub time: [f32; 4],
     /// xyz: unit vector toward the sun; w: sun radiance scale.
     pub sun_dir: [f32; 4],
-    /// xy: target size (px); zw: reciprocal.
+    /// xy: main target size (px); zw: reciprocal.
     pub viewport: [f32; 4],
     /// Patch side of each ocean cascade (m).
     pub patch_m: [f32; 4],
     /// x: number of cascades; y: 1 for a bounded window (Gerstner); zw: origin of the images (m).
     pub ocean: [f32; 4],
+    /// x: focal length (px); y: target tessellated edge (px); z: max displacement (m); w: 1 to
+    /// paint the solid test background instead of the sky.
+    pub lod: [f32; 4],
+    /// xy: island centre (m); z: sea floor depth (m); w: island radius (m).
+    pub terrain: [f32; 4],
+    /// Objects standing in the water: (x, z, radius, top height), height 0 = none. Object 0 is
+    /// the buoy.
+    pub objects: [[f32; 4]; 4],
+    /// xyz: solid background colour (`--view` tests); w: unused.
+    pub background: [f32; 4],
+}
+
+/// The scene's fixed features (island, objects), from the run settings.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SceneLayout {
+    pub island_xz: [f32; 2],
+    pub island_radius_m: f32,
+    pub sea_floor_m: f32,
+    pub buoy_xz: [f32; 2],
+}
+
+impl Default for SceneLayout {
+    fn default() -> Self {
+        SceneLayout {
+            island_xz: [-420.0, -900.0],
+            island_radius_m: 300.0,
+            sea_floor_m: 18.0,
+            buoy_xz: [9.0, -55.0],
+        }
+    }
+}
+
+impl SceneLayout {
+    /// The objects of `FrameUniforms::objects`: the buoy, then three stone pillars off the
+    /// island's shore.
+    pub fn objects(&self) -> [[f32; 4]; 4] {
+        let [ix, iz] = self.island_xz;
+        let r = self.island_radius_m;
+        [
+            [self.buoy_xz[0], self.buoy_xz[1], 0.8, 3.5],
+            [ix + 0.95 * r, iz + 0.55 * r, 6.0, 28.0],
+            [ix + 1.05 * r, iz + 0.15 * r, 4.0, 20.0],
+            [ix + 0.70 * r, iz + 0.95 * r, 5.0, 34.0],
+        ]
+    }
+}
+
+/// Everything `FrameUniforms::new` needs besides the camera.
+#[derive(Clone, Copy, Debug)]
+pub struct FrameParams<'a> {
+    pub sun_dir: Vec3,
+    pub sun_scale: f32,
+    pub time_s: f32,
+    /// Main target size (px).
+    pub size: (u32, u32),
+    pub ocean: &'a OceanBindings,
+    pub inputs: &'a super::renderer::FrameInputs,
+    pub view_mode: u32,
+    pub fresnel: u32,
+    pub tess_edge_px: f32,
+    pub scene: &'a SceneLayout,
+    pub background: Option<[f32; 3]>,
 }
 
 impl FrameUniforms {
-    pub fn new(
-        camera: &Camera,
-        sun_dir: Vec3,
-        sun_scale: f32,
-        time_s: f32,
-        size: (u32, u32),
-        ocean: &OceanBindings,
-        inputs: &super::renderer::FrameInputs,
-    ) -> Self {
-        let (w, h) = (size.0.max(1) as f32, size.1.max(1) as f32);
-        let view_proj = camera.view_proj(w / h);
+    pub fn new(camera: &Camera, p: &FrameParams) -> Self {
+        let (w, h) = (p.size.0.max(1) as f32, p.size.1.max(1) as f32);
+        let projection = camera.projection(w / h);
+        // |P[1][1]| = 1 / tan(fov/2): the focal length in pixels is that times half the height.
+        let focal_px = projection.y_axis.y.abs() * h * 0.5;
         FrameUniforms {
-            view_proj: view_proj.to_cols_array_2d(),
-            inv_view_proj: view_proj.inverse().to_cols_array_2d(),
-            camera_pos: camera.position.extend(time_s).to_array(),
-            sun_dir: sun_dir.normalize().extend(sun_scale).to_array(),
-            viewport: Vec4::new(w, h, 1.0 / w, 1.0 / h).to_array(),
-            patch_m: ocean.patch_m,
-            ocean: [
-                ocean.cascades as f32,
-                if inputs.ocean_window { 1.0 } else { 0.0 },
-                inputs.ocean_origin_m[0],
-                inputs.ocean_origin_m[1],
+            views: frame_views(camera, w / h),
+            time: [
+                p.time_s,
+                WATER_LEVEL_M,
+                p.view_mode as f32,
+                p.fresnel as f32,
             ],
+            sun_dir: p.sun_dir.normalize().extend(p.sun_scale).to_array(),
+            viewport: Vec4::new(w, h, 1.0 / w, 1.0 / h).to_array(),
+            patch_m: p.ocean.patch_m,
+            ocean: [
+                p.ocean.cascades as f32,
+                if p.inputs.ocean_window { 1.0 } else { 0.0 },
+                p.inputs.ocean_origin_m[0],
+                p.inputs.ocean_origin_m[1],
+            ],
+            lod: [
+                focal_px,
+                p.tess_edge_px,
+                p.ocean.max_displacement_m,
+                if p.background.is_some() { 1.0 } else { 0.0 },
+            ],
+            terrain: [
+                p.scene.island_xz[0],
+                p.scene.island_xz[1],
+                p.scene.sea_floor_m,
+                p.scene.island_radius_m,
+            ],
+            objects: p.scene.objects(),
+            background: {
+                let [r, g, b] = p.background.unwrap_or_default();
+                [r, g, b, 0.0]
+            },
         }
     }
 }
@@ -126,6 +290,30 @@ mod tests {
             "far depth {}",
             far.z / far.w
         );
+    }
+
+    #[test]
+    fn reflection_view_shows_the_mirror_image_where_the_camera_sees_the_point() {
+        // A point above the water seen by the reflection view lands where the main view sees
+        // its mirror image below the water: the water samples both at its own screen position.
+        let cam = Camera::default();
+        let [main, refl, _] = frame_views(&cam, 1.5);
+        let project = |v: &ViewUniforms, world: Vec3| {
+            let clip = Mat4::from_cols_array_2d(&v.view_proj)
+                * (world - Vec3::from_slice(&v.eye[..3])).extend(1.0);
+            clip.truncate() / clip.w
+        };
+        let above = Vec3::new(30.0, 25.0, -200.0);
+        let mirrored = Vec3::new(above.x, 2.0 * WATER_LEVEL_M - above.y, above.z);
+        let a = project(&refl, above);
+        let b = project(&main, mirrored);
+        assert!((a - b).length() < 1e-5, "{a} vs {b}");
+        // Clip planes: the reflection keeps what is above the water, the refraction what is below.
+        let plane = |v: &ViewUniforms, p: Vec3| Vec4::from_array(v.clip_plane).dot(p.extend(1.0));
+        let [_, _, refr] = frame_views(&cam, 1.5);
+        assert!(plane(&refl, above) > 0.0 && plane(&refl, mirrored) < 0.0);
+        assert!(plane(&refr, above) < 0.0 && plane(&refr, mirrored) > 0.0);
+        assert!(plane(&main, above) > 0.0 && plane(&main, mirrored) > 0.0);
     }
 
     #[test]

@@ -4,7 +4,89 @@
 pub mod camera;
 pub mod passes;
 pub mod renderer;
+pub mod scene;
 pub mod targets;
 
-pub use camera::{Camera, FrameUniforms, OceanBindings};
+use std::path::PathBuf;
+
+use glam::Vec3;
+
+pub use camera::{Camera, FrameUniforms, OceanBindings, SceneLayout};
 pub use renderer::{FrameInputs, OutputTarget, Renderer};
+
+/// `--view`: the final picture, or one intermediate full screen.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+#[repr(u32)]
+pub enum ViewMode {
+    #[default]
+    Final = 0,
+    /// The reflection texture.
+    Reflection = 1,
+    /// The refraction texture.
+    Refraction = 2,
+    /// The DU/DV map, tiled.
+    Dudv = 3,
+    /// The ocean coloured by its displacement (x, y, z → r, b, g around grey).
+    Displacement = 4,
+    /// The ocean coloured by its normal.
+    Normals = 5,
+    /// The ocean's foam coverage.
+    Foam = 6,
+    /// The tessellated ocean as lines over the scene.
+    Wireframe = 7,
+}
+
+/// `--fresnel`: how the water weighs reflection against refraction.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+#[repr(u32)]
+pub enum FresnelModel {
+    /// Schlick's approximation, F0 = 0.02.
+    #[default]
+    Schlick = 0,
+    /// The Fresnel equations for unpolarised light (seed 004 §2.5), n = 1.333.
+    Exact = 1,
+    /// Seed 001 eq. 6: refraction weight cos θ^0.5.
+    Power = 2,
+}
+
+/// How the scene looks: everything the renderer takes from the command line.
+#[derive(Clone, Debug)]
+pub struct SceneSettings {
+    pub view: ViewMode,
+    pub fresnel: FresnelModel,
+    /// Reflection and refraction target size relative to the output (0 < s <= 1).
+    pub rtt_scale: f32,
+    /// Target on-screen length of a tessellated ocean edge (px).
+    pub tess_edge_px: f32,
+    pub layout: SceneLayout,
+    /// Unit vector toward the sun.
+    pub sun_dir: Vec3,
+    /// `--dudv FILE.png` instead of the generated map.
+    pub dudv: Option<PathBuf>,
+    /// `--skybox DIR` (six PNG faces) instead of the analytic sky.
+    pub skybox: Option<PathBuf>,
+    /// Test only: the main view's sky is this solid linear colour.
+    pub background: Option<[f32; 3]>,
+}
+
+/// Default sun: low, ahead and to the right of the default camera, so its glitter path lies on
+/// the water.
+pub fn default_sun_dir() -> Vec3 {
+    Vec3::new(0.35, 0.22, -1.0).normalize()
+}
+
+impl Default for SceneSettings {
+    fn default() -> Self {
+        SceneSettings {
+            view: ViewMode::Final,
+            fresnel: FresnelModel::Schlick,
+            rtt_scale: 0.5,
+            tess_edge_px: 16.0,
+            layout: SceneLayout::default(),
+            sun_dir: default_sun_dir(),
+            dudv: None,
+            skybox: None,
+            background: None,
+        }
+    }
+}

@@ -1,11 +1,14 @@
 //! `Renderer::record`: the frame, pass by pass, in order.
 //!
 //! ```text
-//!  frame uniforms (slot f % 2) ──┐
-//!  sky        fullscreen sky            -> hdr colour            (every pixel written)
-//!  water      displaced ocean grid      -> hdr colour + depth    (depth cleared, reversed-Z)
-//!             (samples the simulation images of slot f % 2, after the compute timeline wait)
-//!  composite  tone map hdr colour       -> output image (swapchain image or headless target)
+//!  frame uniforms (slot f % 2): three views (camera, mirrored camera, refraction), sun, ocean
+//!  sky cube    the analytic sky into the cubemap's 6 faces       (only when the sun changed)
+//!  reflection  sky + island + objects, mirrored camera, clip below the water  -> reflection colour
+//!  refraction  island + objects below the water (clip above)   -> refraction colour + depth
+//!  scene       sky + island + objects                          -> hdr colour + depth (main view)
+//!  water       tessellated ocean patches: displaced by the simulation images of slot f % 2
+//!              (after the compute timeline wait), shaded with reflection, refraction, DU/DV
+//!  composite   tone map (or a debug view's texture)            -> output image
 //! ```
 //! The output is left in COLOR_ATTACHMENT_OPTIMAL; the frontend transitions it for present or copy.
 
@@ -14,15 +17,24 @@ use std::sync::Arc;
 use ash::vk;
 use glam::Vec3;
 
-use super::camera::{Camera, FrameUniforms, OceanBindings};
-use super::passes::{CompositePass, SkyPass, WaterPass};
-use super::targets::Targets;
+use super::camera::{Camera, FrameParams, FrameUniforms, OceanBindings, ViewIndex};
+use super::passes::water::WaterSamplers;
+use super::passes::{CompositePass, SkyCube, SkyPass, TerrainPass, WaterPass};
+use super::scene::{generate_dudv, load_dudv, DUDV_SIDE};
+use super::targets::{ColourDepth, Targets};
+use super::{SceneSettings, ViewMode};
 use crate::gpu::descriptors::{self, Write};
 use crate::gpu::image::full_range;
+use crate::gpu::oneshot::upload_image;
 use crate::gpu::{
     Access, Attachment, Buffer, Context, DescriptorPool, DescriptorSetLayout, Frame, GpuResult,
-    ImageBarrier, Load, MemoryLocation, Profiler, Recorder, Sampler, FRAMES_IN_FLIGHT,
+    Image, ImageBarrier, ImageDesc, Load, MemoryLocation, Profiler, Recorder, Sampler,
+    FRAMES_IN_FLIGHT,
 };
+
+/// The refraction texture where nothing lies under the water: the deep water colour
+/// (`WATER_COLOUR` in water.frag), linear.
+const DEEP_WATER: [f32; 4] = [0.004, 0.045, 0.075, 1.0];
 
 /// The image a frame ends in.
 #[derive(Clone, Copy, Debug)]
@@ -52,6 +64,7 @@ pub struct Renderer {
     pub sun_dir: Vec3,
     /// Radiance of the sun disc relative to the sky.
     pub sun_scale: f32,
+    pub settings: SceneSettings,
     targets: Targets,
     /// Layout of the frame-uniform sets; kept alive with them.
     _frame_set_layout: DescriptorSetLayout,
@@ -61,7 +74,14 @@ pub struct Renderer {
     /// The simulation images the frame sets bind, and the cascade layout.
     ocean: OceanBindings,
     _ocean_sampler: Sampler,
+    sky_cube: SkyCube,
+    _sky_sampler: Sampler,
+    dudv: Image,
+    clamp_sampler: Sampler,
+    depth_sampler: Sampler,
+    repeat_sampler: Sampler,
     sky: SkyPass,
+    terrain: TerrainPass,
     water: WaterPass,
     composite: CompositePass,
 }
@@ -73,17 +93,19 @@ impl Renderer {
         output_format: vk::Format,
         extent: vk::Extent2D,
         ocean: OceanBindings,
-    ) -> GpuResult<Renderer> {
-        let targets = Targets::new(ctx, extent)?;
+        settings: &SceneSettings,
+    ) -> anyhow::Result<Renderer> {
+        let targets = Targets::new(ctx, extent, settings.rtt_scale)?;
         let graphics = vk::ShaderStageFlags::ALL_GRAPHICS;
         let sampled = vk::DescriptorType::COMBINED_IMAGE_SAMPLER;
         let frame_set_layout = DescriptorSetLayout::new(
             ctx,
-            "frame set layout (uniforms, ocean images)",
+            "frame set layout (uniforms, ocean images, sky cube)",
             &[
                 (0, vk::DescriptorType::UNIFORM_BUFFER, graphics),
                 (1, sampled, graphics),
                 (2, sampled, graphics),
+                (3, sampled, graphics),
             ],
         )?;
         let slots = FRAMES_IN_FLIGHT as u32;
@@ -93,14 +115,17 @@ impl Renderer {
             slots,
             &[
                 (vk::DescriptorType::UNIFORM_BUFFER, slots),
-                (sampled, 2 * slots),
+                (sampled, 3 * slots),
             ],
         )?;
-        let ocean_sampler = Sampler::linear(
-            ctx,
-            "ocean sampler (repeat)",
-            vk::SamplerAddressMode::REPEAT,
-        )?;
+        let repeat = vk::SamplerAddressMode::REPEAT;
+        let clamp = vk::SamplerAddressMode::CLAMP_TO_EDGE;
+        let ocean_sampler = Sampler::linear(ctx, "ocean sampler (repeat)", repeat)?;
+        let sky_sampler = Sampler::linear(ctx, "sky cube sampler", clamp)?;
+        let sky_cube = match &settings.skybox {
+            Some(dir) => SkyCube::load(ctx, dir)?,
+            None => SkyCube::analytic(ctx)?,
+        };
         let mut frame_uniforms = Vec::new();
         for slot in 0..FRAMES_IN_FLIGHT {
             let buffer = Buffer::new(
@@ -134,26 +159,83 @@ impl Renderer {
                         sampler: ocean_sampler.raw,
                         layout: vk::ImageLayout::GENERAL,
                     },
+                    Write::SampledImage {
+                        binding: 3,
+                        view: sky_cube.image.view,
+                        sampler: sky_sampler.raw,
+                        layout: vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL,
+                    },
                 ],
             );
             frame_uniforms.push((buffer, set));
         }
+
+        let (w, h, texels) = match &settings.dudv {
+            Some(path) => load_dudv(path)?,
+            None => (DUDV_SIDE, DUDV_SIDE, generate_dudv(DUDV_SIDE)),
+        };
+        let dudv = Image::new(
+            ctx,
+            &ImageDesc {
+                name: "dudv map",
+                extent: vk::Extent2D {
+                    width: w,
+                    height: h,
+                },
+                format: vk::Format::R8G8B8A8_UNORM,
+                usage: vk::ImageUsageFlags::SAMPLED | vk::ImageUsageFlags::TRANSFER_DST,
+                layers: 1,
+                array_view: false,
+                shared: false,
+                cube: false,
+            },
+        )?;
+        upload_image(ctx, &dudv, &texels)?;
+
+        let clamp_sampler = Sampler::linear(ctx, "render target sampler (clamp)", clamp)?;
+        let depth_sampler = Sampler::new(
+            ctx,
+            "depth sampler (nearest, clamp)",
+            vk::Filter::NEAREST,
+            clamp,
+        )?;
+        let repeat_sampler = Sampler::linear(ctx, "dudv sampler (repeat)", repeat)?;
+        let samplers = WaterSamplers {
+            clamp: clamp_sampler.raw,
+            depth: depth_sampler.raw,
+            repeat: repeat_sampler.raw,
+        };
         let sky = SkyPass::new(ctx, &frame_set_layout)?;
-        let water = WaterPass::new(ctx, &frame_set_layout)?;
-        let composite = CompositePass::new(ctx, output_format, &targets.hdr)?;
+        let terrain = TerrainPass::new(ctx, &frame_set_layout)?;
+        let water = WaterPass::new(ctx, &frame_set_layout, &targets, dudv.view, &samplers)?;
+        if settings.view == ViewMode::Wireframe && !water.has_wireframe() {
+            anyhow::bail!(
+                "--view wireframe: {} cannot draw lines (no fillModeNonSolid)",
+                ctx.info.name
+            );
+        }
+        let composite =
+            CompositePass::new(ctx, output_format, &targets, &dudv, repeat_sampler.raw)?;
         Ok(Renderer {
             ctx: ctx.clone(),
             camera: Camera::default(),
-            // Low sun ahead and to the right, so its glitter path lies on the water.
-            sun_dir: Vec3::new(0.35, 0.22, -1.0).normalize(),
+            sun_dir: settings.sun_dir,
             sun_scale: 40.0,
+            settings: settings.clone(),
             targets,
             _frame_set_layout: frame_set_layout,
             _pool: pool,
             frame_uniforms,
             ocean,
             _ocean_sampler: ocean_sampler,
+            sky_cube,
+            _sky_sampler: sky_sampler,
+            dudv,
+            clamp_sampler,
+            depth_sampler,
+            repeat_sampler,
             sky,
+            terrain,
             water,
             composite,
         })
@@ -162,6 +244,14 @@ impl Renderer {
     /// Size of the scene targets.
     pub fn extent(&self) -> vk::Extent2D {
         self.targets.extent()
+    }
+
+    fn samplers(&self) -> WaterSamplers {
+        WaterSamplers {
+            clamp: self.clamp_sampler.raw,
+            depth: self.depth_sampler.raw,
+            repeat: self.repeat_sampler.raw,
+        }
     }
 
     /// Recreates the size-dependent targets, and the composite pipeline if the output format
@@ -173,12 +263,21 @@ impl Renderer {
         }
         self.ctx.wait_idle()?;
         if extent != self.targets.extent() {
-            self.targets = Targets::new(&self.ctx, extent)?;
+            self.targets = Targets::new(&self.ctx, extent, self.settings.rtt_scale)?;
+            self.water
+                .resize(&self.targets, self.dudv.view, &self.samplers());
         }
         if output_format == self.composite.output_format {
-            self.composite.resize(&self.targets.hdr);
+            self.composite
+                .resize(&self.targets, &self.dudv, self.repeat_sampler.raw);
         } else {
-            self.composite = CompositePass::new(&self.ctx, output_format, &self.targets.hdr)?;
+            self.composite = CompositePass::new(
+                &self.ctx,
+                output_format,
+                &self.targets,
+                &self.dudv,
+                self.repeat_sampler.raw,
+            )?;
         }
         Ok(())
     }
@@ -194,36 +293,149 @@ impl Renderer {
     ) {
         debug_assert_eq!(output.extent, self.targets.extent());
         let extent = self.targets.extent();
+        let s = &self.settings;
         let uniforms = FrameUniforms::new(
             &self.camera,
-            self.sun_dir,
-            self.sun_scale,
-            inputs.time_s,
-            (extent.width, extent.height),
-            &self.ocean,
-            inputs,
+            &FrameParams {
+                sun_dir: self.sun_dir,
+                sun_scale: self.sun_scale,
+                time_s: inputs.time_s,
+                size: (extent.width, extent.height),
+                ocean: &self.ocean,
+                inputs,
+                view_mode: s.view as u32,
+                fresnel: s.fresnel as u32,
+                tess_edge_px: s.tess_edge_px,
+                scene: &s.layout,
+                background: s.background,
+            },
         );
         let (buffer, frame_set) = &mut self.frame_uniforms[frame.slot];
         buffer.write(bytemuck::bytes_of(&uniforms));
         let frame_set = *frame_set;
 
-        let hdr = &self.targets.hdr;
-        let depth = &self.targets.depth;
-        // The previous frame sampled hdr in composite and wrote depth; both are rewritten whole.
+        if self.sky_cube.is_stale(self.sun_dir, self.sun_scale) {
+            let cube = &mut self.sky_cube;
+            let (sun, scale) = (self.sun_dir, self.sun_scale);
+            profiler.pass(rec, "sky cube", || cube.update(rec, sun, scale));
+        }
+
+        let t = &self.targets;
+        // Every target is rewritten whole this frame; the previous frame sampled the colour
+        // targets (fragment) and wrote the depth targets.
+        let mut to_attachments = Vec::new();
+        for cd in [&t.reflection, &t.refraction, &t.main] {
+            to_attachments.push(ImageBarrier {
+                image: cd.colour.raw,
+                range: cd.colour.range(),
+                old_layout: vk::ImageLayout::UNDEFINED,
+                new_layout: vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL,
+                src: Access::FRAGMENT_SAMPLED.or(Access::COLOUR_WRITE),
+                dst: Access::COLOUR_RW,
+            });
+            to_attachments.push(ImageBarrier {
+                image: cd.depth.raw,
+                range: cd.depth.range(),
+                old_layout: vk::ImageLayout::UNDEFINED,
+                new_layout: vk::ImageLayout::DEPTH_STENCIL_ATTACHMENT_OPTIMAL,
+                src: Access::DEPTH_RW.or(Access::FRAGMENT_SAMPLED),
+                dst: Access::DEPTH_RW,
+            });
+        }
+        rec.barrier(&to_attachments, &[]);
+
+        let clear_depth = Load::Clear(vk::ClearValue {
+            depth_stencil: vk::ClearDepthStencilValue {
+                depth: 0.0, // reversed-Z: the far plane
+                stencil: 0,
+            },
+        });
+        let begin = |cd: &ColourDepth, colour_load: Load| {
+            rec.begin_rendering(
+                cd.extent(),
+                &[Attachment {
+                    view: cd.colour.view,
+                    layout: vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL,
+                    load: colour_load,
+                }],
+                Some(Attachment {
+                    view: cd.depth.view,
+                    layout: vk::ImageLayout::DEPTH_STENCIL_ATTACHMENT_OPTIMAL,
+                    load: clear_depth,
+                }),
+            );
+        };
+
+        profiler.pass(rec, "reflection", || {
+            // The sky writes every pixel first.
+            begin(&t.reflection, Load::DontCare);
+            self.sky.record(rec, frame_set, ViewIndex::Reflection);
+            self.terrain.record(rec, frame_set, ViewIndex::Reflection);
+            rec.end_rendering();
+        });
+        profiler.pass(rec, "refraction", || {
+            let deep = Load::Clear(vk::ClearValue {
+                color: vk::ClearColorValue {
+                    float32: DEEP_WATER,
+                },
+            });
+            begin(&t.refraction, deep);
+            self.terrain.record(rec, frame_set, ViewIndex::Refraction);
+            rec.end_rendering();
+        });
+        let read = vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL;
         rec.barrier(
             &[
                 ImageBarrier {
-                    image: hdr.raw,
-                    range: hdr.range(),
-                    old_layout: vk::ImageLayout::UNDEFINED,
+                    image: t.reflection.colour.raw,
+                    range: t.reflection.colour.range(),
+                    old_layout: vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL,
+                    new_layout: read,
+                    src: Access::COLOUR_RW,
+                    dst: Access::FRAGMENT_SAMPLED,
+                },
+                ImageBarrier {
+                    image: t.refraction.colour.raw,
+                    range: t.refraction.colour.range(),
+                    old_layout: vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL,
+                    new_layout: read,
+                    src: Access::COLOUR_RW,
+                    dst: Access::FRAGMENT_SAMPLED,
+                },
+                ImageBarrier {
+                    image: t.refraction.depth.raw,
+                    range: t.refraction.depth.range(),
+                    old_layout: vk::ImageLayout::DEPTH_STENCIL_ATTACHMENT_OPTIMAL,
+                    new_layout: read,
+                    src: Access::DEPTH_RW,
+                    dst: Access::FRAGMENT_SAMPLED,
+                },
+            ],
+            &[],
+        );
+
+        // Two rendering scopes, so each pass's timestamps cover its own rasterisation (a CPU
+        // driver may defer drawing to the end of a scope).
+        profiler.pass(rec, "scene", || {
+            begin(&t.main, Load::DontCare);
+            self.sky.record(rec, frame_set, ViewIndex::Main);
+            self.terrain.record(rec, frame_set, ViewIndex::Main);
+            rec.end_rendering();
+        });
+        rec.barrier(
+            &[
+                ImageBarrier {
+                    image: t.main.colour.raw,
+                    range: t.main.colour.range(),
+                    old_layout: vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL,
                     new_layout: vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL,
-                    src: Access::FRAGMENT_SAMPLED.or(Access::COLOUR_WRITE),
+                    src: Access::COLOUR_WRITE,
                     dst: Access::COLOUR_RW,
                 },
                 ImageBarrier {
-                    image: depth.raw,
-                    range: depth.range(),
-                    old_layout: vk::ImageLayout::UNDEFINED,
+                    image: t.main.depth.raw,
+                    range: t.main.depth.range(),
+                    old_layout: vk::ImageLayout::DEPTH_STENCIL_ATTACHMENT_OPTIMAL,
                     new_layout: vk::ImageLayout::DEPTH_STENCIL_ATTACHMENT_OPTIMAL,
                     src: Access::DEPTH_RW,
                     dst: Access::DEPTH_RW,
@@ -231,57 +443,32 @@ impl Renderer {
             ],
             &[],
         );
-
-        let hdr_attachment = |load: Load| Attachment {
-            view: hdr.view,
-            layout: vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL,
-            load,
-        };
-        profiler.pass(rec, "sky", || {
-            // The fullscreen triangle writes every pixel.
-            rec.begin_rendering(extent, &[hdr_attachment(Load::DontCare)], None);
-            self.sky.record(rec, frame_set);
-            rec.end_rendering();
-        });
-        // Attachment writes are only ordered within one rendering scope: water loads the sky.
-        rec.barrier(
-            &[ImageBarrier {
-                image: hdr.raw,
-                range: hdr.range(),
-                old_layout: vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL,
-                new_layout: vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL,
-                src: Access::COLOUR_WRITE,
-                dst: Access::COLOUR_RW,
-            }],
-            &[],
-        );
         profiler.pass(rec, "water", || {
-            let depth_clear = vk::ClearValue {
-                depth_stencil: vk::ClearDepthStencilValue {
-                    depth: 0.0,
-                    stencil: 0,
-                },
-            };
             rec.begin_rendering(
                 extent,
-                &[hdr_attachment(Load::Keep)],
+                &[Attachment {
+                    view: t.main.colour.view,
+                    layout: vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL,
+                    load: Load::Keep,
+                }],
                 Some(Attachment {
-                    view: depth.view,
+                    view: t.main.depth.view,
                     layout: vk::ImageLayout::DEPTH_STENCIL_ATTACHMENT_OPTIMAL,
-                    load: Load::Clear(depth_clear),
+                    load: Load::Keep,
                 }),
             );
-            self.water.record(rec, frame_set);
+            self.water
+                .record(rec, frame_set, s.view == ViewMode::Wireframe);
             rec.end_rendering();
         });
 
         rec.barrier(
             &[
                 ImageBarrier {
-                    image: hdr.raw,
-                    range: hdr.range(),
+                    image: t.main.colour.raw,
+                    range: t.main.colour.range(),
                     old_layout: vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL,
-                    new_layout: vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL,
+                    new_layout: read,
                     src: Access::COLOUR_RW,
                     dst: Access::FRAGMENT_SAMPLED,
                 },
@@ -304,7 +491,7 @@ impl Renderer {
                 load: Load::DontCare,
             };
             rec.begin_rendering(extent, &[target], None);
-            self.composite.record(rec);
+            self.composite.record(rec, s.view);
             rec.end_rendering();
         });
     }

@@ -10,6 +10,8 @@ use crate::gpu::{
     Context, DescriptorPool, DescriptorSetLayout, GpuResult, GraphicsDesc, Image, Pipeline,
     PipelineLayout, Recorder, Sampler,
 };
+use crate::render::targets::Targets;
+use crate::render::ViewMode;
 use crate::shaders;
 
 /// Push constants of composite.frag.
@@ -17,6 +19,8 @@ use crate::shaders;
 #[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
 struct CompositeParams {
     exposure: f32,
+    /// `ViewMode` as u32: which texture to show.
+    view: u32,
 }
 
 pub struct CompositePass {
@@ -38,16 +42,20 @@ impl CompositePass {
     pub fn new(
         ctx: &Arc<Context>,
         output_format: vk::Format,
-        hdr: &Image,
+        targets: &Targets,
+        dudv: &Image,
+        dudv_sampler: vk::Sampler,
     ) -> GpuResult<CompositePass> {
         let set_layout = DescriptorSetLayout::new(
             ctx,
             "composite set layout",
-            &[(
-                0,
-                vk::DescriptorType::COMBINED_IMAGE_SAMPLER,
-                vk::ShaderStageFlags::FRAGMENT,
-            )],
+            &[0, 1, 2, 3].map(|binding| {
+                (
+                    binding,
+                    vk::DescriptorType::COMBINED_IMAGE_SAMPLER,
+                    vk::ShaderStageFlags::FRAGMENT,
+                )
+            }),
         )?;
         let layout = PipelineLayout::new(
             ctx,
@@ -78,7 +86,7 @@ impl CompositePass {
             ctx,
             "composite descriptors",
             1,
-            &[(vk::DescriptorType::COMBINED_IMAGE_SAMPLER, 1)],
+            &[(vk::DescriptorType::COMBINED_IMAGE_SAMPLER, 4)],
         )?;
         let set = pool.allocate(&set_layout, "composite set")?;
         let sampler = Sampler::linear(
@@ -97,32 +105,41 @@ impl CompositePass {
             sampler,
             exposure: 1.0,
         };
-        pass.resize(hdr);
+        pass.resize(targets, dudv, dudv_sampler);
         Ok(pass)
     }
 
-    /// Points the pass at a new HDR target. The caller makes sure no frame in flight uses the set.
-    pub fn resize(&self, hdr: &Image) {
-        descriptors::update(
-            &self.ctx,
-            self.set,
-            &[Write::SampledImage {
-                binding: 0,
-                view: hdr.view,
-                sampler: self.sampler.raw,
-                layout: vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL,
-            }],
-        );
+    /// Points the pass at new targets. The caller makes sure no frame in flight uses the set.
+    pub fn resize(&self, targets: &Targets, dudv: &Image, dudv_sampler: vk::Sampler) {
+        let read = vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL;
+        let views = [
+            (targets.main.colour.view, self.sampler.raw),
+            (targets.reflection.colour.view, self.sampler.raw),
+            (targets.refraction.colour.view, self.sampler.raw),
+            (dudv.view, dudv_sampler),
+        ];
+        let writes: Vec<_> = views
+            .iter()
+            .enumerate()
+            .map(|(binding, &(view, sampler))| Write::SampledImage {
+                binding: binding as u32,
+                view,
+                sampler,
+                layout: read,
+            })
+            .collect();
+        descriptors::update(&self.ctx, self.set, &writes);
     }
 
     /// Draws inside a rendering scope on the output image.
-    pub fn record(&self, rec: &Recorder) {
+    pub fn record(&self, rec: &Recorder, view: ViewMode) {
         rec.bind_pipeline(&self.pipeline);
         rec.bind_sets(&self.pipeline, &self.layout, &[self.set]);
         rec.push_constants(
             &self.layout,
             &CompositeParams {
                 exposure: self.exposure,
+                view: view as u32,
             },
         );
         rec.draw(3, 1);

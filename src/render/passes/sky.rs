@@ -1,15 +1,27 @@
-//! Sky pass: a fullscreen triangle writing the procedural sky (shaders/sky/sky.frag) into the
-//! HDR target. Reads the frame uniforms only.
+//! The sky: `SkyCube` renders the analytic sky (shaders/common/sky.glsl) into a cubemap when the
+//! sun changes, or holds the six faces loaded with `--skybox`; `SkyPass` draws the cubemap
+//! behind everything in a view (shaders/sky/sky.frag).
 
+use std::path::Path;
 use std::sync::Arc;
 
 use ash::vk;
+use glam::Vec3;
 
+use super::{bind_scene, scene_layout, scene_pipeline};
+use crate::gpu::oneshot::upload_image;
 use crate::gpu::{
-    Context, DescriptorSetLayout, GpuResult, GraphicsDesc, Pipeline, PipelineLayout, Recorder,
+    Access, Attachment, Context, DescriptorSetLayout, GpuResult, GraphicsDesc, Image, ImageBarrier,
+    ImageDesc, Load, Pipeline, PipelineLayout, Recorder,
 };
+use crate::render::camera::ViewIndex;
 use crate::render::targets::HDR_FORMAT;
 use crate::shaders;
+
+/// Side of each face of the rendered sky cubemap (px).
+pub const CUBE_SIDE: u32 = 256;
+/// Face file names of `--skybox DIR`, in Vulkan's layer order.
+pub const SKYBOX_FACES: [&str; 6] = ["px", "nx", "py", "ny", "pz", "nz"];
 
 pub struct SkyPass {
     layout: PipelineLayout,
@@ -18,11 +30,11 @@ pub struct SkyPass {
 
 impl SkyPass {
     pub fn new(ctx: &Arc<Context>, frame_layout: &DescriptorSetLayout) -> GpuResult<SkyPass> {
-        let layout = PipelineLayout::new(ctx, "sky layout", &[frame_layout], None)?;
-        let pipeline = Pipeline::graphics(
+        let layout = scene_layout(ctx, "sky layout", frame_layout, &[])?;
+        let pipeline = scene_pipeline(
             ctx,
             &layout,
-            &GraphicsDesc {
+            GraphicsDesc {
                 name: "sky",
                 stages: &[
                     (
@@ -31,17 +43,187 @@ impl SkyPass {
                     ),
                     (vk::ShaderStageFlags::FRAGMENT, shaders::SKY_SKY_FRAG),
                 ],
-                colour_formats: &[HDR_FORMAT],
                 ..Default::default()
             },
+            false,
         )?;
         Ok(SkyPass { layout, pipeline })
     }
 
-    /// Draws inside a rendering scope on the HDR target.
-    pub fn record(&self, rec: &Recorder, frame_set: vk::DescriptorSet) {
-        rec.bind_pipeline(&self.pipeline);
-        rec.bind_sets(&self.pipeline, &self.layout, &[frame_set]);
+    /// Draws the sky over the whole target (first, inside a scene rendering scope).
+    pub fn record(&self, rec: &Recorder, frame_set: vk::DescriptorSet, view: ViewIndex) {
+        bind_scene(rec, &self.pipeline, &self.layout, &[frame_set], view);
         rec.draw(3, 1);
     }
+}
+
+/// Push constants of shaders/sky/sky_cube.frag.
+#[repr(C)]
+#[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
+struct FacePush {
+    sun_dir: [f32; 4],
+    face: u32,
+}
+
+/// The sky cubemap and how it is filled.
+pub struct SkyCube {
+    pub image: Image,
+    /// Renders the analytic sky; `None` for a loaded skybox.
+    render: Option<(PipelineLayout, Pipeline)>,
+    /// Sun (direction, scale) the cube was last rendered for.
+    rendered_for: Option<(Vec3, f32)>,
+}
+
+impl SkyCube {
+    /// A cube the analytic sky is rendered into (`update`).
+    pub fn analytic(ctx: &Arc<Context>) -> GpuResult<SkyCube> {
+        let image = cube_image(ctx, "sky cube", CUBE_SIDE, HDR_FORMAT, true)?;
+        let layout = PipelineLayout::new(
+            ctx,
+            "sky cube layout",
+            &[],
+            Some((
+                vk::ShaderStageFlags::FRAGMENT,
+                std::mem::size_of::<FacePush>() as u32,
+            )),
+        )?;
+        let pipeline = Pipeline::graphics(
+            ctx,
+            &layout,
+            &GraphicsDesc {
+                name: "sky cube",
+                stages: &[
+                    (
+                        vk::ShaderStageFlags::VERTEX,
+                        shaders::COMMON_FULLSCREEN_VERT,
+                    ),
+                    (vk::ShaderStageFlags::FRAGMENT, shaders::SKY_SKY_CUBE_FRAG),
+                ],
+                colour_formats: &[HDR_FORMAT],
+                ..Default::default()
+            },
+        )?;
+        Ok(SkyCube {
+            image,
+            render: Some((layout, pipeline)),
+            rendered_for: None,
+        })
+    }
+
+    /// A cube loaded from `DIR/{px,nx,py,ny,pz,nz}.png` (square, equal sizes, sRGB colour).
+    pub fn load(ctx: &Arc<Context>, dir: &Path) -> anyhow::Result<SkyCube> {
+        let mut side = 0;
+        let mut texels = Vec::new();
+        for face in SKYBOX_FACES {
+            let path = dir.join(format!("{face}.png"));
+            let img = image::open(&path)
+                .map_err(|e| anyhow::anyhow!("--skybox: {}: {e}", path.display()))?
+                .to_rgba8();
+            let (w, h) = img.dimensions();
+            if w != h || (side != 0 && w != side) {
+                anyhow::bail!(
+                    "--skybox: {} is {w}x{h}; the six faces must be square and the same size",
+                    path.display()
+                );
+            }
+            side = w;
+            texels.extend_from_slice(img.as_raw());
+        }
+        let image = cube_image(ctx, "skybox", side, vk::Format::R8G8B8A8_SRGB, false)?;
+        upload_image(ctx, &image, &texels)?;
+        Ok(SkyCube {
+            image,
+            render: None,
+            rendered_for: None,
+        })
+    }
+
+    /// Whether `update` has to render the cube for this sun (never for a loaded skybox).
+    pub fn is_stale(&self, sun_dir: Vec3, sun_scale: f32) -> bool {
+        self.render.is_some() && self.rendered_for != Some((sun_dir, sun_scale))
+    }
+
+    /// Renders the analytic sky into the six faces for this sun. Outside any rendering scope;
+    /// leaves the cube in SHADER_READ_ONLY_OPTIMAL. Earlier frames sampling the cube are
+    /// ordered before it by the barrier (same queue).
+    pub fn update(&mut self, rec: &Recorder, sun_dir: Vec3, sun_scale: f32) {
+        let Some((layout, pipeline)) = &self.render else {
+            return;
+        };
+        let range = self.image.range();
+        rec.barrier(
+            &[ImageBarrier {
+                image: self.image.raw,
+                range,
+                old_layout: vk::ImageLayout::UNDEFINED,
+                new_layout: vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL,
+                src: Access::FRAGMENT_SAMPLED,
+                dst: Access::COLOUR_WRITE,
+            }],
+            &[],
+        );
+        for (face, view) in self.image.layer_views.iter().enumerate() {
+            rec.begin_rendering(
+                self.image.extent,
+                &[Attachment {
+                    view: *view,
+                    layout: vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL,
+                    load: Load::DontCare,
+                }],
+                None,
+            );
+            rec.bind_pipeline(pipeline);
+            rec.push_constants(
+                layout,
+                &FacePush {
+                    sun_dir: sun_dir.normalize().extend(sun_scale).to_array(),
+                    face: face as u32,
+                },
+            );
+            rec.draw(3, 1);
+            rec.end_rendering();
+        }
+        rec.barrier(
+            &[ImageBarrier {
+                image: self.image.raw,
+                range,
+                old_layout: vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL,
+                new_layout: vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL,
+                src: Access::COLOUR_WRITE,
+                dst: Access::FRAGMENT_SAMPLED,
+            }],
+            &[],
+        );
+        self.rendered_for = Some((sun_dir, sun_scale));
+    }
+}
+
+fn cube_image(
+    ctx: &Arc<Context>,
+    name: &str,
+    side: u32,
+    format: vk::Format,
+    render: bool,
+) -> GpuResult<Image> {
+    Image::new(
+        ctx,
+        &ImageDesc {
+            name,
+            extent: vk::Extent2D {
+                width: side,
+                height: side,
+            },
+            format,
+            usage: vk::ImageUsageFlags::SAMPLED
+                | if render {
+                    vk::ImageUsageFlags::COLOR_ATTACHMENT
+                } else {
+                    vk::ImageUsageFlags::TRANSFER_DST
+                },
+            layers: 6,
+            array_view: false,
+            shared: false,
+            cube: true,
+        },
+    )
 }

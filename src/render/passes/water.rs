@@ -1,51 +1,170 @@
-//! Water pass: the ocean surface as a camera-centred grid displaced by the simulation's images
-//! (shaders/surface/water.*), depth-tested into the HDR and depth targets. The rendering issue
-//! replaces it with tessellated tiles.
+//! Water pass: the ocean as tessellated patches (shaders/surface/water.vert/.tesc/.tese/.frag,
+//! layout in shaders/common/water.glsl). The control shader picks each edge's level from its
+//! screen size and culls patches outside the frustum; the evaluation shader displaces the
+//! vertices by the simulation's images; the fragment shader shades with the reflection and
+//! refraction textures (set 1, rewritten on resize), the DU/DV map and the sky cube.
 
 use std::sync::Arc;
 
 use ash::vk;
 
+use super::{bind_scene, scene_layout, scene_pipeline};
+use crate::gpu::descriptors::{self, Write};
 use crate::gpu::{
-    Context, DescriptorSetLayout, GpuResult, GraphicsDesc, Pipeline, PipelineLayout, Recorder,
+    Context, DescriptorPool, DescriptorSetLayout, GpuResult, GraphicsDesc, Pipeline,
+    PipelineLayout, Recorder,
 };
-use crate::render::targets::{DEPTH_FORMAT, HDR_FORMAT};
+use crate::render::camera::ViewIndex;
+use crate::render::targets::Targets;
 use crate::shaders;
 
-/// Quads per side of the ocean grid (`GRID` in shaders/surface/water.vert).
-pub const GRID_QUADS: u32 = 192;
+/// Patches per side (`PATCHES` in shaders/common/water.glsl).
+pub const PATCHES: u32 = 32;
+
+/// Samplers the water's textures use.
+pub struct WaterSamplers {
+    /// Linear, clamped: reflection and refraction colour.
+    pub clamp: vk::Sampler,
+    /// Nearest, clamped: refraction depth.
+    pub depth: vk::Sampler,
+    /// Linear, repeating: the DU/DV map.
+    pub repeat: vk::Sampler,
+}
 
 pub struct WaterPass {
+    ctx: Arc<Context>,
+    _set_layout: DescriptorSetLayout,
     layout: PipelineLayout,
-    pipeline: Pipeline,
+    fill: Pipeline,
+    /// Line rendering (`--view wireframe`), when the device has fillModeNonSolid.
+    wireframe: Option<Pipeline>,
+    _pool: DescriptorPool,
+    set: vk::DescriptorSet,
 }
 
 impl WaterPass {
-    pub fn new(ctx: &Arc<Context>, frame_layout: &DescriptorSetLayout) -> GpuResult<WaterPass> {
-        let layout = PipelineLayout::new(ctx, "water layout", &[frame_layout], None)?;
-        let pipeline = Pipeline::graphics(
+    pub fn new(
+        ctx: &Arc<Context>,
+        frame_layout: &DescriptorSetLayout,
+        targets: &Targets,
+        dudv: vk::ImageView,
+        samplers: &WaterSamplers,
+    ) -> GpuResult<WaterPass> {
+        let sampled = vk::DescriptorType::COMBINED_IMAGE_SAMPLER;
+        let fragment = vk::ShaderStageFlags::FRAGMENT;
+        let set_layout = DescriptorSetLayout::new(
             ctx,
-            &layout,
-            &GraphicsDesc {
-                name: "water",
-                stages: &[
-                    (vk::ShaderStageFlags::VERTEX, shaders::SURFACE_WATER_VERT),
-                    (vk::ShaderStageFlags::FRAGMENT, shaders::SURFACE_WATER_FRAG),
-                ],
-                colour_formats: &[HDR_FORMAT],
-                depth_format: Some(DEPTH_FORMAT),
-                depth_compare: Some(vk::CompareOp::GREATER), // reversed-Z
-                depth_write: true,
-                ..Default::default()
-            },
+            "water textures layout",
+            &[
+                (0, sampled, fragment),
+                (1, sampled, fragment),
+                (2, sampled, fragment),
+                (3, sampled, fragment),
+            ],
         )?;
-        Ok(WaterPass { layout, pipeline })
+        let layout = scene_layout(ctx, "water layout", frame_layout, &[&set_layout])?;
+        let stages = [
+            (vk::ShaderStageFlags::VERTEX, shaders::SURFACE_WATER_VERT),
+            (
+                vk::ShaderStageFlags::TESSELLATION_CONTROL,
+                shaders::SURFACE_WATER_TESC,
+            ),
+            (
+                vk::ShaderStageFlags::TESSELLATION_EVALUATION,
+                shaders::SURFACE_WATER_TESE,
+            ),
+            (vk::ShaderStageFlags::FRAGMENT, shaders::SURFACE_WATER_FRAG),
+        ];
+        let pipeline = |name, polygon_mode| {
+            scene_pipeline(
+                ctx,
+                &layout,
+                GraphicsDesc {
+                    name,
+                    stages: &stages,
+                    topology: vk::PrimitiveTopology::PATCH_LIST,
+                    patch_control_points: 4,
+                    polygon_mode,
+                    ..Default::default()
+                },
+                true,
+            )
+        };
+        let fill = pipeline("water", vk::PolygonMode::FILL)?;
+        let wireframe = if ctx.info.fill_mode_non_solid {
+            Some(pipeline("water wireframe", vk::PolygonMode::LINE)?)
+        } else {
+            None
+        };
+        let pool = DescriptorPool::new(ctx, "water descriptors", 1, &[(sampled, 4)])?;
+        let set = pool.allocate(&set_layout, "water textures set")?;
+        let pass = WaterPass {
+            ctx: ctx.clone(),
+            _set_layout: set_layout,
+            layout,
+            fill,
+            wireframe,
+            _pool: pool,
+            set,
+        };
+        pass.resize(targets, dudv, samplers);
+        Ok(pass)
     }
 
-    /// Draws inside a rendering scope on the HDR + depth targets.
-    pub fn record(&self, rec: &Recorder, frame_set: vk::DescriptorSet) {
-        rec.bind_pipeline(&self.pipeline);
-        rec.bind_sets(&self.pipeline, &self.layout, &[frame_set]);
-        rec.draw(GRID_QUADS * GRID_QUADS * 6, 1);
+    /// Points the pass at new targets. The caller makes sure no frame in flight uses the set.
+    pub fn resize(&self, targets: &Targets, dudv: vk::ImageView, samplers: &WaterSamplers) {
+        let read = vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL;
+        descriptors::update(
+            &self.ctx,
+            self.set,
+            &[
+                Write::SampledImage {
+                    binding: 0,
+                    view: targets.reflection.colour.view,
+                    sampler: samplers.clamp,
+                    layout: read,
+                },
+                Write::SampledImage {
+                    binding: 1,
+                    view: targets.refraction.colour.view,
+                    sampler: samplers.clamp,
+                    layout: read,
+                },
+                Write::SampledImage {
+                    binding: 2,
+                    view: targets.refraction.depth.view,
+                    sampler: samplers.depth,
+                    layout: read,
+                },
+                Write::SampledImage {
+                    binding: 3,
+                    view: dudv,
+                    sampler: samplers.repeat,
+                    layout: read,
+                },
+            ],
+        );
+    }
+
+    /// Whether `--view wireframe` can draw lines on this device.
+    pub fn has_wireframe(&self) -> bool {
+        self.wireframe.is_some()
+    }
+
+    /// Draws the ocean patches inside the main rendering scope.
+    pub fn record(&self, rec: &Recorder, frame_set: vk::DescriptorSet, wireframe: bool) {
+        let pipeline = match (&self.wireframe, wireframe) {
+            (Some(lines), true) => lines,
+            _ => &self.fill,
+        };
+        bind_scene(
+            rec,
+            pipeline,
+            &self.layout,
+            &[frame_set, self.set],
+            ViewIndex::Main,
+        );
+        // One instance per row of patches (see water.vert).
+        rec.draw(PATCHES * 4, PATCHES);
     }
 }

@@ -1,0 +1,29 @@
+#version 460
+// Renders one face of the sky cubemap: the direction of each texel by the inverse of Vulkan's
+// cube-face selection (spec table "Cube map face selection"), then the analytic sky
+// (common/sky.glsl). Run for the six faces when the sun changes.
+#include "common/sky.glsl"
+
+layout(push_constant) uniform Face { vec4 sun_dir; uint face; } pc;
+
+layout(location = 0) in vec2 in_uv;
+layout(location = 1) in vec2 in_ndc;
+layout(location = 0) out vec4 out_colour;
+
+vec3 face_direction(uint face, vec2 st) {
+    float a = st.x * 2.0 - 1.0;
+    float b = st.y * 2.0 - 1.0;
+    switch (face) {
+        case 0u: return vec3(1.0, -b, -a);
+        case 1u: return vec3(-1.0, -b, a);
+        case 2u: return vec3(a, 1.0, b);
+        case 3u: return vec3(a, -1.0, -b);
+        case 4u: return vec3(a, -b, 1.0);
+        default: return vec3(-a, -b, -1.0);
+    }
+}
+
+void main() {
+    vec3 dir = normalize(face_direction(pc.face, in_uv));
+    out_colour = vec4(sky_radiance(dir, pc.sun_dir.xyz, pc.sun_dir.w), 1.0);
+}

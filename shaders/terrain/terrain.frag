@@ -1,0 +1,39 @@
+#version 460
+// Terrain and objects, lit by the sun (Lambert) and the sky (hemisphere ambient), with the same
+// distance haze as the water. Under the water the light is dimmed and tinted by the water it
+// crossed (depth below the surface), so the refraction texture already shows a shallow bottom
+// turning blue with depth.
+#include "common/frame.glsl"
+#include "common/terrain.glsl"
+
+layout(location = 0) in vec3 in_rel_pos;
+layout(location = 1) in vec3 in_world;
+layout(location = 2) in vec3 in_normal;
+layout(location = 3) flat in int in_object;
+layout(location = 0) out vec4 out_colour;
+
+void main() {
+    vec3 n = normalize(in_normal);
+    vec3 sun = frame.sun_dir.xyz;
+    vec3 albedo;
+    if (in_object >= 0) {
+        if (in_object == 0) {
+            // Buoy: red and white bands 0.7 m high.
+            albedo = fract(in_world.y / 1.4) < 0.5 ? vec3(0.75, 0.08, 0.05) : vec3(0.85);
+        } else {
+            albedo = vec3(0.45, 0.42, 0.38);
+        }
+    } else {
+        albedo = terrain_albedo(in_world.y, n.y);
+    }
+    float lambert = max(dot(n, sun), 0.0);
+    vec3 ambient = mix(vec3(0.18, 0.2, 0.22), vec3(0.35, 0.45, 0.6), n.y * 0.5 + 0.5);
+    vec3 colour = albedo * (vec3(1.0, 0.92, 0.8) * lambert * 1.6 + ambient);
+    // Below the water: light attenuated on its way down (Beer-Lambert, depth below the surface).
+    float below = max(frame.time.y - in_world.y, 0.0);
+    colour *= exp(-below * vec3(0.35, 0.09, 0.06));
+    float dist = length(in_rel_pos);
+    vec3 horizon = sky_lookup(normalize(vec3(in_rel_pos.x, 0.0, in_rel_pos.z) + vec3(0.0, 0.02, 0.0)));
+    float haze = 1.0 - exp(-dist / 9000.0);
+    out_colour = vec4(mix(colour, horizon, haze), 1.0);
+}

@@ -1,0 +1,33 @@
+#version 460
+// Terrain: a grid of TERRAIN_QUADS² quads around the island, displaced by terrain_height
+// (common/terrain.glsl); normals by central differences. Drawn in every view; the clip plane of
+// the view (reflection: above the water, refraction: below) cuts it (seed 001 eq. 1–2).
+// Outputs: eye-relative position, world position, normal.
+#include "common/frame.glsl"
+#include "common/terrain.glsl"
+
+layout(location = 0) out vec3 out_rel_pos;
+layout(location = 1) out vec3 out_world;
+layout(location = 2) out vec3 out_normal;
+layout(location = 3) flat out int out_object; // terrain.frag's object index; -1: terrain
+
+const uvec2 CORNERS[6] = uvec2[](uvec2(0, 0), uvec2(1, 1), uvec2(1, 0), uvec2(0, 0), uvec2(0, 1), uvec2(1, 1));
+
+void main() {
+    uint quad = uint(gl_VertexIndex) / 6u;
+    uvec2 cell = uvec2(quad % TERRAIN_QUADS, quad / TERRAIN_QUADS) + CORNERS[uint(gl_VertexIndex) % 6u];
+    vec2 u = vec2(cell) / float(TERRAIN_QUADS) * 2.0 - 1.0;
+    float half_side = frame.terrain.w * TERRAIN_EXTENT;
+    vec2 xz = frame.terrain.xy + u * half_side;
+    float y = terrain_height(xz);
+    float e = half_side / float(TERRAIN_QUADS);
+    float hx = terrain_height(xz + vec2(e, 0.0)) - terrain_height(xz - vec2(e, 0.0));
+    float hz = terrain_height(xz + vec2(0.0, e)) - terrain_height(xz - vec2(0.0, e));
+    out_normal = normalize(vec3(-hx, 2.0 * e, -hz));
+    vec3 world = vec3(xz.x, y, xz.y);
+    out_world = world;
+    out_object = -1;
+    out_rel_pos = world - VIEW.eye.xyz;
+    gl_ClipDistance[0] = dot(VIEW.clip_plane, vec4(world, 1.0));
+    gl_Position = VIEW.view_proj * vec4(out_rel_pos, 1.0);
+}

@@ -1,0 +1,107 @@
+//! CPU-side pieces of the scene: the DU/DV map (generated, or loaded with `--dudv`) and the
+//! terrain height (mirror of shaders/common/terrain.glsl, used to place cameras and in tests).
+
+use std::path::Path;
+
+use super::camera::SceneLayout;
+
+/// Side of the generated DU/DV map (px).
+pub const DUDV_SIDE: u32 = 256;
+
+/// A tileable DU/DV map (RGBA8: du in red, dv in green, 128 = no offset): a sum of sine waves
+/// with whole numbers of periods across the tile, so it repeats without seams (seed 001 §3.3,
+/// Fig. 4 shows such a map). Deterministic.
+pub fn generate_dudv(side: u32) -> Vec<u8> {
+    // (kx, ky) whole periods per tile, amplitude, phase, for du and dv separately.
+    const WAVES: [(f32, f32, f32, f32); 6] = [
+        (1.0, 2.0, 0.35, 0.3),
+        (-3.0, 1.0, 0.25, 1.7),
+        (2.0, -5.0, 0.18, 4.1),
+        (7.0, 3.0, 0.10, 2.2),
+        (-6.0, -9.0, 0.07, 5.3),
+        (13.0, -4.0, 0.05, 0.9),
+    ];
+    let tau = std::f32::consts::TAU;
+    let mut texels = Vec::with_capacity((side * side * 4) as usize);
+    let total: f32 = WAVES.iter().map(|w| w.2).sum();
+    for y in 0..side {
+        for x in 0..side {
+            let (u, v) = (x as f32 / side as f32, y as f32 / side as f32);
+            let mut du = 0.0;
+            let mut dv = 0.0;
+            for (i, &(kx, ky, a, phase)) in WAVES.iter().enumerate() {
+                let theta = tau * (kx * u + ky * v) + phase;
+                du += a * theta.sin();
+                // dv uses the same waves turned by 90 degrees and shifted.
+                let theta2 = tau * (-ky * u + kx * v) + phase * 1.7 + i as f32;
+                dv += a * theta2.sin();
+            }
+            let byte = |s: f32| (128.0 + 127.0 * (s / total).clamp(-1.0, 1.0)).round() as u8;
+            texels.extend_from_slice(&[byte(du), byte(dv), 128, 255]);
+        }
+    }
+    texels
+}
+
+/// Loads a DU/DV map from a PNG (red = du, green = dv, 128 = no offset): (width, height, RGBA8).
+pub fn load_dudv(path: &Path) -> anyhow::Result<(u32, u32, Vec<u8>)> {
+    let img = image::open(path)
+        .map_err(|e| anyhow::anyhow!("--dudv {}: {e}", path.display()))?
+        .to_rgba8();
+    let (w, h) = img.dimensions();
+    Ok((w, h, img.into_raw()))
+}
+
+/// Height of the island terrain at world (x, z) (m): `terrain_height` of
+/// shaders/common/terrain.glsl.
+pub fn terrain_height(layout: &SceneLayout, x: f32, z: f32) -> f32 {
+    const PEAK_M: f32 = 48.0;
+    let dx = (x - layout.island_xz[0]) / layout.island_radius_m;
+    let dz = (z - layout.island_xz[1]) / layout.island_radius_m;
+    let r2 = dx * dx + dz * dz;
+    let island = (-r2 * 1.6).exp();
+    let dot = |a: f32, b: f32| dx * a + dz * b;
+    let n = 0.50 * (dot(3.1, 1.7) + 0.4).sin()
+        + 0.25 * (dot(-4.3, 6.1) + 1.3).sin()
+        + 0.12 * (dot(11.7, -7.9) + 2.1).sin()
+        + 0.06 * (dot(-19.3, -23.1) + 0.7).sin();
+    let depth = layout.sea_floor_m;
+    -depth + (depth + PEAK_M) * island * (1.0 + 0.45 * n) + 1.5 * n * (1.0 - island)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn dudv_tiles_without_seams_and_is_centred() {
+        let side = 64;
+        let t = generate_dudv(side);
+        let at = |x: u32, y: u32, c: usize| t[((y * side + x) * 4) as usize + c] as i32;
+        for i in 0..side {
+            for c in 0..2 {
+                // The first column continues the last one (neighbours differ by little).
+                assert!((at(0, i, c) - at(side - 1, i, c)).abs() < 24);
+                assert!((at(i, 0, c) - at(i, side - 1, c)).abs() < 24);
+            }
+        }
+        let mean: f64 = (0..side * side)
+            .map(|i| t[(i * 4) as usize] as f64)
+            .sum::<f64>()
+            / (side * side) as f64;
+        assert!((mean - 128.0).abs() < 4.0, "mean du {mean}");
+        let spread = (0..side * side)
+            .map(|i| t[(i * 4) as usize])
+            .fold((255u8, 0u8), |(lo, hi), v| (lo.min(v), hi.max(v)));
+        assert!(spread.1 - spread.0 > 100, "du range {spread:?}");
+    }
+
+    #[test]
+    fn island_rises_from_the_sea_floor() {
+        let layout = SceneLayout::default();
+        let [x, z] = layout.island_xz;
+        assert!(terrain_height(&layout, x, z) > 20.0);
+        let far = terrain_height(&layout, x + 3.0 * layout.island_radius_m, z);
+        assert!((far + layout.sea_floor_m).abs() < 3.0, "far floor {far}");
+    }
+}
