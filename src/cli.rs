@@ -20,7 +20,8 @@ pub const MAX_SIDE: u32 = 16384;
     name = "vkocean",
     version,
     about = "A real-time FFT ocean on hand-written Vulkan.",
-    after_help = "Exit codes: 0 ok, 1 runtime error, 2 bad usage, 3 validation reported warnings or errors.\n\
+    after_help = "Window controls: W/S forward/back, A/D sideways, Q/E down/up, Shift faster, left mouse drag to look, F12 screenshot, Esc quit.\n\
+                  Exit codes: 0 ok, 1 runtime error, 2 bad usage, 3 validation reported warnings or errors.\n\
                   Without a GPU, Mesa's lavapipe (CPU) driver is used; install it with tools/setup."
 )]
 pub struct Cli {

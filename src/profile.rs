@@ -85,6 +85,17 @@ impl ProfileReport<'_> {
             "compute_gpu_ms": Stats::json(&self.compute.frames),
             "frame_cpu_ms": Stats::json(self.cpu_frame_ms),
         });
+        let mut report = report;
+        if !self.gpu.tessellation.is_empty() {
+            let column = |i: usize| -> Vec<f64> {
+                self.gpu.tessellation.iter().map(|c| c[i] as f64).collect()
+            };
+            report["water_tessellation"] = json!({
+                "patches": Stats::json(&column(0)),
+                "tess_eval_invocations": Stats::json(&column(1)),
+                "samples": self.gpu.tessellation.len(),
+            });
+        }
         serde_json::to_string_pretty(&report).expect("a JSON value always serializes") + "\n"
     }
 
@@ -103,6 +114,15 @@ impl ProfileReport<'_> {
             out += &format!(
                 "  {:<16} median {:7.3} ms  p95 {:7.3} ms\n",
                 "compute (GPU)", s.median, s.p95
+            );
+        }
+        let tess = &self.gpu.tessellation;
+        let patches = Stats::of(&tess.iter().map(|c| c[0] as f64).collect::<Vec<_>>());
+        let evals = Stats::of(&tess.iter().map(|c| c[1] as f64).collect::<Vec<_>>());
+        if let (Some(p), Some(e)) = (patches, evals) {
+            out += &format!(
+                "  {:<16} median {:.0} patches, {:.0} tess-eval invocations (p95 {:.0})\n",
+                "water LOD", p.median, e.median, e.p95
             );
         }
         if let Some(s) = Stats::of(&self.gpu.frames) {

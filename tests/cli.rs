@@ -110,6 +110,29 @@ fn bad_usage_exits_2_with_one_line() {
             ],
             "--gerstner-waves",
         ),
+        (
+            &["--headless", "--camera", "1,2"],
+            "3 comma-separated numbers",
+        ),
+        (&["--headless", "--camera", "0,-3,0"], "above the water"),
+        (&["--headless", "--camera", "0,nan,0"], "--camera"),
+        (&["--headless", "--look-at", "0,12,0"], "--look-at"),
+        (&["--headless", "--look-at", "0,50,0"], "straight above"),
+        (&["--headless", "--view", "sideways"], "--view"),
+        (&["--headless", "--fresnel", "fake"], "--fresnel"),
+        (&["--headless", "--rtt-scale", "0"], "--rtt-scale"),
+        (&["--headless", "--tess-edge", "1"], "--tess-edge"),
+        (&["--headless", "--sun", "0,95"], "elevation"),
+        (
+            &["--headless", "--dudv", "/nonexistent/d.png"],
+            "no such file",
+        ),
+        (&["--headless", "--dudv", "d.jpg"], "must end in .png"),
+        (&["--headless", "--skybox", "/nonexistent"], "missing face"),
+        (&["--headless", "--sea-floor", "0"], "--sea-floor"),
+        (&["--headless", "--dt", "0"], "--dt"),
+        (&["--headless", "--time", "-1"], "--time"),
+        (&["--headless", "--buoy", "1,inf"], "--buoy"),
     ];
     for (args, needle) in cases {
         assert_fails(args, &[], 2, needle);

@@ -1,6 +1,7 @@
 //! Two frontends, one renderer: [`headless`] renders offscreen and reads the last frame back,
 //! [`windowed`] presents to a winit window. Both drive a [`session::Session`].
 
+pub mod fly;
 pub mod headless;
 pub mod session;
 pub mod windowed;

@@ -2,6 +2,7 @@
 //! The swapchain is recreated on resize and when it is out of date or suboptimal; a minimised
 //! window (zero extent) pauses rendering. Esc or the close button end the run, `--frames N`
 //! stops after N frames, F12 saves a screenshot (to `--screenshot` or `vkocean-<frame>.png`).
+//! The camera flies with W/A/S/D, Q/E, Shift and a left mouse drag (`fly.rs`).
 
 use std::path::PathBuf;
 use std::sync::Arc;
@@ -9,12 +10,13 @@ use std::sync::Arc;
 use ash::vk;
 use winit::application::ApplicationHandler;
 use winit::dpi::PhysicalSize;
-use winit::event::{ElementState, KeyEvent, WindowEvent};
+use winit::event::{ElementState, KeyEvent, MouseButton, WindowEvent};
 use winit::event_loop::{ActiveEventLoop, EventLoop};
-use winit::keyboard::{Key, NamedKey};
+use winit::keyboard::{Key, KeyCode, NamedKey, PhysicalKey};
 use winit::raw_window_handle::{HasDisplayHandle, HasWindowHandle};
 use winit::window::{Window, WindowId};
 
+use super::fly::{FlyCamera, Move};
 use super::session::{check_size, readback_buffer, Session};
 use super::{Outcome, RunSettings};
 use crate::gpu::image::full_range;
@@ -50,6 +52,8 @@ pub fn run(s: &RunSettings) -> anyhow::Result<Outcome> {
         frames_done: 0,
         capture_next: false,
         exit_after_capture: false,
+        fly: FlyCamera::default(),
+        last_frame: None,
     };
     event_loop
         .run_app(&mut app)
@@ -89,6 +93,23 @@ struct App {
     capture_next: bool,
     /// Exit once the captured frame is saved (Esc / close with --screenshot).
     exit_after_capture: bool,
+    fly: FlyCamera,
+    /// When the previous frame started (camera motion uses the wall-clock step).
+    last_frame: Option<std::time::Instant>,
+}
+
+/// The fly camera's keys (by position, so they work on any keyboard layout).
+fn fly_key(code: KeyCode) -> Option<Move> {
+    Some(match code {
+        KeyCode::KeyW => Move::Forward,
+        KeyCode::KeyS => Move::Back,
+        KeyCode::KeyA => Move::Left,
+        KeyCode::KeyD => Move::Right,
+        KeyCode::KeyQ => Move::Down,
+        KeyCode::KeyE => Move::Up,
+        KeyCode::ShiftLeft | KeyCode::ShiftRight => Move::Fast,
+        _ => return None,
+    })
 }
 
 fn physical_size(size: PhysicalSize<u32>) -> vk::Extent2D {
@@ -237,6 +258,12 @@ impl App {
         let signals = [vk::SemaphoreSubmitInfo::default()
             .semaphore(image.ready)
             .stage_mask(vk::PipelineStageFlags2::ALL_COMMANDS)];
+        let now = std::time::Instant::now();
+        let step = self
+            .last_frame
+            .map_or(0.0, |last| now.duration_since(last).as_secs_f32());
+        self.last_frame = Some(now);
+        self.fly.update(&mut state.session.renderer.camera, step);
         let inputs = FrameInputs {
             time_s: match self.settings.dt_s {
                 Some(dt) => {
@@ -385,6 +412,25 @@ impl ApplicationHandler for App {
     fn window_event(&mut self, event_loop: &ActiveEventLoop, _id: WindowId, event: WindowEvent) {
         match event {
             WindowEvent::CloseRequested => self.request_exit(event_loop),
+            WindowEvent::KeyboardInput {
+                event:
+                    KeyEvent {
+                        physical_key: PhysicalKey::Code(code),
+                        state,
+                        ..
+                    },
+                ..
+            } if fly_key(code).is_some() => {
+                let m = fly_key(code).expect("checked");
+                self.fly.key(m, state == ElementState::Pressed);
+            }
+            WindowEvent::MouseInput {
+                button: MouseButton::Left,
+                state,
+                ..
+            } => self.fly.drag(state == ElementState::Pressed),
+            WindowEvent::CursorMoved { position, .. } => self.fly.cursor(position.x, position.y),
+            WindowEvent::Focused(false) => self.fly.release_all(),
             WindowEvent::KeyboardInput {
                 event:
                     KeyEvent {

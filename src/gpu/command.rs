@@ -455,6 +455,20 @@ impl<'a> Recorder<'a> {
         };
     }
 
+    pub(crate) fn begin_query(&self, pool: vk::QueryPool, query: u32) {
+        // SAFETY: recording-state invariant; the query was reset earlier in this command buffer.
+        unsafe {
+            self.ctx
+                .device
+                .cmd_begin_query(self.cmd, pool, query, vk::QueryControlFlags::empty())
+        };
+    }
+
+    pub(crate) fn end_query(&self, pool: vk::QueryPool, query: u32) {
+        // SAFETY: recording-state invariant; paired with `begin_query` in the same scope.
+        unsafe { self.ctx.device.cmd_end_query(self.cmd, pool, query) };
+    }
+
     pub(crate) fn write_timestamp(&self, pool: vk::QueryPool, query: u32) {
         // SAFETY: recording-state invariant; the query was reset earlier in this command buffer.
         unsafe {

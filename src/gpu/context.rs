@@ -346,7 +346,8 @@ fn create_device(
         .tessellation_shader(true)
         .shader_clip_distance(true)
         .fill_mode_non_solid(chosen.info.fill_mode_non_solid)
-        .sampler_anisotropy(chosen.info.sampler_anisotropy);
+        .sampler_anisotropy(chosen.info.sampler_anisotropy)
+        .pipeline_statistics_query(chosen.info.pipeline_statistics_query);
     let mut f12 = vk::PhysicalDeviceVulkan12Features::default().timeline_semaphore(true);
     let mut f13 = vk::PhysicalDeviceVulkan13Features::default()
         .synchronization2(true)

@@ -25,6 +25,8 @@ pub struct DeviceInfo {
     pub compute_timestamp_valid_bits: u32,
     pub fill_mode_non_solid: bool,
     pub sampler_anisotropy: bool,
+    /// Pipeline-statistics queries (tessellation counters in `--profile`).
+    pub pipeline_statistics_query: bool,
     /// Invocations per subgroup (SIMD width on CPU drivers).
     pub subgroup_size: u32,
     /// Compute shaders can use subgroup shuffles (GL_KHR_shader_subgroup_shuffle).
@@ -215,6 +217,7 @@ pub(crate) fn inspect(
         compute_timestamp_valid_bits: families[compute_family as usize].timestamp_valid_bits,
         fill_mode_non_solid: f.fill_mode_non_solid == vk::TRUE,
         sampler_anisotropy: f.sampler_anisotropy == vk::TRUE,
+        pipeline_statistics_query: f.pipeline_statistics_query == vk::TRUE,
         subgroup_size,
         compute_subgroup_shuffle,
     };

@@ -12,6 +12,12 @@ use super::error::{GpuResult, VkResultExt};
 use super::frame::{Frame, FRAMES_IN_FLIGHT};
 use super::garbage::Garbage;
 
+/// The counters `Profiler::statistics` reads (results come in bit order).
+const STATISTICS: vk::QueryPipelineStatisticFlags = vk::QueryPipelineStatisticFlags::from_raw(
+    vk::QueryPipelineStatisticFlags::TESSELLATION_CONTROL_SHADER_PATCHES.as_raw()
+        | vk::QueryPipelineStatisticFlags::TESSELLATION_EVALUATION_SHADER_INVOCATIONS.as_raw(),
+);
+
 /// Timestamps per frame: frame begin/end plus two per pass.
 const QUERIES_PER_FRAME: u32 = 128;
 
@@ -21,6 +27,8 @@ struct SlotRecord {
     frame_index: Option<u64>,
     passes: Vec<(&'static str, u32, u32)>,
     used: u32,
+    /// The pipeline-statistics query was written.
+    statistics: bool,
 }
 
 /// GPU times per pass and per frame, in milliseconds, in the order passes first appeared.
@@ -28,6 +36,9 @@ struct SlotRecord {
 pub struct GpuTimings {
     pub passes: Vec<(&'static str, Vec<f64>)>,
     pub frames: Vec<f64>,
+    /// Per frame, the scope of `Profiler::statistics`: [tessellation-control patches,
+    /// tessellation-evaluation invocations].
+    pub tessellation: Vec<[u64; 2]>,
 }
 
 /// Timestamp queries around passes; disabled (labels only) when the queue has no timestamps.
@@ -35,6 +46,8 @@ pub struct Profiler {
     ctx: Arc<Context>,
     /// One pool per frame slot (empty when timestamps are unsupported).
     pools: Vec<vk::QueryPool>,
+    /// One pipeline-statistics query per frame slot (empty when unsupported, and for compute).
+    statistics_pools: Vec<vk::QueryPool>,
     records: Vec<SlotRecord>,
     /// Slot of the frame being recorded.
     current: usize,
@@ -56,6 +69,22 @@ impl Profiler {
             ctx.info.timestamp_valid_bits,
             "graphics",
         )
+        .and_then(|mut profiler| {
+            if ctx.info.pipeline_statistics_query {
+                for i in 0..FRAMES_IN_FLIGHT {
+                    let info = vk::QueryPoolCreateInfo::default()
+                        .query_type(vk::QueryType::PIPELINE_STATISTICS)
+                        .pipeline_statistics(STATISTICS)
+                        .query_count(1);
+                    // SAFETY: valid create info on a live device with pipelineStatisticsQuery.
+                    let pool = unsafe { ctx.device.create_query_pool(&info, None) }
+                        .vk("vkCreateQueryPool")?;
+                    ctx.name(pool, &format!("tessellation statistics slot {i}"));
+                    profiler.statistics_pools.push(pool);
+                }
+            }
+            Ok(profiler)
+        })
     }
 
     /// A profiler for the compute queue's command buffers (its own query pools, reset in the
@@ -79,6 +108,7 @@ impl Profiler {
         let mut profiler = Profiler {
             ctx: ctx.clone(),
             pools: Vec::new(),
+            statistics_pools: Vec::new(),
             records: (0..FRAMES_IN_FLIGHT)
                 .map(|_| SlotRecord::default())
                 .collect(),
@@ -122,6 +152,10 @@ impl Profiler {
         record.frame_index = Some(frame.index);
         record.passes.clear();
         record.used = 0;
+        record.statistics = false;
+        if let Some(&pool) = self.statistics_pools.get(frame.slot) {
+            rec.reset_queries(pool, 1);
+        }
         if let Some(&pool) = self.pools.get(frame.slot) {
             rec.reset_queries(pool, QUERIES_PER_FRAME);
             rec.write_timestamp(pool, 0);
@@ -170,6 +204,23 @@ impl Profiler {
         rec.end_label();
     }
 
+    /// Counts the tessellation work of `body` (once per frame; inside or outside a rendering
+    /// scope). A no-op on devices without pipeline-statistics queries.
+    pub fn statistics<R>(&mut self, rec: &Recorder, body: impl FnOnce() -> R) -> R {
+        let pool = self.statistics_pools.get(self.current).copied();
+        let record = &mut self.records[self.current];
+        match pool {
+            Some(pool) if !record.statistics => {
+                record.statistics = true;
+                rec.begin_query(pool, 0);
+                let result = body();
+                rec.end_query(pool, 0);
+                result
+            }
+            _ => body(),
+        }
+    }
+
     /// Runs `body` inside a named pass.
     pub fn pass<R>(&mut self, rec: &Recorder, name: &'static str, body: impl FnOnce() -> R) -> R {
         self.begin_pass(rec, name);
@@ -189,6 +240,20 @@ impl Profiler {
         };
         if index < self.warmup_frames || record.used == 0 {
             return Ok(());
+        }
+        if let (true, Some(&stats_pool)) = (record.statistics, self.statistics_pools.get(slot)) {
+            let mut counts = [0u64; 2];
+            // SAFETY: as below; the query holds the two counters of STATISTICS, in bit order.
+            unsafe {
+                self.ctx.device.get_query_pool_results(
+                    stats_pool,
+                    0,
+                    std::slice::from_mut(&mut counts),
+                    vk::QueryResultFlags::TYPE_64 | vk::QueryResultFlags::WAIT,
+                )
+            }
+            .vk("vkGetQueryPoolResults")?;
+            self.timings.tessellation.push(counts);
         }
         let mut ticks = vec![0u64; record.used as usize];
         // SAFETY: the frame that wrote these queries has completed (the caller waited on the
@@ -231,7 +296,7 @@ impl Profiler {
 
 impl Drop for Profiler {
     fn drop(&mut self) {
-        for pool in self.pools.drain(..) {
+        for pool in self.pools.drain(..).chain(self.statistics_pools.drain(..)) {
             self.ctx.defer(Garbage::QueryPool(pool));
         }
     }

@@ -443,7 +443,8 @@ impl Renderer {
             ],
             &[],
         );
-        profiler.pass(rec, "water", || {
+        profiler.begin_pass(rec, "water");
+        {
             rec.begin_rendering(
                 extent,
                 &[Attachment {
@@ -457,10 +458,14 @@ impl Renderer {
                     load: Load::Keep,
                 }),
             );
-            self.water
-                .record(rec, frame_set, s.view == ViewMode::Wireframe);
+            // Patches and tessellation-evaluation invocations, for --profile.
+            profiler.statistics(rec, || {
+                self.water
+                    .record(rec, frame_set, s.view == ViewMode::Wireframe)
+            });
             rec.end_rendering();
-        });
+        }
+        profiler.end_pass(rec);
 
         rec.barrier(
             &[
