@@ -8,35 +8,38 @@ use super::camera::SceneLayout;
 /// Side of the generated DU/DV map (px).
 pub const DUDV_SIDE: u32 = 256;
 
-/// A tileable DU/DV map (RGBA8: du in red, dv in green, 128 = no offset): a sum of sine waves
-/// with whole numbers of periods across the tile, so it repeats without seams (seed 001 §3.3,
-/// Fig. 4 shows such a map). Deterministic.
-pub fn generate_dudv(side: u32) -> Vec<u8> {
-    // (kx, ky) whole periods per tile, amplitude, phase, for du and dv separately.
-    const WAVES: [(f32, f32, f32, f32); 6] = [
-        (1.0, 2.0, 0.35, 0.3),
-        (-3.0, 1.0, 0.25, 1.7),
-        (2.0, -5.0, 0.18, 4.1),
-        (7.0, 3.0, 0.10, 2.2),
-        (-6.0, -9.0, 0.07, 5.3),
-        (13.0, -4.0, 0.05, 0.9),
-    ];
+/// (kx, ky) whole periods per tile, amplitude, phase of the DU/DV map's waves.
+const DUDV_WAVES: [(f32, f32, f32, f32); 6] = [
+    (1.0, 2.0, 0.35, 0.3),
+    (-3.0, 1.0, 0.25, 1.7),
+    (2.0, -5.0, 0.18, 4.1),
+    (7.0, 3.0, 0.10, 2.2),
+    (-6.0, -9.0, 0.07, 5.3),
+    (13.0, -4.0, 0.05, 0.9),
+];
+
+/// (du, dv) in [-1, 1] at tile coordinates (u, v): sums of sines with whole numbers of periods
+/// per tile, so the map is periodic in u and v with period 1.
+pub fn dudv_at(u: f32, v: f32) -> (f32, f32) {
     let tau = std::f32::consts::TAU;
+    let total: f32 = DUDV_WAVES.iter().map(|w| w.2).sum();
+    let (mut du, mut dv) = (0.0, 0.0);
+    for (i, &(kx, ky, a, phase)) in DUDV_WAVES.iter().enumerate() {
+        du += a * (tau * (kx * u + ky * v) + phase).sin();
+        // dv: the same waves turned by 90 degrees, other phases.
+        dv += a * (tau * (-ky * u + kx * v) + phase * 1.7 + i as f32).sin();
+    }
+    (du / total, dv / total)
+}
+
+/// A tileable DU/DV map (RGBA8: du in red, dv in green, 128 = no offset) sampled from
+/// `dudv_at` (seed 001 §3.3, Fig. 4 shows such a map). Deterministic.
+pub fn generate_dudv(side: u32) -> Vec<u8> {
+    let byte = |s: f32| (128.0 + 127.0 * s.clamp(-1.0, 1.0)).round() as u8;
     let mut texels = Vec::with_capacity((side * side * 4) as usize);
-    let total: f32 = WAVES.iter().map(|w| w.2).sum();
     for y in 0..side {
         for x in 0..side {
-            let (u, v) = (x as f32 / side as f32, y as f32 / side as f32);
-            let mut du = 0.0;
-            let mut dv = 0.0;
-            for (i, &(kx, ky, a, phase)) in WAVES.iter().enumerate() {
-                let theta = tau * (kx * u + ky * v) + phase;
-                du += a * theta.sin();
-                // dv uses the same waves turned by 90 degrees and shifted.
-                let theta2 = tau * (-ky * u + kx * v) + phase * 1.7 + i as f32;
-                dv += a * theta2.sin();
-            }
-            let byte = |s: f32| (128.0 + 127.0 * (s / total).clamp(-1.0, 1.0)).round() as u8;
+            let (du, dv) = dudv_at(x as f32 / side as f32, y as f32 / side as f32);
             texels.extend_from_slice(&[byte(du), byte(dv), 128, 255]);
         }
     }
@@ -75,25 +78,26 @@ mod tests {
 
     #[test]
     fn dudv_tiles_without_seams_and_is_centred() {
-        let side = 64;
-        let t = generate_dudv(side);
-        let at = |x: u32, y: u32, c: usize| t[((y * side + x) * 4) as usize + c] as i32;
-        for i in 0..side {
-            for c in 0..2 {
-                // The first column continues the last one (neighbours differ by little).
-                assert!((at(0, i, c) - at(side - 1, i, c)).abs() < 24);
-                assert!((at(i, 0, c) - at(i, side - 1, c)).abs() < 24);
+        for i in 0..50 {
+            let t = i as f32 / 50.0;
+            for (a, b) in [
+                (dudv_at(t, 0.0), dudv_at(t, 1.0)),
+                (dudv_at(0.0, t), dudv_at(1.0, t)),
+            ] {
+                assert!((a.0 - b.0).abs() < 1e-4 && (a.1 - b.1).abs() < 1e-4);
             }
         }
-        let mean: f64 = (0..side * side)
-            .map(|i| t[(i * 4) as usize] as f64)
-            .sum::<f64>()
-            / (side * side) as f64;
-        assert!((mean - 128.0).abs() < 4.0, "mean du {mean}");
-        let spread = (0..side * side)
-            .map(|i| t[(i * 4) as usize])
-            .fold((255u8, 0u8), |(lo, hi), v| (lo.min(v), hi.max(v)));
-        assert!(spread.1 - spread.0 > 100, "du range {spread:?}");
+        let side = 64;
+        let t = generate_dudv(side);
+        for c in 0..2 {
+            let values: Vec<f64> = t.chunks(4).map(|p| p[c] as f64).collect();
+            let mean = values.iter().sum::<f64>() / values.len() as f64;
+            assert!((mean - 128.0).abs() < 4.0, "channel {c} mean {mean}");
+            let (lo, hi) = values
+                .iter()
+                .fold((255.0f64, 0.0f64), |(lo, hi), &v| (lo.min(v), hi.max(v)));
+            assert!(hi - lo > 100.0, "channel {c} range {lo}..{hi}");
+        }
     }
 
     #[test]
