@@ -344,23 +344,7 @@ impl<'a> Recorder<'a> {
         layout: vk::ImageLayout,
         buffer: &Buffer,
     ) {
-        let region = vk::BufferImageCopy {
-            buffer_offset: 0,
-            buffer_row_length: 0,
-            buffer_image_height: 0,
-            image_subresource: vk::ImageSubresourceLayers {
-                aspect_mask: vk::ImageAspectFlags::COLOR,
-                mip_level: 0,
-                base_array_layer: 0,
-                layer_count: image.layers,
-            },
-            image_offset: vk::Offset3D::default(),
-            image_extent: vk::Extent3D {
-                width: image.extent.width,
-                height: image.extent.height,
-                depth: 1,
-            },
-        };
+        let region = all_layers_region(image);
         // SAFETY: recording-state invariant; the image is in `layout` (caller's barrier) and
         // the buffer holds all layers (caller's sizing).
         unsafe {
@@ -376,23 +360,7 @@ impl<'a> Recorder<'a> {
 
     /// Copies a tightly packed buffer into every layer of a colour image in TRANSFER_DST_OPTIMAL.
     pub fn copy_buffer_to_image_layers(&self, buffer: &Buffer, image: &super::image::Image) {
-        let region = vk::BufferImageCopy {
-            buffer_offset: 0,
-            buffer_row_length: 0,
-            buffer_image_height: 0,
-            image_subresource: vk::ImageSubresourceLayers {
-                aspect_mask: vk::ImageAspectFlags::COLOR,
-                mip_level: 0,
-                base_array_layer: 0,
-                layer_count: image.layers,
-            },
-            image_offset: vk::Offset3D::default(),
-            image_extent: vk::Extent3D {
-                width: image.extent.width,
-                height: image.extent.height,
-                depth: 1,
-            },
-        };
+        let region = all_layers_region(image);
         // SAFETY: recording-state invariant; the image is in TRANSFER_DST_OPTIMAL (caller's
         // barrier) and the buffer holds all layers (caller's sizing).
         unsafe {
@@ -479,5 +447,26 @@ impl<'a> Recorder<'a> {
                 query,
             )
         };
+    }
+}
+
+/// A copy of every layer of a colour image to or from a tightly packed buffer.
+fn all_layers_region(image: &super::image::Image) -> vk::BufferImageCopy {
+    vk::BufferImageCopy {
+        buffer_offset: 0,
+        buffer_row_length: 0,
+        buffer_image_height: 0,
+        image_subresource: vk::ImageSubresourceLayers {
+            aspect_mask: vk::ImageAspectFlags::COLOR,
+            mip_level: 0,
+            base_array_layer: 0,
+            layer_count: image.layers,
+        },
+        image_offset: vk::Offset3D::default(),
+        image_extent: vk::Extent3D {
+            width: image.extent.width,
+            height: image.extent.height,
+            depth: 1,
+        },
     }
 }
