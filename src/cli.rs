@@ -265,18 +265,7 @@ fn parse_runs(s: &str) -> Result<usize, String> {
 
 impl BenchFftArgs {
     pub fn settings(&self, cli: &Cli) -> Result<crate::bench::FftBenchSettings, UsageError> {
-        if let Some(path) = &self.json {
-            let ext = path
-                .extension()
-                .and_then(|e| e.to_str())
-                .map(str::to_ascii_lowercase);
-            if ext.as_deref() != Some("json") {
-                return Err(UsageError(format!(
-                    "--json {}: the file name must end in .json",
-                    path.display()
-                )));
-            }
-        }
+        require_extension("--json", self.json.as_deref(), "json")?;
         Ok(crate::bench::FftBenchSettings {
             sizes: self.sizes.clone(),
             batch: self.batch,
@@ -403,6 +392,24 @@ fn parse_size(s: &str) -> Result<(u32, u32), String> {
     Ok((side(w)?, side(h)?))
 }
 
+/// `flag PATH` must name a `.want` file (any case), when given.
+fn require_extension(
+    flag: &str,
+    path: Option<&std::path::Path>,
+    want: &str,
+) -> Result<(), UsageError> {
+    let Some(path) = path else { return Ok(()) };
+    let ext = path.extension().and_then(|e| e.to_str());
+    if ext.is_some_and(|e| e.eq_ignore_ascii_case(want)) {
+        Ok(())
+    } else {
+        Err(UsageError(format!(
+            "{flag} {}: the file name must end in .{want}",
+            path.display()
+        )))
+    }
+}
+
 /// A command-line value that is wrong (exit code 2).
 #[derive(Debug, thiserror::Error)]
 #[error("{0}")]
@@ -435,25 +442,12 @@ impl Cli {
     }
 
     fn scene_settings(&self) -> Result<SceneSettings, UsageError> {
-        for (flag, path) in [("--dudv", &self.dudv)] {
-            if let Some(path) = path {
-                let ext = path
-                    .extension()
-                    .and_then(|e| e.to_str())
-                    .map(str::to_ascii_lowercase);
-                if ext.as_deref() != Some("png") {
-                    return Err(UsageError(format!(
-                        "{flag} {}: the file name must end in .png",
-                        path.display()
-                    )));
-                }
-                if !path.is_file() {
-                    return Err(UsageError(format!(
-                        "{flag} {}: no such file",
-                        path.display()
-                    )));
-                }
-            }
+        require_extension("--dudv", self.dudv.as_deref(), "png")?;
+        if let Some(path) = self.dudv.as_deref().filter(|p| !p.is_file()) {
+            return Err(UsageError(format!(
+                "--dudv {}: no such file",
+                path.display()
+            )));
         }
         if let Some(dir) = &self.skybox {
             for face in crate::render::passes::sky::SKYBOX_FACES {
@@ -513,27 +507,8 @@ impl Cli {
 
     /// Cross-checks the options and resolves defaults.
     pub fn settings(&self) -> Result<RunSettings, UsageError> {
-        for (flag, path) in [
-            ("--screenshot", &self.screenshot),
-            ("--profile", &self.profile),
-        ] {
-            let Some(path) = path else { continue };
-            let want = if flag == "--screenshot" {
-                "png"
-            } else {
-                "json"
-            };
-            let ext = path
-                .extension()
-                .and_then(|e| e.to_str())
-                .map(str::to_ascii_lowercase);
-            if ext.as_deref() != Some(want) {
-                return Err(UsageError(format!(
-                    "{flag} {}: the file name must end in .{want}",
-                    path.display()
-                )));
-            }
-        }
+        require_extension("--screenshot", self.screenshot.as_deref(), "png")?;
+        require_extension("--profile", self.profile.as_deref(), "json")?;
         let waves = match self.waves {
             WavesArg::Fft => {
                 if self.gerstner_waves.is_some() || self.gerstner_count.is_some() {

@@ -306,23 +306,7 @@ impl<'a> Recorder<'a> {
 
     /// Copies layer 0 of a colour image (in TRANSFER_SRC_OPTIMAL) into a tightly packed buffer.
     pub fn copy_image_to_buffer(&self, image: vk::Image, extent: vk::Extent2D, buffer: &Buffer) {
-        let region = vk::BufferImageCopy {
-            buffer_offset: 0,
-            buffer_row_length: 0,
-            buffer_image_height: 0,
-            image_subresource: vk::ImageSubresourceLayers {
-                aspect_mask: vk::ImageAspectFlags::COLOR,
-                mip_level: 0,
-                base_array_layer: 0,
-                layer_count: 1,
-            },
-            image_offset: vk::Offset3D::default(),
-            image_extent: vk::Extent3D {
-                width: extent.width,
-                height: extent.height,
-                depth: 1,
-            },
-        };
+        let region = packed_region(extent, 1);
         // SAFETY: recording-state invariant; the image is in TRANSFER_SRC_OPTIMAL (caller's
         // barrier) and the buffer is large enough (checked by the caller's sizing).
         unsafe {
@@ -344,7 +328,7 @@ impl<'a> Recorder<'a> {
         layout: vk::ImageLayout,
         buffer: &Buffer,
     ) {
-        let region = all_layers_region(image);
+        let region = packed_region(image.extent, image.layers);
         // SAFETY: recording-state invariant; the image is in `layout` (caller's barrier) and
         // the buffer holds all layers (caller's sizing).
         unsafe {
@@ -360,7 +344,7 @@ impl<'a> Recorder<'a> {
 
     /// Copies a tightly packed buffer into every layer of a colour image in TRANSFER_DST_OPTIMAL.
     pub fn copy_buffer_to_image_layers(&self, buffer: &Buffer, image: &super::image::Image) {
-        let region = all_layers_region(image);
+        let region = packed_region(image.extent, image.layers);
         // SAFETY: recording-state invariant; the image is in TRANSFER_DST_OPTIMAL (caller's
         // barrier) and the buffer holds all layers (caller's sizing).
         unsafe {
@@ -450,8 +434,9 @@ impl<'a> Recorder<'a> {
     }
 }
 
-/// A copy of every layer of a colour image to or from a tightly packed buffer.
-fn all_layers_region(image: &super::image::Image) -> vk::BufferImageCopy {
+/// A copy of the first `layers` layers of a colour image of `extent` to or from a tightly
+/// packed buffer, layer after layer.
+fn packed_region(extent: vk::Extent2D, layers: u32) -> vk::BufferImageCopy {
     vk::BufferImageCopy {
         buffer_offset: 0,
         buffer_row_length: 0,
@@ -460,12 +445,12 @@ fn all_layers_region(image: &super::image::Image) -> vk::BufferImageCopy {
             aspect_mask: vk::ImageAspectFlags::COLOR,
             mip_level: 0,
             base_array_layer: 0,
-            layer_count: image.layers,
+            layer_count: layers,
         },
         image_offset: vk::Offset3D::default(),
         image_extent: vk::Extent3D {
-            width: image.extent.width,
-            height: image.extent.height,
+            width: extent.width,
+            height: extent.height,
             depth: 1,
         },
     }
