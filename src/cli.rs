@@ -14,6 +14,8 @@ use glam::Vec3;
 
 /// Largest accepted `--size` side; the device limit is checked again at run time.
 pub const MAX_SIDE: u32 = 16384;
+/// `--size` when not given.
+pub const DEFAULT_SIZE: (u32, u32) = (1280, 720);
 
 #[derive(Parser, Debug)]
 #[command(
@@ -33,9 +35,9 @@ pub struct Cli {
     #[arg(long, value_name = "N", value_parser = parse_frames, allow_hyphen_values = true)]
     pub frames: Option<u64>,
 
-    /// Render size in pixels (window inner size, or the headless image).
-    #[arg(long, value_name = "WxH", value_parser = parse_size, default_value = "1280x720")]
-    pub size: (u32, u32),
+    /// Render size in pixels (window inner size, or the headless image); default 1280x720.
+    #[arg(long, value_name = "WxH", value_parser = parse_size)]
+    pub size: Option<(u32, u32)>,
 
     /// Save the last frame as PNG (in a window F12 also saves one).
     #[arg(long, value_name = "PATH")]
@@ -63,64 +65,64 @@ pub struct Cli {
     pub present_mode: PresentModeArg,
 
     /// Wave model: fft (spectrum, cascades) or gerstner (analytic waves, seed 000's table by default).
-    #[arg(long, value_enum, value_name = "MODEL", default_value_t = WavesArg::Fft, help_heading = "Ocean")]
+    #[arg(long, global = true, value_enum, value_name = "MODEL", default_value_t = WavesArg::Fft, help_heading = "Ocean")]
     pub waves: WavesArg,
 
     /// Gerstner wave table: CSV (kx,kz,amplitude,phase[,steepness]) or TOML ([[wave]] tables).
-    #[arg(long, value_name = "FILE", help_heading = "Ocean")]
+    #[arg(long, global = true, value_name = "FILE", help_heading = "Ocean")]
     pub gerstner_waves: Option<PathBuf>,
 
     /// Use only the first M waves of the Gerstner table.
-    #[arg(long, value_name = "M", allow_hyphen_values = true,
+    #[arg(long, global = true, value_name = "M", allow_hyphen_values = true,
           value_parser = |s: &str| parse_whole(s, 1, 10_000).map(|n| n as usize), help_heading = "Ocean")]
     pub gerstner_count: Option<usize>,
 
     /// Ocean spectrum: phillips (Tessendorf), jonswap (fetch-limited), pierson-moskowitz (fully developed).
-    #[arg(long, value_enum, value_name = "KIND", default_value_t = SpectrumArg::Jonswap, help_heading = "Ocean")]
+    #[arg(long, global = true, value_enum, value_name = "KIND", default_value_t = SpectrumArg::Jonswap, help_heading = "Ocean")]
     pub spectrum: SpectrumArg,
 
     /// Wind speed 10 m above the sea, U10 (m/s, 0 < U <= 100).
-    #[arg(long, value_name = "M_S", default_value = "10", allow_hyphen_values = true,
+    #[arg(long, global = true, value_name = "M_S", default_value = "10", allow_hyphen_values = true,
           value_parser = |s: &str| parse_real(s, 0.0, 100.0, false), help_heading = "Ocean")]
     pub wind_speed: f64,
 
     /// Direction the wind blows toward, degrees from +x toward +z.
-    #[arg(long, value_name = "DEG", default_value = "0", allow_hyphen_values = true,
+    #[arg(long, global = true, value_name = "DEG", default_value = "0", allow_hyphen_values = true,
           value_parser = |s: &str| parse_real(s, -360.0, 360.0, true), help_heading = "Ocean")]
     pub wind_dir: f64,
 
     /// Fetch: distance the wind has blown over water (km, JONSWAP; 0 < F <= 10000).
-    #[arg(long, value_name = "KM", default_value = "100", allow_hyphen_values = true,
+    #[arg(long, global = true, value_name = "KM", default_value = "100", allow_hyphen_values = true,
           value_parser = |s: &str| parse_real(s, 0.0, 10_000.0, false), help_heading = "Ocean")]
     pub fetch: f64,
 
     /// Water depth (m, 0 < h <= 11000); default deep water. Finite depth changes the dispersion
     /// and applies the TMA attenuation.
-    #[arg(long, value_name = "M", allow_hyphen_values = true,
+    #[arg(long, global = true, value_name = "M", allow_hyphen_values = true,
           value_parser = |s: &str| parse_real(s, 0.0, 11_000.0, false), help_heading = "Ocean")]
     pub depth: Option<f64>,
 
     /// FFT size N: a power of two from 64 to 1024.
-    #[arg(long, value_name = "N", default_value = "256", value_parser = parse_fft_size, help_heading = "Ocean")]
+    #[arg(long, global = true, value_name = "N", default_value = "256", value_parser = parse_fft_size, help_heading = "Ocean")]
     pub fft_size: usize,
 
     /// Side of the largest cascade's patch (m, 0 < L <= 100000); each further cascade is 4.353x smaller.
-    #[arg(long, value_name = "M", default_value = "400", allow_hyphen_values = true,
+    #[arg(long, global = true, value_name = "M", default_value = "400", allow_hyphen_values = true,
           value_parser = |s: &str| parse_real(s, 0.0, 100_000.0, false), help_heading = "Ocean")]
     pub patch_size: f64,
 
     /// Horizontal (choppy) displacement scale λ (0 <= λ <= 10).
-    #[arg(long, value_name = "X", default_value = "1", allow_hyphen_values = true,
+    #[arg(long, global = true, value_name = "X", default_value = "1", allow_hyphen_values = true,
           value_parser = |s: &str| parse_real(s, 0.0, 10.0, true), help_heading = "Ocean")]
     pub choppiness: f64,
 
     /// Number of cascades, 1 to 4 (disjoint wave-number bands, non-commensurate patches).
-    #[arg(long, value_name = "K", default_value = "3", allow_hyphen_values = true,
+    #[arg(long, global = true, value_name = "K", default_value = "3", allow_hyphen_values = true,
           value_parser = |s: &str| parse_whole(s, 1, 4).map(|n| n as usize), help_heading = "Ocean")]
     pub cascades: usize,
 
     /// Seed of the initial spectrum (same seed, same sea on every machine).
-    #[arg(long, value_name = "S", default_value = "1", allow_hyphen_values = true,
+    #[arg(long, global = true, value_name = "S", default_value = "1", allow_hyphen_values = true,
           value_parser = |s: &str| parse_whole(s, 0, u64::MAX), help_heading = "Ocean")]
     pub seed: u64,
 
@@ -135,64 +137,64 @@ pub struct Cli {
     pub dump: Option<PathBuf>,
 
     /// Simulation time of the first frame (s); with --dt, pictures are reproducible.
-    #[arg(long, value_name = "T", default_value = "0", allow_hyphen_values = true,
+    #[arg(long, global = true, value_name = "T", default_value = "0", allow_hyphen_values = true,
           value_parser = |s: &str| parse_real(s, 0.0, 1.0e6, true), help_heading = "Scene")]
     pub time: f64,
 
     /// Simulation time step per frame (s); default 1/60 headless, wall-clock time in a window.
-    #[arg(long, value_name = "DT", allow_hyphen_values = true,
+    #[arg(long, global = true, value_name = "DT", allow_hyphen_values = true,
           value_parser = |s: &str| parse_real(s, 0.0, 10.0, false), help_heading = "Scene")]
     pub dt: Option<f64>,
 
     /// Camera position in metres (y up, water at y = 0); default 0,12,0.
-    #[arg(long, value_name = "X,Y,Z", value_parser = parse_vec3, allow_hyphen_values = true, help_heading = "Scene")]
+    #[arg(long, global = true, value_name = "X,Y,Z", value_parser = parse_vec3, allow_hyphen_values = true, help_heading = "Scene")]
     pub camera: Option<[f32; 3]>,
 
     /// Point the camera looks at; default: toward -z, slightly down.
-    #[arg(long, value_name = "X,Y,Z", value_parser = parse_vec3, allow_hyphen_values = true, help_heading = "Scene")]
+    #[arg(long, global = true, value_name = "X,Y,Z", value_parser = parse_vec3, allow_hyphen_values = true, help_heading = "Scene")]
     pub look_at: Option<[f32; 3]>,
 
     /// Show the final picture or one intermediate full screen.
-    #[arg(long, value_enum, value_name = "VIEW", default_value_t = ViewArg::Final, help_heading = "Scene")]
+    #[arg(long, global = true, value_enum, value_name = "VIEW", default_value_t = ViewArg::Final, help_heading = "Scene")]
     pub view: ViewArg,
 
     /// Reflection/refraction weight: schlick (approximation), exact (Fresnel equations, seed
     /// 004), power (seed 001: refraction weight cos θ^0.5).
-    #[arg(long, value_enum, value_name = "MODEL", default_value_t = FresnelArg::Schlick, help_heading = "Scene")]
+    #[arg(long, global = true, value_enum, value_name = "MODEL", default_value_t = FresnelArg::Schlick, help_heading = "Scene")]
     pub fresnel: FresnelArg,
 
     /// Size of the reflection and refraction textures relative to the window (0.1 to 1).
-    #[arg(long, value_name = "S", default_value = "0.5", allow_hyphen_values = true,
+    #[arg(long, global = true, value_name = "S", default_value = "0.5", allow_hyphen_values = true,
           value_parser = |s: &str| parse_real(s, 0.1, 1.0, true), help_heading = "Scene")]
     pub rtt_scale: f64,
 
     /// Target on-screen length of a tessellated ocean edge (px, 2 to 256); smaller is finer.
-    #[arg(long, value_name = "PX", default_value = "16", allow_hyphen_values = true,
+    #[arg(long, global = true, value_name = "PX", default_value = "16", allow_hyphen_values = true,
           value_parser = |s: &str| parse_real(s, 2.0, 256.0, true), help_heading = "Scene")]
     pub tess_edge: f64,
 
     /// Sun direction: azimuth (degrees from +x toward +z) and elevation (degrees above the
     /// horizon, 0 to 90); default -70.7,11.7.
-    #[arg(long, value_name = "AZ,EL", value_parser = parse_sun, allow_hyphen_values = true, help_heading = "Scene")]
+    #[arg(long, global = true, value_name = "AZ,EL", value_parser = parse_sun, allow_hyphen_values = true, help_heading = "Scene")]
     pub sun: Option<[f32; 2]>,
 
     /// DU/DV map PNG (red = du, green = dv, 128 = no offset), tiled over the water; default:
     /// generated at start-up.
-    #[arg(long, value_name = "FILE.png", help_heading = "Scene")]
+    #[arg(long, global = true, value_name = "FILE.png", help_heading = "Scene")]
     pub dudv: Option<PathBuf>,
 
     /// Skybox: a directory of six PNG faces px nx py ny pz nz (square, same size); default: the
     /// analytic sky.
-    #[arg(long, value_name = "DIR", help_heading = "Scene")]
+    #[arg(long, global = true, value_name = "DIR", help_heading = "Scene")]
     pub skybox: Option<PathBuf>,
 
     /// Where the buoy floats (m).
-    #[arg(long, value_name = "X,Z", value_parser = parse_vec2, allow_hyphen_values = true,
+    #[arg(long, global = true, value_name = "X,Z", value_parser = parse_vec2, allow_hyphen_values = true,
           default_value = "9,-55", help_heading = "Scene")]
     pub buoy: [f32; 2],
 
     /// Depth of the sea floor around the island (m, 1 to 500).
-    #[arg(long, value_name = "M", default_value = "18", allow_hyphen_values = true,
+    #[arg(long, global = true, value_name = "M", default_value = "18", allow_hyphen_values = true,
           value_parser = |s: &str| parse_real(s, 1.0, 500.0, true), help_heading = "Scene")]
     pub sea_floor: f64,
 
@@ -219,6 +221,101 @@ pub enum Command {
 pub enum BenchCommand {
     /// Time our GPU FFT against rustfft (one CPU thread) on the same 2D transforms.
     Fft(BenchFftArgs),
+    /// Render the sample headless and report GPU ms per pass (min/median/p95/max), frame GPU
+    /// and wall ms, FPS and the settings (every Ocean and Scene flag applies).
+    Frames(BenchFramesArgs),
+    /// Seed 004's experiment: FPS against Gerstner wave count (grid width 200) and grid width
+    /// (10 waves), beside the paper's figures.
+    Gerstner(BenchGerstnerArgs),
+}
+
+#[derive(Args, Debug)]
+pub struct BenchFramesArgs {
+    /// Warm-up before measuring (s; at least one frame).
+    #[arg(long, value_name = "S", default_value = "2", allow_hyphen_values = true,
+          value_parser = |s: &str| parse_real(s, 0.0, 600.0, true))]
+    pub warmup: f64,
+    /// Measured frames.
+    #[arg(long, value_name = "N", default_value = "60", value_parser = parse_frames, allow_hyphen_values = true)]
+    pub frames: u64,
+    /// Render size in pixels.
+    #[arg(long, value_name = "WxH", value_parser = parse_size, default_value = "1280x720")]
+    pub size: (u32, u32),
+    /// Write the report as JSON (the --profile schema plus "fps", "wall_s" and "settings").
+    #[arg(long, value_name = "PATH")]
+    pub json: Option<PathBuf>,
+    /// Write one CSV row per measured frame: frame, cpu_ms, gpu_ms, compute_gpu_ms,
+    /// graphics_gpu_ms, then each pass.
+    #[arg(long, value_name = "PATH")]
+    pub csv: Option<PathBuf>,
+}
+
+#[derive(Args, Debug)]
+pub struct BenchGerstnerArgs {
+    /// Wave counts of the first table (grid width 200), 1 to 13 (seed 000's table).
+    #[arg(long, value_name = "M,...", value_delimiter = ',', default_value = "1,3,6,10",
+          value_parser = |s: &str| parse_whole(s, 1, 13).map(|n| n as usize))]
+    pub wave_counts: Vec<usize>,
+    /// Grid widths of the second table (10 waves), 8 to 16384.
+    #[arg(long, value_name = "W,...", value_delimiter = ',', default_value = "200,600,1200,3000",
+          value_parser = |s: &str| parse_whole(s, 8, MAX_SIDE as u64).map(|n| n as usize))]
+    pub grid_widths: Vec<usize>,
+    /// Warm-up before measuring each configuration (s; at least one frame).
+    #[arg(long, value_name = "S", default_value = "1", allow_hyphen_values = true,
+          value_parser = |s: &str| parse_real(s, 0.0, 600.0, true))]
+    pub warmup: f64,
+    /// Measured frames per configuration.
+    #[arg(long, value_name = "N", default_value = "20", value_parser = parse_frames, allow_hyphen_values = true)]
+    pub frames: u64,
+    /// Render size in pixels.
+    #[arg(long, value_name = "WxH", value_parser = parse_size, default_value = "1280x720")]
+    pub size: (u32, u32),
+    /// Write both tables as JSON: {"wave_count": [...], "grid_width": [...], ...}.
+    #[arg(long, value_name = "PATH")]
+    pub json: Option<PathBuf>,
+}
+
+impl BenchFramesArgs {
+    pub fn settings(
+        &self,
+        cli: &Cli,
+    ) -> Result<crate::bench::frames::FramesBenchSettings, UsageError> {
+        require_extension("--json", self.json.as_deref(), "json")?;
+        require_extension("--csv", self.csv.as_deref(), "csv")?;
+        Ok(crate::bench::frames::FramesBenchSettings {
+            run: cli.bench_run("frames", self.size)?,
+            warmup_s: self.warmup,
+            frames: self.frames,
+            json: self.json.clone(),
+            csv: self.csv.clone(),
+            quality: None,
+        })
+    }
+}
+
+impl BenchGerstnerArgs {
+    pub fn settings(
+        &self,
+        cli: &Cli,
+    ) -> Result<crate::bench::gerstner::GerstnerBenchSettings, UsageError> {
+        require_extension("--json", self.json.as_deref(), "json")?;
+        if cli.waves != WavesArg::Fft
+            || cli.gerstner_waves.is_some()
+            || cli.gerstner_count.is_some()
+        {
+            return Err(UsageError(
+                "bench gerstner sets the waves itself (seed 000's table); drop --waves, --gerstner-waves and --gerstner-count".to_string(),
+            ));
+        }
+        Ok(crate::bench::gerstner::GerstnerBenchSettings {
+            run: cli.bench_run("gerstner", self.size)?,
+            wave_counts: self.wave_counts.clone(),
+            grid_widths: self.grid_widths.clone(),
+            warmup_s: self.warmup,
+            frames: self.frames,
+            json: self.json.clone(),
+        })
+    }
 }
 
 #[derive(Args, Debug)]
@@ -505,6 +602,29 @@ impl Cli {
         })
     }
 
+    /// The sample's settings for a headless benchmark of `size`. Flags of a single run
+    /// (--headless, --frames, --size, --screenshot, --profile, --stats, --dump) do not apply.
+    fn bench_run(&self, name: &str, size: (u32, u32)) -> Result<RunSettings, UsageError> {
+        let given = [
+            ("--headless", self.headless),
+            ("--frames", self.frames.is_some()),
+            ("--size", self.size.is_some()),
+            ("--screenshot", self.screenshot.is_some()),
+            ("--profile", self.profile.is_some()),
+            ("--stats", self.stats),
+            ("--dump", self.dump.is_some()),
+        ];
+        if let Some((flag, _)) = given.iter().find(|g| g.1) {
+            return Err(UsageError(format!(
+                "{flag} does not apply to bench {name} (its own --frames, --size and --json go after `bench {name}`)"
+            )));
+        }
+        let mut run = self.settings()?;
+        run.headless = true;
+        run.size = size;
+        Ok(run)
+    }
+
     /// Cross-checks the options and resolves defaults.
     pub fn settings(&self) -> Result<RunSettings, UsageError> {
         require_extension("--screenshot", self.screenshot.as_deref(), "png")?;
@@ -568,7 +688,7 @@ impl Cli {
             dt_s: self.dt,
             headless: self.headless,
             frames,
-            size: self.size,
+            size: self.size.unwrap_or(DEFAULT_SIZE),
             screenshot: self.screenshot.clone(),
             profile: self.profile.clone(),
             validation: self.validation,

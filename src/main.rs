@@ -61,6 +61,14 @@ fn main() -> ExitCode {
             Ok(settings) => bench::fft(&settings),
             Err(e) => return fail(&e.into()),
         },
+        Some(Command::Bench(BenchCommand::Frames(args))) => match args.settings(&cli) {
+            Ok(settings) => bench::frames::frames(&settings),
+            Err(e) => return fail(&e.into()),
+        },
+        Some(Command::Bench(BenchCommand::Gerstner(args))) => match args.settings(&cli) {
+            Ok(settings) => bench::gerstner::gerstner(&settings),
+            Err(e) => return fail(&e.into()),
+        },
         None => match cli.settings() {
             Ok(settings) => frontend::run(&settings),
             Err(e) => return fail(&e.into()),

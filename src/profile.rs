@@ -2,7 +2,8 @@
 //! (`frame_gpu_ms`: the graphics submission; `compute_gpu_ms`: the compute submission), CPU frame
 //! times, as JSON:
 //! `{"device","driver","frames","warmup_frames","size":[w,h],"passes":[{"name","gpu_ms":{min,median,mean,p95,max},"samples"}],
-//!   "frame_gpu_ms":{..},"frame_cpu_ms":{..}}`. The first `WARMUP_FRAMES` frames are excluded.
+//!   "frame_gpu_ms":{..},"compute_gpu_ms":{..},"gpu_total_ms":{..},"frame_cpu_ms":{..}}`
+//! (`gpu_total_ms`: compute + graphics per frame). The first `WARMUP_FRAMES` frames are excluded.
 
 use serde_json::{json, Value};
 
@@ -57,6 +58,8 @@ impl Stats {
 pub struct ProfileReport<'a> {
     pub device: &'a DeviceInfo,
     pub frames: u64,
+    /// Leading frames left out of the statistics.
+    pub warmup_frames: u64,
     pub size: (u32, u32),
     pub gpu: &'a GpuTimings,
     /// The compute submission's passes (the simulation), timed in its own query pools.
@@ -65,8 +68,42 @@ pub struct ProfileReport<'a> {
     pub cpu_frame_ms: &'a [f64],
 }
 
+/// Per frame both submissions timed: (frame index, compute ms, graphics ms). Frames without a
+/// compute submission count 0 for it.
+pub fn gpu_per_frame(graphics: &GpuTimings, compute: &GpuTimings) -> Vec<(u64, f64, f64)> {
+    let compute: std::collections::BTreeMap<u64, f64> = compute
+        .per_frame
+        .iter()
+        .map(|f| (f.index, f.total_ms))
+        .collect();
+    graphics
+        .per_frame
+        .iter()
+        .map(|f| {
+            (
+                f.index,
+                compute.get(&f.index).copied().unwrap_or(0.0),
+                f.total_ms,
+            )
+        })
+        .collect()
+}
+
 impl ProfileReport<'_> {
+    /// Compute + graphics GPU ms per frame (one queue on lavapipe: they run back to back).
+    pub fn gpu_total_ms(&self) -> Vec<f64> {
+        gpu_per_frame(self.gpu, self.compute)
+            .iter()
+            .map(|f| f.1 + f.2)
+            .collect()
+    }
+
     pub fn to_json(&self) -> String {
+        serde_json::to_string_pretty(&self.to_value()).expect("a JSON value always serializes")
+            + "\n"
+    }
+
+    pub fn to_value(&self) -> Value {
         let passes: Vec<Value> = self
             .compute
             .passes
@@ -78,11 +115,12 @@ impl ProfileReport<'_> {
             "device": self.device.name,
             "driver": self.device.driver,
             "frames": self.frames,
-            "warmup_frames": WARMUP_FRAMES,
+            "warmup_frames": self.warmup_frames,
             "size": [self.size.0, self.size.1],
             "passes": passes,
             "frame_gpu_ms": Stats::json(&self.gpu.frames),
             "compute_gpu_ms": Stats::json(&self.compute.frames),
+            "gpu_total_ms": Stats::json(&self.gpu_total_ms()),
             "frame_cpu_ms": Stats::json(self.cpu_frame_ms),
         });
         let mut report = report;
@@ -96,7 +134,7 @@ impl ProfileReport<'_> {
                 "samples": self.gpu.tessellation.len(),
             });
         }
-        serde_json::to_string_pretty(&report).expect("a JSON value always serializes") + "\n"
+        report
     }
 
     /// A short human-readable table (logged at the end of a profiled run).
@@ -129,6 +167,12 @@ impl ProfileReport<'_> {
             out += &format!(
                 "  {:<16} median {:7.3} ms  p95 {:7.3} ms\n",
                 "frame (GPU)", s.median, s.p95
+            );
+        }
+        if let Some(s) = Stats::of(&self.gpu_total_ms()) {
+            out += &format!(
+                "  {:<16} median {:7.3} ms  p95 {:7.3} ms\n",
+                "compute + frame", s.median, s.p95
             );
         }
         out

@@ -1,5 +1,5 @@
-//! `vkocean bench fft`: bad values are usage errors; a small run prints the table and writes JSON
-//! rows with positive timings.
+//! The benchmarks: bad values are usage errors; small runs of `bench fft`, `bench frames` and
+//! `bench gerstner` print their tables and write JSON (and CSV) consistent with them.
 
 mod common;
 
@@ -22,6 +22,35 @@ fn bench_fft_rejects_bad_values() {
             "must end in .json",
         ),
         (vec!["bench", "nothing"], "nothing"),
+        (vec!["bench", "frames", "--frames", "0"], "--frames"),
+        (vec!["bench", "frames", "--warmup", "-1"], "--warmup"),
+        (vec!["bench", "frames", "--warmup", "nan"], "--warmup"),
+        (vec!["bench", "frames", "--size", "0x5"], "--size"),
+        (
+            vec!["bench", "frames", "--csv", "frames.txt"],
+            "must end in .csv",
+        ),
+        (
+            vec!["--size", "64x64", "bench", "frames"],
+            "--size does not apply to bench frames",
+        ),
+        (
+            vec!["--headless", "bench", "frames"],
+            "--headless does not apply",
+        ),
+        (vec!["bench", "frames", "--tess-edge", "1"], "--tess-edge"),
+        (
+            vec!["bench", "gerstner", "--wave-counts", "14"],
+            "--wave-counts",
+        ),
+        (
+            vec!["bench", "gerstner", "--grid-widths", "4"],
+            "--grid-widths",
+        ),
+        (
+            vec!["--waves", "gerstner", "bench", "gerstner"],
+            "drop --waves",
+        ),
     ] {
         let out = run(&args);
         let err = stderr(&out);
@@ -70,5 +99,183 @@ fn bench_fft_writes_rows() {
         );
         assert!(gpu > 0.0 && cpu > 0.0, "{row}");
         assert!((ratio - gpu / cpu).abs() < 1e-9 * ratio.max(1.0), "{row}");
+    }
+}
+
+/// Reads a JSON file.
+fn json(path: &std::path::Path) -> serde_json::Value {
+    serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
+}
+
+#[test]
+fn bench_frames_reports_passes_frames_and_settings() {
+    let dir = scratch("bench-frames");
+    let (json_path, csv_path) = (dir.join("frames.json"), dir.join("frames.csv"));
+    // Sample flags before and after the subcommand both apply.
+    let out = run(&[
+        "--fft-size",
+        "64",
+        "bench",
+        "frames",
+        "--frames",
+        "4",
+        "--warmup",
+        "0",
+        "--size",
+        "160x90",
+        "--cascades",
+        "1",
+        "--json",
+        json_path.to_str().unwrap(),
+        "--csv",
+        csv_path.to_str().unwrap(),
+        "--validation",
+    ]);
+    let err = stderr(&out);
+    assert_eq!(out.status.code(), Some(0), "{err}");
+    assert!(err.contains("validation: 0 warnings, 0 errors"), "{err}");
+    let table = String::from_utf8_lossy(&out.stdout);
+    for row in [
+        "ocean fft",
+        "reflection",
+        "water",
+        "composite",
+        "frame GPU total",
+        "FPS",
+    ] {
+        assert!(table.contains(row), "{row} missing from:\n{table}");
+    }
+
+    let report = json(&json_path);
+    assert_eq!(report["size"], serde_json::json!([160, 90]));
+    assert_eq!(report["settings"]["cascades"], 1);
+    assert_eq!(report["settings"]["fft_size"], 64);
+    assert_eq!(report["settings"]["size"], "160x90");
+    assert_eq!(report["settings"]["validation"], true);
+    let warmup = report["warmup_frames"].as_u64().unwrap();
+    assert!(warmup >= 1, "{report}");
+    assert_eq!(report["frames"].as_u64().unwrap(), warmup + 4);
+    assert!(report["fps"].as_f64().unwrap() > 0.0);
+    let passes = report["passes"].as_array().unwrap();
+    let names: Vec<&str> = passes.iter().map(|p| p["name"].as_str().unwrap()).collect();
+    for name in [
+        "ocean evolve",
+        "ocean fft",
+        "ocean assemble",
+        "reflection",
+        "refraction",
+        "scene",
+        "water",
+        "composite",
+    ] {
+        assert!(names.contains(&name), "{name} not in {names:?}");
+    }
+    for p in passes {
+        assert_eq!(p["samples"], 4, "{p}");
+        let g = &p["gpu_ms"];
+        let [min, median, p95, max] =
+            ["min", "median", "p95", "max"].map(|k| g[k].as_f64().unwrap());
+        assert!(
+            0.0 <= min && min <= median && median <= p95 && p95 <= max,
+            "{p}"
+        );
+    }
+
+    // The CSV: one row per measured frame, indices after the warm-up, gpu = compute + graphics,
+    // and each frame's passes fit inside its submissions.
+    let csv = std::fs::read_to_string(&csv_path).unwrap();
+    let mut lines = csv.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    assert_eq!(
+        &header[..5],
+        [
+            "frame",
+            "cpu_ms",
+            "gpu_ms",
+            "compute_gpu_ms",
+            "graphics_gpu_ms"
+        ]
+    );
+    assert!(
+        header.contains(&"ocean_fft") && header.contains(&"water"),
+        "{header:?}"
+    );
+    let rows: Vec<Vec<f64>> = lines
+        .map(|l| {
+            l.split(',')
+                .map(|v| v.parse::<f64>().unwrap_or(f64::NAN))
+                .collect()
+        })
+        .collect();
+    assert_eq!(rows.len(), 4, "{csv}");
+    for (i, row) in rows.iter().enumerate() {
+        assert_eq!(row.len(), header.len(), "{csv}");
+        assert_eq!(row[0] as u64, warmup + i as u64, "{csv}");
+        assert!(row[1] > 0.0, "{csv}");
+        assert!((row[2] - row[3] - row[4]).abs() < 2e-3, "{csv}");
+        let passes: f64 = row[5..].iter().filter(|v| v.is_finite()).sum();
+        assert!(
+            passes <= row[2] * 1.001 + 1e-3,
+            "passes exceed the frame: {csv}"
+        );
+    }
+}
+
+#[test]
+fn bench_gerstner_prints_both_tables() {
+    let dir = scratch("bench-gerstner");
+    let json_path = dir.join("gerstner.json");
+    let out = run(&[
+        "bench",
+        "gerstner",
+        "--wave-counts",
+        "1,3",
+        "--grid-widths",
+        "24,200",
+        "--frames",
+        "2",
+        "--warmup",
+        "0",
+        "--size",
+        "96x54",
+        "--json",
+        json_path.to_str().unwrap(),
+        "--validation",
+    ]);
+    let err = stderr(&out);
+    assert_eq!(out.status.code(), Some(0), "{err}");
+    assert!(err.contains("validation: 0 warnings, 0 errors"), "{err}");
+    let table = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        table.contains("Table 4-1") && table.contains("Table 4-2"),
+        "{table}"
+    );
+    // The paper's figures sit beside ours: 161 FPS for 1 wave, 2579 for width 200.
+    assert!(table.contains("161") && table.contains("2579"), "{table}");
+    let report = json(&json_path);
+    let waves: Vec<(u64, u64)> = report["wave_count"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|r| (r["waves"].as_u64().unwrap(), r["grid"].as_u64().unwrap()))
+        .collect();
+    assert_eq!(waves, [(1, 200), (3, 200)]);
+    let grids: Vec<(u64, u64)> = report["grid_width"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|r| (r["waves"].as_u64().unwrap(), r["grid"].as_u64().unwrap()))
+        .collect();
+    assert_eq!(grids, [(10, 24), (10, 200)]);
+    for r in report["wave_count"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .chain(report["grid_width"].as_array().unwrap())
+    {
+        for key in ["fps", "frame_cpu_ms", "gerstner_gpu_ms", "gpu_total_ms"] {
+            let v = r[key].as_f64().unwrap_or(f64::NAN);
+            assert!(v.is_finite() && v > 0.0, "{key}: {r}");
+        }
     }
 }

@@ -50,46 +50,20 @@ pub fn run(s: &RunSettings) -> anyhow::Result<Outcome> {
         window: None,
     })?;
     let counters = ctx.counters();
-    check_size(&ctx, s.size)?;
-    let extent = vk::Extent2D {
-        width: s.size.0,
-        height: s.size.1,
-    };
-    let target = Image::new(
-        &ctx,
-        &ImageDesc {
-            name: "headless output",
-            extent,
-            format: OUTPUT_FORMAT,
-            usage: vk::ImageUsageFlags::COLOR_ATTACHMENT | vk::ImageUsageFlags::TRANSFER_SRC,
-            layers: 1,
-            array_view: false,
-            shared: false,
-            cube: false,
-        },
-    )?;
+    let offscreen = Offscreen::new(&ctx, s.size)?;
+    let (target, extent, output) = (&offscreen.image, offscreen.extent, offscreen.output());
     let readback = if screenshot.is_some() {
         Some(readback_buffer(&ctx, extent)?)
     } else {
         None
     };
     let mut session = Session::new(&ctx, OUTPUT_FORMAT, extent, s)?;
-    let output = OutputTarget {
-        image: target.raw,
-        view: target.view,
-        extent,
-        // The previous frame wrote the target and may have copied from it.
-        prior: Access::COLOUR_WRITE.or(Access::COPY_READ),
-    };
 
     let mut last_progress = Instant::now();
     let mut last_value = 0;
     for i in 0..frames {
         let capture = readback.as_ref().filter(|_| i + 1 == frames);
-        let inputs = FrameInputs {
-            time_s: (s.start_time_s + i as f64 * s.dt_s.unwrap_or(FIXED_DT_S as f64)) as f32,
-            ..FrameInputs::default()
-        };
+        let inputs = frame_inputs(s, i);
         last_value = session.frame(&output, &inputs, &[], &[], |rec| {
             let Some(buffer) = capture else { return };
             rec.barrier(
@@ -150,4 +124,57 @@ pub fn run(s: &RunSettings) -> anyhow::Result<Outcome> {
     }
     finished.commit(profile, "")?;
     Ok(Outcome { counters })
+}
+
+/// The offscreen colour target both the headless run and `bench frames` render into.
+pub struct Offscreen {
+    pub image: Image,
+    pub extent: vk::Extent2D,
+}
+
+impl Offscreen {
+    /// Format of the target: [`OUTPUT_FORMAT`].
+    pub const FORMAT: vk::Format = OUTPUT_FORMAT;
+
+    pub fn new(ctx: &std::sync::Arc<Context>, size: (u32, u32)) -> anyhow::Result<Offscreen> {
+        check_size(ctx, size)?;
+        let extent = vk::Extent2D {
+            width: size.0,
+            height: size.1,
+        };
+        let image = Image::new(
+            ctx,
+            &ImageDesc {
+                name: "headless output",
+                extent,
+                format: OUTPUT_FORMAT,
+                usage: vk::ImageUsageFlags::COLOR_ATTACHMENT | vk::ImageUsageFlags::TRANSFER_SRC,
+                layers: 1,
+                array_view: false,
+                shared: false,
+                cube: false,
+            },
+        )?;
+        Ok(Offscreen { image, extent })
+    }
+
+    /// The target as the renderer's output.
+    pub fn output(&self) -> OutputTarget {
+        OutputTarget {
+            image: self.image.raw,
+            view: self.image.view,
+            extent: self.extent,
+            // The previous frame wrote the target and may have copied from it.
+            prior: Access::COLOUR_WRITE.or(Access::COPY_READ),
+        }
+    }
+}
+
+/// Inputs of headless frame `i`: time starts at `--time` and advances by `--dt` (default
+/// [`FIXED_DT_S`]).
+pub fn frame_inputs(s: &RunSettings, i: u64) -> FrameInputs {
+    FrameInputs {
+        time_s: (s.start_time_s + i as f64 * s.dt_s.unwrap_or(FIXED_DT_S as f64)) as f32,
+        ..FrameInputs::default()
+    }
 }

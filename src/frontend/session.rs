@@ -9,7 +9,9 @@ use ash::vk;
 use super::RunSettings;
 use crate::gpu::oneshot::download;
 use crate::gpu::selftest::SyncHazard;
-use crate::gpu::{Buffer, Context, Frames, GpuResult, MemoryLocation, Profiler, Recorder};
+use crate::gpu::{
+    Buffer, Context, Frames, GpuResult, GpuTimings, MemoryLocation, Profiler, Recorder,
+};
 use crate::ocean::simulation::Simulation;
 use crate::ocean::stats::{npy, stats_line};
 use crate::output::PendingFile;
@@ -27,8 +29,11 @@ pub struct Session {
     pub simulation: Simulation,
     /// Test-only hazard, recorded once in the first frame.
     hazard: Option<SyncHazard>,
-    /// Wall time between consecutive frame starts (ms), after warm-up.
-    cpu_frame_ms: Vec<f64>,
+    /// Wall time between consecutive frame starts (ms), after warm-up: (frame index, ms), the
+    /// index being the frame that started the interval.
+    cpu_frame_ms: Vec<(u64, f64)>,
+    /// Frames below this index are warm-up (not in the statistics).
+    measure_from: u64,
     last_frame_start: Option<Instant>,
     pub started: Instant,
     /// The last submitted frame: (slot, timeline value, simulation time).
@@ -75,6 +80,7 @@ impl Session {
             simulation,
             hazard,
             cpu_frame_ms: Vec::new(),
+            measure_from: WARMUP_FRAMES,
             last_frame_start: None,
             started: Instant::now(),
             last: None,
@@ -93,9 +99,10 @@ impl Session {
     ) -> GpuResult<u64> {
         let now = Instant::now();
         if let Some(last) = self.last_frame_start {
-            if self.frames.submitted() > WARMUP_FRAMES {
+            let previous = self.frames.submitted() - 1;
+            if previous >= self.measure_from {
                 self.cpu_frame_ms
-                    .push(now.duration_since(last).as_secs_f64() * 1e3);
+                    .push((previous, now.duration_since(last).as_secs_f64() * 1e3));
             }
         }
         self.last_frame_start = Some(now);
@@ -138,6 +145,29 @@ impl Session {
         self.frames.submit(frame, &waits, signals)?;
         self.last = Some((slot, value, inputs.time_s));
         Ok(value)
+    }
+
+    /// Measures nothing until [`Session::start_measuring`] (a warm-up of unknown length).
+    pub fn defer_measuring(&mut self) {
+        self.measure_from = u64::MAX;
+        self.profiler.set_warmup(u64::MAX);
+        self.compute_profiler.set_warmup(u64::MAX);
+    }
+
+    /// Ends the warm-up now: statistics count only frames submitted from here on (instead of
+    /// the first `WARMUP_FRAMES` being skipped). Returns the number of warm-up frames.
+    pub fn start_measuring(&mut self) -> u64 {
+        let n = self.frames.submitted();
+        self.measure_from = n;
+        self.profiler.set_warmup(n);
+        self.compute_profiler.set_warmup(n);
+        n
+    }
+
+    /// Wall time of each measured frame: (frame index, ms from its start to the next frame's
+    /// start). The last frame has none.
+    pub fn cpu_frame_ms(&self) -> &[(u64, f64)] {
+        &self.cpu_frame_ms
     }
 
     /// `--stats`: waits for the last frame (compute and graphics) and prints the height
@@ -232,16 +262,16 @@ impl Session {
     /// Waits for every frame and builds the profile report. Nothing is written or printed:
     /// the frontend commits its output files only once the whole run has succeeded.
     pub fn finish(&mut self, size: (u32, u32)) -> anyhow::Result<Finished> {
-        self.frames.wait_all()?;
-        let timings = self.profiler.finish()?;
-        let compute = self.compute_profiler.finish()?;
+        let (timings, compute) = self.finish_timings()?;
+        let cpu: Vec<f64> = self.cpu_frame_ms.iter().map(|c| c.1).collect();
         let report = ProfileReport {
             device: &self.ctx.info,
             frames: self.frames.submitted(),
+            warmup_frames: self.measure_from,
             size,
             gpu: &timings,
             compute: &compute,
-            cpu_frame_ms: &self.cpu_frame_ms,
+            cpu_frame_ms: &cpu,
         };
         Ok(Finished {
             profile_json: report.to_json(),
@@ -253,6 +283,20 @@ impl Session {
             measured_frames: timings.frames.len(),
             summary: self.summary_line(size),
         })
+    }
+
+    /// Waits for every frame and returns the (graphics, compute) timings.
+    pub fn finish_timings(&mut self) -> anyhow::Result<(GpuTimings, GpuTimings)> {
+        self.frames.wait_all()?;
+        // The last frame's wall time runs until the GPU finished it.
+        if let Some(start) = self.last_frame_start.take() {
+            let last = self.frames.submitted().saturating_sub(1);
+            if self.frames.submitted() > 0 && last >= self.measure_from {
+                self.cpu_frame_ms
+                    .push((last, start.elapsed().as_secs_f64() * 1e3));
+            }
+        }
+        Ok((self.profiler.finish()?, self.compute_profiler.finish()?))
     }
 
     /// The closing line of a run: frames, size, wall time, device.

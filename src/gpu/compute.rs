@@ -24,9 +24,11 @@ pub struct ComputeQueue {
 
 impl ComputeQueue {
     pub fn new(ctx: &Arc<Context>) -> GpuResult<ComputeQueue> {
+        // Starts where the frame timeline is: an earlier frame loop on this context used the
+        // values below, and `wait_for_slot` waits for value − FRAMES_IN_FLIGHT.
         let mut timeline_type = vk::SemaphoreTypeCreateInfo::default()
             .semaphore_type(vk::SemaphoreType::TIMELINE)
-            .initial_value(0);
+            .initial_value(ctx.signaled_value());
         let info = vk::SemaphoreCreateInfo::default().push_next(&mut timeline_type);
         // SAFETY: valid create info on a live device.
         let timeline =

@@ -36,9 +36,22 @@ struct SlotRecord {
 pub struct GpuTimings {
     pub passes: Vec<(&'static str, Vec<f64>)>,
     pub frames: Vec<f64>,
+    /// The same samples frame by frame (`bench frames --csv`), in frame order.
+    pub per_frame: Vec<FrameTimes>,
     /// Per frame, the scope of `Profiler::statistics`: [tessellation-control patches,
     /// tessellation-evaluation invocations].
     pub tessellation: Vec<[u64; 2]>,
+}
+
+/// One measured frame of one queue's submission.
+#[derive(Clone, Debug)]
+pub struct FrameTimes {
+    /// The frame's index (0 = the first frame of the run).
+    pub index: u64,
+    /// Begin to end of the submission (ms).
+    pub total_ms: f64,
+    /// (pass, ms) in recording order.
+    pub passes: Vec<(&'static str, f64)>,
 }
 
 /// Timestamp queries around passes; disabled (labels only) when the queue has no timestamps.
@@ -136,6 +149,12 @@ impl Profiler {
             }
         }
         Ok(profiler)
+    }
+
+    /// Discards the results of frames with an index below `frames` (warm-up), including frames
+    /// already submitted but not yet collected.
+    pub fn set_warmup(&mut self, frames: u64) {
+        self.warmup_frames = frames;
     }
 
     /// Whether the device can time passes.
@@ -272,13 +291,20 @@ impl Profiler {
             delta as f64 * self.period_ns / 1.0e6
         };
         self.timings.frames.push(ms(0, 1));
+        let mut frame = FrameTimes {
+            index,
+            total_ms: ms(0, 1),
+            passes: Vec::with_capacity(record.passes.len()),
+        };
         for &(name, a, b) in &record.passes {
             let value = ms(a, b);
+            frame.passes.push((name, value));
             match self.timings.passes.iter_mut().find(|(n, _)| *n == name) {
                 Some((_, samples)) => samples.push(value),
                 None => self.timings.passes.push((name, vec![value])),
             }
         }
+        self.timings.per_frame.push(frame);
         Ok(())
     }
 
