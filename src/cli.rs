@@ -21,6 +21,8 @@ pub const DEFAULT_SIZE: (u32, u32) = (1280, 720);
 #[command(
     name = "vkocean",
     version,
+    // A flag given twice keeps the last value: --config's settings come first, the command line wins.
+    args_override_self = true,
     about = "A real-time FFT ocean on hand-written Vulkan.",
     after_help = "Window controls: W/S forward/back, A/D sideways, Q/E down/up, Shift faster, left mouse drag to look, F12 screenshot, Esc quit.\n\
                   Exit codes: 0 ok, 1 runtime error, 2 bad usage, 3 validation reported warnings or errors.\n\
@@ -64,6 +66,28 @@ pub struct Cli {
     #[arg(long, value_enum, value_name = "MODE", default_value_t = PresentModeArg::Fifo)]
     pub present_mode: PresentModeArg,
 
+    /// Read settings from a TOML file: `flag-name = value` for any option above, e.g.
+    /// `wind-speed = 14`, `camera = [0, 12, 0]`, `validation = true`. Flags given on the
+    /// command line win; unknown keys and bad values are errors naming the key.
+    #[arg(long, global = true, value_name = "FILE.toml")]
+    pub config: Option<PathBuf>,
+
+    /// Cost level: low, medium or high (the default): FFT size, cascades, RTT scale and
+    /// tessellation edge (table in README); flags given explicitly win.
+    #[arg(long, global = true, value_enum, value_name = "LEVEL")]
+    pub quality: Option<QualityArg>,
+
+    /// Sea state by the Beaufort scale: calm (force 2), breeze (4), moderate (6), storm (10):
+    /// wind speed, fetch, choppiness and patch size (table in README); flags given explicitly win.
+    #[arg(
+        long,
+        global = true,
+        value_enum,
+        value_name = "SEA",
+        help_heading = "Ocean"
+    )]
+    pub preset: Option<PresetArg>,
+
     /// Wave model: fft (spectrum, cascades) or gerstner (analytic waves, seed 000's table by default).
     #[arg(long, global = true, value_enum, value_name = "MODEL", default_value_t = WavesArg::Fft, help_heading = "Ocean")]
     pub waves: WavesArg,
@@ -81,20 +105,20 @@ pub struct Cli {
     #[arg(long, global = true, value_enum, value_name = "KIND", default_value_t = SpectrumArg::Jonswap, help_heading = "Ocean")]
     pub spectrum: SpectrumArg,
 
-    /// Wind speed 10 m above the sea, U10 (m/s, 0 < U <= 100).
-    #[arg(long, global = true, value_name = "M_S", default_value = "10", allow_hyphen_values = true,
+    /// Wind speed 10 m above the sea, U10 (m/s, 0 < U <= 100). [default: 10; --preset sets it]
+    #[arg(long, global = true, value_name = "M_S", allow_hyphen_values = true,
           value_parser = |s: &str| parse_real(s, 0.0, 100.0, false), help_heading = "Ocean")]
-    pub wind_speed: f64,
+    pub wind_speed: Option<f64>,
 
     /// Direction the wind blows toward, degrees from +x toward +z.
     #[arg(long, global = true, value_name = "DEG", default_value = "0", allow_hyphen_values = true,
           value_parser = |s: &str| parse_real(s, -360.0, 360.0, true), help_heading = "Ocean")]
     pub wind_dir: f64,
 
-    /// Fetch: distance the wind has blown over water (km, JONSWAP; 0 < F <= 10000).
-    #[arg(long, global = true, value_name = "KM", default_value = "100", allow_hyphen_values = true,
+    /// Fetch: distance the wind has blown over water (km, JONSWAP; 0 < F <= 10000). [default: 100; --preset sets it]
+    #[arg(long, global = true, value_name = "KM", allow_hyphen_values = true,
           value_parser = |s: &str| parse_real(s, 0.0, 10_000.0, false), help_heading = "Ocean")]
-    pub fetch: f64,
+    pub fetch: Option<f64>,
 
     /// Water depth (m, 0 < h <= 11000); default deep water. Finite depth changes the dispersion
     /// and applies the TMA attenuation.
@@ -102,24 +126,24 @@ pub struct Cli {
           value_parser = |s: &str| parse_real(s, 0.0, 11_000.0, false), help_heading = "Ocean")]
     pub depth: Option<f64>,
 
-    /// FFT size N: a power of two from 64 to 1024.
-    #[arg(long, global = true, value_name = "N", default_value = "256", value_parser = parse_fft_size, help_heading = "Ocean")]
-    pub fft_size: usize,
+    /// FFT size N: a power of two from 64 to 1024. [default: 256; --quality sets it]
+    #[arg(long, global = true, value_name = "N", value_parser = parse_fft_size, help_heading = "Ocean")]
+    pub fft_size: Option<usize>,
 
-    /// Side of the largest cascade's patch (m, 0 < L <= 100000); each further cascade is 4.353x smaller.
-    #[arg(long, global = true, value_name = "M", default_value = "400", allow_hyphen_values = true,
+    /// Side of the largest cascade's patch (m, 0 < L <= 100000); each further cascade is 4.353x smaller. [default: 400; --preset sets it]
+    #[arg(long, global = true, value_name = "M", allow_hyphen_values = true,
           value_parser = |s: &str| parse_real(s, 0.0, 100_000.0, false), help_heading = "Ocean")]
-    pub patch_size: f64,
+    pub patch_size: Option<f64>,
 
-    /// Horizontal (choppy) displacement scale λ (0 <= λ <= 10).
-    #[arg(long, global = true, value_name = "X", default_value = "1", allow_hyphen_values = true,
+    /// Horizontal (choppy) displacement scale λ (0 <= λ <= 10). [default: 1; --preset sets it]
+    #[arg(long, global = true, value_name = "X", allow_hyphen_values = true,
           value_parser = |s: &str| parse_real(s, 0.0, 10.0, true), help_heading = "Ocean")]
-    pub choppiness: f64,
+    pub choppiness: Option<f64>,
 
-    /// Number of cascades, 1 to 4 (disjoint wave-number bands, non-commensurate patches).
-    #[arg(long, global = true, value_name = "K", default_value = "3", allow_hyphen_values = true,
+    /// Number of cascades, 1 to 4 (disjoint wave-number bands, non-commensurate patches). [default: 3; --quality sets it]
+    #[arg(long, global = true, value_name = "K", allow_hyphen_values = true,
           value_parser = |s: &str| parse_whole(s, 1, 4).map(|n| n as usize), help_heading = "Ocean")]
-    pub cascades: usize,
+    pub cascades: Option<usize>,
 
     /// Seed of the initial spectrum (same seed, same sea on every machine).
     #[arg(long, global = true, value_name = "S", default_value = "1", allow_hyphen_values = true,
@@ -163,15 +187,15 @@ pub struct Cli {
     #[arg(long, global = true, value_enum, value_name = "MODEL", default_value_t = FresnelArg::Schlick, help_heading = "Scene")]
     pub fresnel: FresnelArg,
 
-    /// Size of the reflection and refraction textures relative to the window (0.1 to 1).
-    #[arg(long, global = true, value_name = "S", default_value = "0.5", allow_hyphen_values = true,
+    /// Size of the reflection and refraction textures relative to the window (0.1 to 1). [default: 0.5; --quality sets it]
+    #[arg(long, global = true, value_name = "S", allow_hyphen_values = true,
           value_parser = |s: &str| parse_real(s, 0.1, 1.0, true), help_heading = "Scene")]
-    pub rtt_scale: f64,
+    pub rtt_scale: Option<f64>,
 
-    /// Target on-screen length of a tessellated ocean edge (px, 2 to 256); smaller is finer.
-    #[arg(long, global = true, value_name = "PX", default_value = "16", allow_hyphen_values = true,
+    /// Target on-screen length of a tessellated ocean edge (px, 2 to 256); smaller is finer. [default: 16; --quality sets it]
+    #[arg(long, global = true, value_name = "PX", allow_hyphen_values = true,
           value_parser = |s: &str| parse_real(s, 2.0, 256.0, true), help_heading = "Scene")]
-    pub tess_edge: f64,
+    pub tess_edge: Option<f64>,
 
     /// Sun direction: azimuth (degrees from +x toward +z) and elevation (degrees above the
     /// horizon, 0 to 90); default -70.7,11.7.
@@ -288,7 +312,7 @@ impl BenchFramesArgs {
             frames: self.frames,
             json: self.json.clone(),
             csv: self.csv.clone(),
-            quality: None,
+            quality: cli.quality.map(|q| format!("{q:?}").to_lowercase()),
         })
     }
 }
@@ -371,6 +395,43 @@ impl BenchFftArgs {
             validation: cli.validation,
             gpu: cli.gpu,
         })
+    }
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum QualityArg {
+    Low,
+    Medium,
+    High,
+}
+
+/// What a `--quality` level sets: (FFT size, cascades, RTT scale, tessellation edge px).
+pub fn quality_level(q: QualityArg) -> (usize, usize, f64, f64) {
+    match q {
+        QualityArg::Low => (64, 2, 0.25, 48.0),
+        QualityArg::Medium => (128, 3, 0.35, 24.0),
+        QualityArg::High => (256, 3, 0.5, 16.0),
+    }
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum PresetArg {
+    Calm,
+    Breeze,
+    Moderate,
+    Storm,
+}
+
+/// What a `--preset` sets: (U10 m/s, fetch km, choppiness, largest patch m). Wind speeds are
+/// mid-range of their Beaufort force (WMO: force 2 light breeze 1.6–3.3 m/s, 4 moderate breeze
+/// 5.5–7.9, 6 strong breeze 10.8–13.8, 10 storm 24.5–28.4); fetches grow with the force, the
+/// storm's patch holds its ~570 m peak wavelength (2πg/ω_p², ω_p = 0.877 g/U).
+pub fn sea_preset(p: PresetArg) -> (f64, f64, f64, f64) {
+    match p {
+        PresetArg::Calm => (2.5, 10.0, 0.5, 400.0),
+        PresetArg::Breeze => (6.7, 50.0, 0.8, 400.0),
+        PresetArg::Moderate => (12.3, 200.0, 1.0, 400.0),
+        PresetArg::Storm => (26.5, 1000.0, 1.2, 1000.0),
     }
 }
 
@@ -539,6 +600,7 @@ impl Cli {
     }
 
     fn scene_settings(&self) -> Result<SceneSettings, UsageError> {
+        let quality = quality_level(self.quality.unwrap_or(QualityArg::High));
         require_extension("--dudv", self.dudv.as_deref(), "png")?;
         if let Some(path) = self.dudv.as_deref().filter(|p| !p.is_file()) {
             return Err(UsageError(format!(
@@ -588,8 +650,8 @@ impl Cli {
                 FresnelArg::Exact => FresnelModel::Exact,
                 FresnelArg::Power => FresnelModel::Power,
             },
-            rtt_scale: self.rtt_scale as f32,
-            tess_edge_px: self.tess_edge as f32,
+            rtt_scale: self.rtt_scale.unwrap_or(quality.2) as f32,
+            tess_edge_px: self.tess_edge.unwrap_or(quality.3) as f32,
             layout: SceneLayout {
                 buoy_xz: self.buoy,
                 sea_floor_m: self.sea_floor as f32,
@@ -681,6 +743,9 @@ impl Cli {
         };
         let scene = self.scene_settings()?;
         let camera = self.camera_setting()?;
+        let quality = quality_level(self.quality.unwrap_or(QualityArg::High));
+        // Without --preset: 10 m/s, 100 km, λ = 1, 400 m (between breeze and moderate).
+        let sea = self.preset.map_or((10.0, 100.0, 1.0, 400.0), sea_preset);
         Ok(RunSettings {
             scene,
             camera,
@@ -708,20 +773,105 @@ impl Cli {
                         SpectrumArg::Jonswap => SpectrumKind::Jonswap,
                         SpectrumArg::PiersonMoskowitz => SpectrumKind::PiersonMoskowitz,
                     },
-                    wind_speed_m_s: self.wind_speed,
+                    wind_speed_m_s: self.wind_speed.unwrap_or(sea.0),
                     wind_dir_deg: self.wind_dir,
-                    fetch_km: self.fetch,
+                    fetch_km: self.fetch.unwrap_or(sea.1),
                     depth_m: self.depth,
                 },
-                fft_size: self.fft_size,
-                patch_size_m: self.patch_size,
-                cascades: self.cascades,
-                choppiness: self.choppiness,
+                fft_size: self.fft_size.unwrap_or(quality.0),
+                patch_size_m: self.patch_size.unwrap_or(sea.3),
+                cascades: self.cascades.unwrap_or(quality.1),
+                choppiness: self.choppiness.unwrap_or(sea.2),
                 seed: self.seed,
                 waves,
             },
         })
     }
+}
+
+/// Expands `--config FILE.toml` (anywhere in `args`): the file's settings become flags inserted
+/// right after the program name, so the command line's own flags, coming later, win.
+pub fn with_config(args: Vec<std::ffi::OsString>) -> Result<Vec<std::ffi::OsString>, UsageError> {
+    use clap::CommandFactory;
+    let mut path = None;
+    let mut iter = args.iter().skip(1);
+    while let Some(arg) = iter.next() {
+        let arg = arg.to_string_lossy();
+        if arg == "--" {
+            break;
+        } else if arg == "--config" {
+            path = iter.next().map(PathBuf::from);
+        } else if let Some(value) = arg.strip_prefix("--config=") {
+            path = Some(PathBuf::from(value));
+        }
+    }
+    let Some(path) = path else { return Ok(args) };
+    require_extension("--config", Some(&path), "toml")?;
+    let shown = path.display().to_string();
+    let fail = |what: String| UsageError(format!("--config {shown}: {what}"));
+    let text = std::fs::read_to_string(&path).map_err(|e| fail(e.to_string()))?;
+    let doc: toml_edit::DocumentMut = text.parse().map_err(|e: toml_edit::TomlError| {
+        fail(
+            e.to_string()
+                .lines()
+                .next()
+                .unwrap_or("not TOML")
+                .to_string(),
+        )
+    })?;
+    let command = Cli::command();
+    let mut extra: Vec<std::ffi::OsString> = Vec::new();
+    for (key, item) in doc.as_table().iter() {
+        let long = key.replace('_', "-");
+        let arg = command
+            .get_arguments()
+            .find(|a| a.get_long() == Some(long.as_str()) && !a.is_hide_set())
+            .filter(|_| !["config", "help", "version"].contains(&long.as_str()))
+            .ok_or_else(|| fail(format!("unknown key '{key}'")))?;
+        let flag = matches!(arg.get_action(), clap::ArgAction::SetTrue);
+        let value = item
+            .as_value()
+            .ok_or_else(|| fail(format!("key '{key}': expected a value, not a table")))?;
+        let scalar = |v: &toml_edit::Value| -> Option<String> {
+            match v {
+                toml_edit::Value::Integer(i) => Some(i.value().to_string()),
+                toml_edit::Value::Float(f) => Some(f.value().to_string()),
+                toml_edit::Value::String(s) => Some(s.value().clone()),
+                _ => None,
+            }
+        };
+        match (flag, value) {
+            (true, toml_edit::Value::Boolean(b)) => {
+                if *b.value() {
+                    extra.push(format!("--{long}").into());
+                }
+            }
+            (true, _) => return Err(fail(format!("key '{key}': expected true or false"))),
+            (false, toml_edit::Value::Array(list)) => {
+                let parts: Option<Vec<String>> = list.iter().map(scalar).collect();
+                let parts = parts
+                    .ok_or_else(|| fail(format!("key '{key}': expected a list of numbers")))?;
+                extra.push(format!("--{long}={}", parts.join(",")).into());
+            }
+            (false, v) => {
+                let text = scalar(v)
+                    .ok_or_else(|| fail(format!("key '{key}': expected a number or a string")))?;
+                extra.push(format!("--{long}={text}").into());
+            }
+        }
+    }
+    // Check the file's settings on their own, so an error names the file.
+    let mut alone = vec![args[0].clone()];
+    alone.extend(extra.iter().cloned());
+    if let Err(e) = Cli::try_parse_from(&alone) {
+        let text = e.to_string();
+        let first = text.lines().next().unwrap_or("invalid value");
+        return Err(fail(first.trim_start_matches("error: ").to_string()));
+    }
+    let mut out = vec![args[0].clone()];
+    out.extend(extra);
+    out.extend(args.into_iter().skip(1));
+    Ok(out)
 }
 
 #[cfg(test)]

@@ -16,7 +16,11 @@ fn main() -> ExitCode {
         .format_target(false)
         .init();
 
-    let cli = match Cli::try_parse() {
+    let args = match vkocean::cli::with_config(std::env::args_os().collect()) {
+        Ok(args) => args,
+        Err(e) => return fail(&e.into()),
+    };
+    let cli = match Cli::try_parse_from(args) {
         Ok(cli) => cli,
         Err(e) => {
             use clap::error::ErrorKind;
@@ -48,7 +52,7 @@ fn main() -> ExitCode {
             }
             Ok(devices) => {
                 for d in devices {
-                    println!("{d}");
+                    vkocean::outln!("{d}");
                 }
                 ExitCode::SUCCESS
             }

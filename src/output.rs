@@ -79,3 +79,20 @@ pub fn encode_png(width: u32, height: u32, rgba: &[u8]) -> anyhow::Result<Vec<u8
     )?;
     Ok(png)
 }
+
+/// Writes to stdout, ignoring a closed pipe (`vkocean bench frames | head` must not panic; what
+/// the reader stopped reading is lost either way).
+pub fn write_stdout(text: &str) {
+    use std::io::Write;
+    let mut out = std::io::stdout().lock();
+    let _ = out.write_all(text.as_bytes());
+    let _ = out.flush();
+}
+
+/// `println!` to [`write_stdout`].
+#[macro_export]
+macro_rules! outln {
+    ($($arg:tt)*) => {
+        $crate::output::write_stdout(&(format!($($arg)*) + "\n"))
+    };
+}

@@ -133,6 +133,19 @@ fn bad_usage_exits_2_with_one_line() {
         (&["--headless", "--dt", "0"], "--dt"),
         (&["--headless", "--time", "-1"], "--time"),
         (&["--headless", "--buoy", "1,inf"], "--buoy"),
+        (
+            &["--headless", "--quality", "ultra"],
+            "possible values: low, medium, high",
+        ),
+        (
+            &["--headless", "--preset", "hurricane"],
+            "possible values: calm, breeze, moderate, storm",
+        ),
+        (&["--headless", "--config", "c.txt"], "must end in .toml"),
+        (
+            &["--headless", "--config", "/nonexistent/c.toml"],
+            "--config /nonexistent/c.toml",
+        ),
     ];
     for (args, needle) in cases {
         assert_fails(args, &[], 2, needle);
@@ -264,4 +277,109 @@ fn help_and_device_list() {
         list.lines().next().is_some_and(|l| l.starts_with("0: ")),
         "{list}"
     );
+}
+
+#[test]
+fn config_file_errors_name_the_key() {
+    let dir = scratch("config-errors");
+    let cases: &[(&str, &str)] = &[
+        ("wind-speeed = 14\n", "unknown key 'wind-speeed'"),
+        ("[ocean]\nwind-speed = 3\n", "unknown key 'ocean'"),
+        (
+            "wind-speed = \"fast\"\n",
+            "'--wind-speed <M_S>': not a number",
+        ),
+        ("wind-speed = nan\n", "--wind-speed"),
+        ("fft-size = 100\n", "--fft-size"),
+        ("cascades = 9\n", "--cascades"),
+        ("camera = [0, 12]\n", "--camera"),
+        (
+            "camera = [0, true, 1]\n",
+            "key 'camera': expected a list of numbers",
+        ),
+        (
+            "validation = 3\n",
+            "key 'validation': expected true or false",
+        ),
+        ("quality = \"ultra\"\n", "--quality"),
+        ("config = \"other.toml\"\n", "unknown key 'config'"),
+        ("background = \"1,0,1\"\n", "unknown key 'background'"),
+        ("wind-speed = \n", "TOML parse error"),
+        ("spectrum = 3\n", "--spectrum"),
+    ];
+    for (i, (text, needle)) in cases.iter().enumerate() {
+        let path = dir.join(format!("bad{i}.toml"));
+        std::fs::write(&path, text).unwrap();
+        let shown = format!("--config {}", path.display());
+        assert_fails(
+            &["--headless", "--config", path.to_str().unwrap()],
+            &[],
+            2,
+            needle,
+        );
+        assert_fails(
+            &["--headless", "--config", path.to_str().unwrap()],
+            &[],
+            2,
+            &shown,
+        );
+    }
+}
+
+#[test]
+fn config_and_presets_apply_and_the_command_line_wins() {
+    let dir = scratch("config-apply");
+    let config = dir.join("sea.toml");
+    std::fs::write(
+        &config,
+        "# a storm, made lighter on the command line\npreset = \"storm\"\nfetch = 300\nheadless = true\nsize = \"32x32\"\nquality = \"low\"\n",
+    )
+    .unwrap();
+    let dump = dir.join("dump");
+    let out = run(&[
+        "--config",
+        config.to_str().unwrap(),
+        "--wind-speed",
+        "20",
+        "--dump",
+        dump.to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    let params: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dump.join("params.json")).unwrap()).unwrap();
+    // The command line beats the preset; the file's own key beats the preset; the preset fills
+    // the rest; --quality low sets the grid.
+    assert_eq!(params["wind_speed_m_s"], 20.0, "{params}");
+    assert_eq!(params["fetch_km"], 300.0, "{params}");
+    assert_eq!(params["choppiness"], 1.2, "{params}");
+    assert_eq!(params["patch_sizes_m"][0], 1000.0, "{params}");
+    assert_eq!(params["fft_size"], 64, "{params}");
+    assert_eq!(params["cascades"], 2, "{params}");
+
+    // Each preset is its Beaufort force's mid-range wind.
+    for (preset, wind) in [
+        ("calm", 2.5),
+        ("breeze", 6.7),
+        ("moderate", 12.3),
+        ("storm", 26.5),
+    ] {
+        let out = run(&[
+            "--headless",
+            "--size",
+            "16x16",
+            "--fft-size",
+            "64",
+            "--cascades",
+            "1",
+            "--preset",
+            preset,
+            "--dump",
+            dump.to_str().unwrap(),
+        ]);
+        assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+        let params: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(dump.join("params.json")).unwrap())
+                .unwrap();
+        assert_eq!(params["wind_speed_m_s"], wind, "{preset}: {params}");
+    }
 }

@@ -147,6 +147,7 @@ fn profile_has_every_pass() {
             "refraction",
             "scene",
             "water",
+            "sky",
             "composite"
         ]
     );

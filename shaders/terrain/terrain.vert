@@ -1,5 +1,5 @@
 #version 460
-// Terrain: a grid of TERRAIN_QUADS² quads around the island, displaced by terrain_height
+// Terrain: a grid of TERRAIN_QUADS² quads around the island (an indexed draw over its lattice), displaced by terrain_height
 // (common/terrain.glsl); normals by central differences. Drawn in every view; the clip plane of
 // the view (reflection: above the water, refraction: below) cuts it (seed 001 eq. 1–2).
 // Outputs: eye-relative position, world position, normal.
@@ -11,11 +11,10 @@ layout(location = 1) out vec3 out_world;
 layout(location = 2) out vec3 out_normal;
 layout(location = 3) flat out int out_object; // terrain.frag's object index; -1: terrain
 
-const uvec2 CORNERS[6] = uvec2[](uvec2(0, 0), uvec2(1, 1), uvec2(1, 0), uvec2(0, 0), uvec2(0, 1), uvec2(1, 1));
-
 void main() {
-    uint quad = uint(gl_VertexIndex) / 6u;
-    uvec2 cell = uvec2(quad % TERRAIN_QUADS, quad / TERRAIN_QUADS) + CORNERS[uint(gl_VertexIndex) % 6u];
+    // Indexed draw: gl_VertexIndex is a point of the (TERRAIN_QUADS + 1)² lattice, row by row.
+    uint side = uint(TERRAIN_QUADS) + 1u;
+    uvec2 cell = uvec2(uint(gl_VertexIndex) % side, uint(gl_VertexIndex) / side);
     vec2 u = vec2(cell) / float(TERRAIN_QUADS) * 2.0 - 1.0;
     float half_side = frame.terrain.w * TERRAIN_EXTENT;
     vec2 xz = frame.terrain.xy + u * half_side;

@@ -66,13 +66,21 @@ pub fn fft(s: &FftBenchSettings) -> anyhow::Result<Outcome> {
     for &n in &s.sizes {
         crate::ocean::fft::check_plan(&ctx, n, s.batch).map_err(anyhow::Error::msg)?;
     }
-    println!(
+    crate::outln!(
         "FFT benchmark: {} ({}); batch of {} 2D complex transforms, median of {} runs",
-        ctx.info.name, ctx.info.driver, s.batch, s.runs
+        ctx.info.name,
+        ctx.info.driver,
+        s.batch,
+        s.runs
     );
-    println!(
+    crate::outln!(
         "{:>6} {:>6} {:>10} {:>12} {:>8} {:>14}  kernel",
-        "N", "batch", "gpu_ms", "rustfft_ms", "ratio", "rustfft_2d_ms"
+        "N",
+        "batch",
+        "gpu_ms",
+        "rustfft_ms",
+        "ratio",
+        "rustfft_2d_ms"
     );
     let mut rows = Vec::new();
     for &n in &s.sizes {
@@ -87,7 +95,7 @@ pub fn fft(s: &FftBenchSettings) -> anyhow::Result<Outcome> {
             rustfft_2d_ms,
             kernel: kernel_name(kernel),
         };
-        println!(
+        crate::outln!(
             "{:>6} {:>6} {:>10.3} {:>12.3} {:>8.2} {:>14.3}  {}",
             n,
             s.batch,

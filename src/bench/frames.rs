@@ -233,11 +233,14 @@ pub fn frames(s: &FramesBenchSettings) -> anyhow::Result<Outcome> {
         .iter()
         .map(|(k, v)| format!("{k}={}", v.as_str().map_or(v.to_string(), str::to_string)))
         .collect();
-    println!(
+    crate::outln!(
         "bench frames: {} ({}), {} frames after {:.1} s of warm-up",
-        ctx.info.name, ctx.info.driver, s.frames, s.warmup_s
+        ctx.info.name,
+        ctx.info.driver,
+        s.frames,
+        s.warmup_s
     );
-    println!("settings: {}", settings_line.join(" "));
+    crate::outln!("settings: {}", settings_line.join(" "));
     let m = measure(&ctx, &s.run, s.warmup_s, s.frames, "bench frames")?;
 
     let cpu: Vec<f64> = m.cpu.iter().map(|c| c.1).collect();
@@ -268,7 +271,7 @@ pub fn frames(s: &FramesBenchSettings) -> anyhow::Result<Outcome> {
     if let Some(file) = csv_file {
         file.commit(m.csv().as_bytes())?;
     }
-    print!("{table}");
+    crate::output::write_stdout(&table);
     Ok(Outcome { counters })
 }
 

@@ -86,7 +86,7 @@ pub fn gerstner(s: &GerstnerBenchSettings) -> anyhow::Result<Outcome> {
     if let Some(&too_big) = s.grid_widths.iter().find(|&&w| w > max) {
         anyhow::bail!("--grid-widths {too_big}: this device's images are at most {max} wide");
     }
-    println!(
+    crate::outln!(
         "bench gerstner (seed 004's experiment): {} ({}), {}x{}, {} frames per configuration after {:.1} s of warm-up",
         ctx.info.name, ctx.info.driver, s.run.size.0, s.run.size.1, s.frames, s.warmup_s
     );
@@ -170,6 +170,6 @@ pub fn gerstner(s: &GerstnerBenchSettings) -> anyhow::Result<Outcome> {
     if let Some(file) = json_file {
         file.commit((serde_json::to_string_pretty(&value)? + "\n").as_bytes())?;
     }
-    print!("{out}");
+    crate::output::write_stdout(&out);
     Ok(Outcome { counters })
 }

@@ -181,7 +181,7 @@ impl Session {
         let (displacement, _) = self.simulation.read_back(&self.ctx, slot, value)?;
         let patches: Vec<f64> = self.simulation.cascades.iter().map(|c| c.patch_m).collect();
         let index = self.frames.submitted() - 1;
-        println!(
+        crate::outln!(
             "{}",
             stats_line(
                 index,

@@ -299,6 +299,26 @@ impl<'a> Recorder<'a> {
         };
     }
 
+    /// Binds a buffer of u32 indices for `draw_indexed`.
+    pub fn bind_index_buffer(&self, buffer: &Buffer) {
+        // SAFETY: recording-state invariant; the buffer is live and was made with INDEX_BUFFER.
+        unsafe {
+            self.ctx
+                .device
+                .cmd_bind_index_buffer(self.cmd, buffer.raw, 0, vk::IndexType::UINT32)
+        };
+    }
+
+    pub fn draw_indexed(&self, indices: u32, instances: u32) {
+        // SAFETY: recording-state invariant; inside a rendering scope with a bound pipeline and
+        // an index buffer holding at least `indices` entries.
+        unsafe {
+            self.ctx
+                .device
+                .cmd_draw_indexed(self.cmd, indices, instances, 0, 0, 0)
+        };
+    }
+
     pub fn dispatch(&self, x: u32, y: u32, z: u32) {
         // SAFETY: recording-state invariant; a compute pipeline is bound.
         unsafe { self.ctx.device.cmd_dispatch(self.cmd, x, y, z) };

@@ -367,10 +367,10 @@ impl Renderer {
         };
 
         profiler.pass(rec, "reflection", || {
-            // The sky writes every pixel first.
+            // The sky, last, writes every pixel the terrain left.
             begin(&t.reflection, Load::DontCare);
-            self.sky.record(rec, frame_set, ViewIndex::Reflection);
             self.terrain.record(rec, frame_set, ViewIndex::Reflection);
+            self.sky.record(rec, frame_set, ViewIndex::Reflection);
             rec.end_rendering();
         });
         profiler.pass(rec, "refraction", || {
@@ -414,35 +414,32 @@ impl Renderer {
             &[],
         );
 
-        // Two rendering scopes, so each pass's timestamps cover its own rasterisation (a CPU
-        // driver may defer drawing to the end of a scope).
+        // Scene, water and sky in three rendering scopes, so each pass's timestamps cover its
+        // own rasterisation (a CPU driver may defer drawing to the end of a scope). The sky goes
+        // last and fills only what terrain and water left, so no covered pixel is shaded twice.
         profiler.pass(rec, "scene", || {
             begin(&t.main, Load::DontCare);
-            self.sky.record(rec, frame_set, ViewIndex::Main);
             self.terrain.record(rec, frame_set, ViewIndex::Main);
             rec.end_rendering();
         });
-        rec.barrier(
-            &[
-                ImageBarrier {
-                    image: t.main.colour.raw,
-                    range: t.main.colour.range(),
-                    old_layout: vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL,
-                    new_layout: vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL,
-                    src: Access::COLOUR_WRITE,
-                    dst: Access::COLOUR_RW,
-                },
-                ImageBarrier {
-                    image: t.main.depth.raw,
-                    range: t.main.depth.range(),
-                    old_layout: vk::ImageLayout::DEPTH_STENCIL_ATTACHMENT_OPTIMAL,
-                    new_layout: vk::ImageLayout::DEPTH_STENCIL_ATTACHMENT_OPTIMAL,
-                    src: Access::DEPTH_RW,
-                    dst: Access::DEPTH_RW,
-                },
-            ],
-            &[],
-        );
+        // Between the main scopes: colour and depth written, then read and written again.
+        let main_colour_rw = ImageBarrier {
+            image: t.main.colour.raw,
+            range: t.main.colour.range(),
+            old_layout: vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL,
+            new_layout: vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL,
+            src: Access::COLOUR_RW,
+            dst: Access::COLOUR_RW,
+        };
+        let main_depth_rw = ImageBarrier {
+            image: t.main.depth.raw,
+            range: t.main.depth.range(),
+            old_layout: vk::ImageLayout::DEPTH_STENCIL_ATTACHMENT_OPTIMAL,
+            new_layout: vk::ImageLayout::DEPTH_STENCIL_ATTACHMENT_OPTIMAL,
+            src: Access::DEPTH_RW,
+            dst: Access::DEPTH_RW,
+        };
+        rec.barrier(&[main_colour_rw, main_depth_rw], &[]);
         profiler.begin_pass(rec, "water");
         {
             rec.begin_rendering(
@@ -466,6 +463,24 @@ impl Renderer {
             rec.end_rendering();
         }
         profiler.end_pass(rec);
+        rec.barrier(&[main_colour_rw, main_depth_rw], &[]);
+        profiler.pass(rec, "sky", || {
+            let keep = |view| Attachment {
+                view,
+                layout: vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL,
+                load: Load::Keep,
+            };
+            rec.begin_rendering(
+                extent,
+                &[keep(t.main.colour.view)],
+                Some(Attachment {
+                    layout: vk::ImageLayout::DEPTH_STENCIL_ATTACHMENT_OPTIMAL,
+                    ..keep(t.main.depth.view)
+                }),
+            );
+            self.sky.record(rec, frame_set, ViewIndex::Main);
+            rec.end_rendering();
+        });
 
         rec.barrier(
             &[

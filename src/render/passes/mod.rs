@@ -54,21 +54,35 @@ pub fn scene_layout(
     )
 }
 
-/// A scene pipeline drawing into HDR colour + depth; `depth`: test (reversed-Z) and write.
+/// How a scene pipeline uses the depth buffer (reversed-Z: cleared to 0, the far plane).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Depth {
+    /// Geometry: nearer wins, and writes its depth.
+    TestWrite,
+    /// The background (sky) at the far plane, drawn last: only where nothing was drawn, so
+    /// covered pixels are never shaded.
+    Background,
+}
+
+/// A scene pipeline drawing into HDR colour + depth.
 pub fn scene_pipeline(
     ctx: &Arc<Context>,
     layout: &PipelineLayout,
     desc: GraphicsDesc,
-    depth: bool,
+    depth: Depth,
 ) -> GpuResult<Pipeline> {
+    let (compare, write) = match depth {
+        Depth::TestWrite => (vk::CompareOp::GREATER, true),
+        Depth::Background => (vk::CompareOp::GREATER_OR_EQUAL, false),
+    };
     Pipeline::graphics(
         ctx,
         layout,
         &GraphicsDesc {
             colour_formats: &[HDR_FORMAT],
             depth_format: Some(DEPTH_FORMAT),
-            depth_compare: depth.then_some(vk::CompareOp::GREATER),
-            depth_write: depth,
+            depth_compare: Some(compare),
+            depth_write: write,
             ..desc
         },
     )

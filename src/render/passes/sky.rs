@@ -8,7 +8,7 @@ use std::sync::Arc;
 use ash::vk;
 use glam::Vec3;
 
-use super::{bind_scene, scene_layout, scene_pipeline};
+use super::{bind_scene, scene_layout, scene_pipeline, Depth};
 use crate::gpu::oneshot::upload_image;
 use crate::gpu::{
     Access, Attachment, Context, DescriptorSetLayout, GpuResult, GraphicsDesc, Image, ImageBarrier,
@@ -45,12 +45,12 @@ impl SkyPass {
                 ],
                 ..Default::default()
             },
-            false,
+            Depth::Background,
         )?;
         Ok(SkyPass { layout, pipeline })
     }
 
-    /// Draws the sky over the whole target (first, inside a scene rendering scope).
+    /// Draws the sky where nothing else was drawn (last, inside a scene rendering scope).
     pub fn record(&self, rec: &Recorder, frame_set: vk::DescriptorSet, view: ViewIndex) {
         bind_scene(rec, &self.pipeline, &self.layout, &[frame_set], view);
         rec.draw(3, 1);

@@ -7,9 +7,11 @@ use std::sync::Arc;
 
 use ash::vk;
 
-use super::{bind_scene, scene_layout, scene_pipeline};
+use super::{bind_scene, scene_layout, scene_pipeline, Depth};
+use crate::gpu::oneshot::upload;
 use crate::gpu::{
-    Context, DescriptorSetLayout, GpuResult, GraphicsDesc, Pipeline, PipelineLayout, Recorder,
+    Buffer, Context, DescriptorSetLayout, GpuResult, GraphicsDesc, MemoryLocation, Pipeline,
+    PipelineLayout, Recorder,
 };
 use crate::render::camera::ViewIndex;
 use crate::shaders;
@@ -22,6 +24,10 @@ const OBJECT_SEGMENTS: u32 = 20;
 const OBJECTS: u32 = 4;
 
 pub struct TerrainPass {
+    /// Two triangles per grid quad over the (QUADS + 1)² lattice, row by row: each lattice
+    /// vertex is shaded once per batch instead of six times (lavapipe's vertex stage runs on
+    /// one CPU thread, so this matters in every view).
+    indices: Buffer,
     layout: PipelineLayout,
     terrain: Pipeline,
     objects: Pipeline,
@@ -45,12 +51,37 @@ impl TerrainPass {
                     ],
                     ..Default::default()
                 },
-                true,
+                Depth::TestWrite,
             )
         };
         let terrain = pipeline("terrain", shaders::TERRAIN_TERRAIN_VERT)?;
         let objects = pipeline("objects", shaders::TERRAIN_OBJECTS_VERT)?;
+        let lattice = |x: u32, z: u32| z * (TERRAIN_QUADS + 1) + x;
+        let mut list = Vec::with_capacity((TERRAIN_QUADS * TERRAIN_QUADS * 6) as usize);
+        for z in 0..TERRAIN_QUADS {
+            for x in 0..TERRAIN_QUADS {
+                // The corners of terrain.vert's former CORNERS table: (0,0) (1,1) (1,0), (0,0) (0,1) (1,1).
+                list.extend([
+                    lattice(x, z),
+                    lattice(x + 1, z + 1),
+                    lattice(x + 1, z),
+                    lattice(x, z),
+                    lattice(x, z + 1),
+                    lattice(x + 1, z + 1),
+                ]);
+            }
+        }
+        let bytes: &[u8] = bytemuck::cast_slice(&list);
+        let indices = Buffer::new(
+            ctx,
+            "terrain indices",
+            bytes.len() as u64,
+            vk::BufferUsageFlags::INDEX_BUFFER | vk::BufferUsageFlags::TRANSFER_DST,
+            MemoryLocation::GpuOnly,
+        )?;
+        upload(ctx, &indices, bytes)?;
         Ok(TerrainPass {
+            indices,
             layout,
             terrain,
             objects,
@@ -60,7 +91,8 @@ impl TerrainPass {
     /// Draws the island and the objects inside a scene rendering scope.
     pub fn record(&self, rec: &Recorder, frame_set: vk::DescriptorSet, view: ViewIndex) {
         bind_scene(rec, &self.terrain, &self.layout, &[frame_set], view);
-        rec.draw(TERRAIN_QUADS * TERRAIN_QUADS * 6, 1);
+        rec.bind_index_buffer(&self.indices);
+        rec.draw_indexed(TERRAIN_QUADS * TERRAIN_QUADS * 6, 1);
         bind_scene(rec, &self.objects, &self.layout, &[frame_set], view);
         rec.draw(OBJECT_SEGMENTS * 9, OBJECTS);
     }

@@ -8,7 +8,7 @@ use std::sync::Arc;
 
 use ash::vk;
 
-use super::{bind_scene, scene_layout, scene_pipeline};
+use super::{bind_scene, scene_layout, scene_pipeline, Depth};
 use crate::gpu::descriptors::{self, Write};
 use crate::gpu::{
     Context, DescriptorPool, DescriptorSetLayout, GpuResult, GraphicsDesc, Pipeline,
@@ -87,7 +87,7 @@ impl WaterPass {
                     polygon_mode,
                     ..Default::default()
                 },
-                true,
+                Depth::TestWrite,
             )
         };
         let fill = pipeline("water", vk::PolygonMode::FILL)?;
