@@ -18,6 +18,14 @@ pub struct PendingFile {
 
 impl PendingFile {
     /// Proves that `path` can be written by creating (and removing) its temporary sibling now.
+    /// [`PendingFile::create`] for an optional output flag.
+    pub fn create_if(
+        what: &'static str,
+        path: Option<&Path>,
+    ) -> anyhow::Result<Option<PendingFile>> {
+        path.map(|p| PendingFile::create(what, p)).transpose()
+    }
+
     pub fn create(what: &'static str, path: &Path) -> anyhow::Result<PendingFile> {
         let name = path
             .file_name()

@@ -89,13 +89,17 @@ pub fn gpu_per_frame(graphics: &GpuTimings, compute: &GpuTimings) -> Vec<(u64, f
         .collect()
 }
 
+/// Compute + graphics GPU ms per frame (one queue on lavapipe: they run back to back).
+pub fn gpu_total_ms(graphics: &GpuTimings, compute: &GpuTimings) -> Vec<f64> {
+    gpu_per_frame(graphics, compute)
+        .iter()
+        .map(|f| f.1 + f.2)
+        .collect()
+}
+
 impl ProfileReport<'_> {
-    /// Compute + graphics GPU ms per frame (one queue on lavapipe: they run back to back).
     pub fn gpu_total_ms(&self) -> Vec<f64> {
-        gpu_per_frame(self.gpu, self.compute)
-            .iter()
-            .map(|f| f.1 + f.2)
-            .collect()
+        gpu_total_ms(self.gpu, self.compute)
     }
 
     pub fn to_json(&self) -> String {

@@ -20,7 +20,7 @@ use serde_json::json;
 
 use crate::frontend::Outcome;
 use crate::gpu::oneshot::upload;
-use crate::gpu::{Access, Buffer, Context, ContextDesc, Frames, MemoryLocation, Profiler};
+use crate::gpu::{Access, Buffer, Context, Frames, MemoryLocation, Profiler};
 use crate::ocean::fft::{Direction, GpuFft, Kernel};
 use crate::output::PendingFile;
 use crate::profile::{Stats, WARMUP_FRAMES};
@@ -52,16 +52,8 @@ pub struct FftRow {
 }
 
 pub fn fft(s: &FftBenchSettings) -> anyhow::Result<Outcome> {
-    let json_file = s
-        .json
-        .as_deref()
-        .map(|p| PendingFile::create("--json", p))
-        .transpose()?;
-    let ctx = Context::new(&ContextDesc {
-        validation: s.validation,
-        gpu_index: s.gpu,
-        window: None,
-    })?;
+    let json_file = PendingFile::create_if("--json", s.json.as_deref())?;
+    let ctx = Context::headless(s.validation, s.gpu)?;
     let counters = ctx.counters();
     for &n in &s.sizes {
         crate::ocean::fft::check_plan(&ctx, n, s.batch).map_err(anyhow::Error::msg)?;

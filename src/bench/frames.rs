@@ -18,10 +18,10 @@ use serde_json::{json, Value};
 use crate::frontend::headless::{frame_inputs, Offscreen};
 use crate::frontend::session::Session;
 use crate::frontend::{Outcome, RunSettings};
-use crate::gpu::{Context, ContextDesc, GpuTimings};
+use crate::gpu::{Context, GpuTimings};
 use crate::ocean::Waves;
 use crate::output::PendingFile;
-use crate::profile::{gpu_per_frame, ProfileReport, Stats};
+use crate::profile::{gpu_per_frame, gpu_total_ms, ProfileReport, Stats};
 
 /// Settings of `bench frames`.
 #[derive(Clone, Debug)]
@@ -62,10 +62,7 @@ impl Measured {
 
     /// Compute + graphics GPU ms per frame.
     pub fn gpu_total_ms(&self) -> Vec<f64> {
-        gpu_per_frame(&self.graphics, &self.compute)
-            .iter()
-            .map(|f| f.1 + f.2)
-            .collect()
+        gpu_total_ms(&self.graphics, &self.compute)
     }
 
     /// Pass names in report order: compute passes, then graphics passes.
@@ -212,21 +209,9 @@ pub fn cost_settings(run: &RunSettings, quality: Option<&str>) -> Vec<(&'static 
 }
 
 pub fn frames(s: &FramesBenchSettings) -> anyhow::Result<Outcome> {
-    let json_file = s
-        .json
-        .as_deref()
-        .map(|p| PendingFile::create("--json", p))
-        .transpose()?;
-    let csv_file = s
-        .csv
-        .as_deref()
-        .map(|p| PendingFile::create("--csv", p))
-        .transpose()?;
-    let ctx = Context::new(&ContextDesc {
-        validation: s.run.validation,
-        gpu_index: s.run.gpu,
-        window: None,
-    })?;
+    let json_file = PendingFile::create_if("--json", s.json.as_deref())?;
+    let csv_file = PendingFile::create_if("--csv", s.csv.as_deref())?;
+    let ctx = Context::headless(s.run.validation, s.run.gpu)?;
     let counters = ctx.counters();
     let settings = cost_settings(&s.run, s.quality.as_deref());
     let settings_line: Vec<String> = settings

@@ -11,7 +11,7 @@ use serde_json::json;
 
 use super::frames::{measure, Measured};
 use crate::frontend::{Outcome, RunSettings};
-use crate::gpu::{Context, ContextDesc};
+use crate::gpu::Context;
 use crate::ocean::{gerstner, Waves};
 use crate::output::PendingFile;
 use crate::profile::Stats;
@@ -71,16 +71,8 @@ fn row(waves: usize, grid: usize, m: &Measured) -> GerstnerRow {
 }
 
 pub fn gerstner(s: &GerstnerBenchSettings) -> anyhow::Result<Outcome> {
-    let json_file = s
-        .json
-        .as_deref()
-        .map(|p| PendingFile::create("--json", p))
-        .transpose()?;
-    let ctx = Context::new(&ContextDesc {
-        validation: s.run.validation,
-        gpu_index: s.run.gpu,
-        window: None,
-    })?;
+    let json_file = PendingFile::create_if("--json", s.json.as_deref())?;
+    let ctx = Context::headless(s.run.validation, s.run.gpu)?;
     let counters = ctx.counters();
     let max = ctx.info.limits.max_image_dimension2_d as usize;
     if let Some(&too_big) = s.grid_widths.iter().find(|&&w| w > max) {

@@ -9,7 +9,7 @@ use ash::vk;
 use super::session::{check_size, readback_buffer, Session};
 use super::{Outcome, RunSettings};
 use crate::gpu::image::full_range;
-use crate::gpu::{Access, Context, ContextDesc, Image, ImageBarrier, ImageDesc};
+use crate::gpu::{Access, Context, Image, ImageBarrier, ImageDesc};
 use crate::output::{encode_png, PendingFile};
 use crate::render::{FrameInputs, OutputTarget};
 
@@ -21,16 +21,8 @@ const DUMP_FILES: [&str; 4] = ["h0.npy", "displacement.npy", "normals.npy", "par
 pub const FIXED_DT_S: f32 = 1.0 / 60.0;
 
 pub fn run(s: &RunSettings) -> anyhow::Result<Outcome> {
-    let screenshot = s
-        .screenshot
-        .as_deref()
-        .map(|p| PendingFile::create("--screenshot", p))
-        .transpose()?;
-    let profile = s
-        .profile
-        .as_deref()
-        .map(|p| PendingFile::create("--profile", p))
-        .transpose()?;
+    let screenshot = PendingFile::create_if("--screenshot", s.screenshot.as_deref())?;
+    let profile = PendingFile::create_if("--profile", s.profile.as_deref())?;
     let dump = match &s.dump {
         Some(dir) => {
             std::fs::create_dir_all(dir)
@@ -44,11 +36,7 @@ pub fn run(s: &RunSettings) -> anyhow::Result<Outcome> {
     };
     let frames = s.frames.unwrap_or(1);
 
-    let ctx = Context::new(&ContextDesc {
-        validation: s.validation,
-        gpu_index: s.gpu,
-        window: None,
-    })?;
+    let ctx = Context::headless(s.validation, s.gpu)?;
     let counters = ctx.counters();
     let offscreen = Offscreen::new(&ctx, s.size)?;
     let (target, extent, output) = (&offscreen.image, offscreen.extent, offscreen.output());

@@ -73,6 +73,15 @@ pub struct Context {
 }
 
 impl Context {
+    /// A context without a window (headless runs and benchmarks).
+    pub fn headless(validation: bool, gpu_index: Option<usize>) -> GpuResult<Arc<Context>> {
+        Context::new(&ContextDesc {
+            validation,
+            gpu_index,
+            window: None,
+        })
+    }
+
     /// Creates the instance, picks the device (`desc.gpu_index` or the best one), creates the
     /// device, queues, allocator and frame timeline.
     pub fn new(desc: &ContextDesc) -> GpuResult<Arc<Context>> {

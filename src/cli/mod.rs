@@ -1,9 +1,17 @@
 //! The command line (clap derive) and its validation into [`RunSettings`]. Bad values are usage
-//! errors (exit code 2) with a one-line message.
+//! errors (exit code 2) with a one-line message. Value parsers live in `values.rs`, the
+//! `--config FILE.toml` expansion in `config.rs`.
 
 use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
+
+mod config;
+mod values;
+
+pub use config::with_config;
+pub use values::parse_fft_size;
+use values::*;
 
 use crate::frontend::RunSettings;
 use crate::gpu::PresentMode;
@@ -359,31 +367,6 @@ pub struct BenchFftArgs {
     pub json: Option<PathBuf>,
 }
 
-fn parse_whole(s: &str, lo: u64, hi: u64) -> Result<u64, String> {
-    match s.trim().parse::<i128>() {
-        Ok(n) if n >= lo as i128 && n <= hi as i128 => Ok(n as u64),
-        Ok(_) => Err(format!("must be a whole number from {lo} to {hi}")),
-        Err(_) => Err("not a whole number".to_string()),
-    }
-}
-
-/// A power of two from 64 to 1024.
-pub fn parse_fft_size(s: &str) -> Result<usize, String> {
-    let n = parse_whole(s, 1, 1 << 20)?;
-    if !n.is_power_of_two() || !(64..=1024).contains(&n) {
-        return Err("must be a power of two from 64 to 1024".to_string());
-    }
-    Ok(n as usize)
-}
-
-fn parse_batch(s: &str) -> Result<usize, String> {
-    parse_whole(s, 1, 64).map(|n| n as usize)
-}
-
-fn parse_runs(s: &str) -> Result<usize, String> {
-    parse_whole(s, 1, 10_000).map(|n| n as usize)
-}
-
 impl BenchFftArgs {
     pub fn settings(&self, cli: &Cli) -> Result<crate::bench::FftBenchSettings, UsageError> {
         require_extension("--json", self.json.as_deref(), "json")?;
@@ -448,21 +431,6 @@ pub enum SpectrumArg {
     PiersonMoskowitz,
 }
 
-/// A finite real number in (lo, hi], or [lo, hi] when `closed`.
-fn parse_real(s: &str, lo: f64, hi: f64, closed: bool) -> Result<f64, String> {
-    let v: f64 = s.trim().parse().map_err(|_| "not a number".to_string())?;
-    let ok = v.is_finite() && v <= hi && (v > lo || (closed && v >= lo));
-    if ok {
-        Ok(v)
-    } else if closed {
-        Err(format!("must be a number from {lo} to {hi}"))
-    } else {
-        Err(format!(
-            "must be a number greater than {lo} and at most {hi}"
-        ))
-    }
-}
-
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum ViewArg {
     Final,
@@ -482,90 +450,11 @@ pub enum FresnelArg {
     Power,
 }
 
-/// `N,N,...`: exactly `len` finite numbers.
-fn parse_list(s: &str, len: usize) -> Result<Vec<f32>, String> {
-    let values: Vec<&str> = s.split(',').collect();
-    let expected = || {
-        format!(
-            "expected {len} comma-separated numbers, e.g. {}",
-            ["10", "-5", "2"][..len].join(",")
-        )
-    };
-    if values.len() != len {
-        return Err(expected());
-    }
-    values
-        .iter()
-        .map(|v| match v.trim().parse::<f32>() {
-            Ok(x) if x.is_finite() && x.abs() <= 1.0e6 => Ok(x),
-            Ok(_) => Err("each number must be finite and at most 1e6 in size".to_string()),
-            Err(_) => Err(expected()),
-        })
-        .collect()
-}
-
-fn parse_vec3(s: &str) -> Result<[f32; 3], String> {
-    let v = parse_list(s, 3)?;
-    Ok([v[0], v[1], v[2]])
-}
-
-fn parse_vec2(s: &str) -> Result<[f32; 2], String> {
-    let v = parse_list(s, 2)?;
-    Ok([v[0], v[1]])
-}
-
-fn parse_sun(s: &str) -> Result<[f32; 2], String> {
-    let v = parse_list(s, 2)?;
-    if !(0.0..=90.0).contains(&v[1]) {
-        return Err("the elevation must be from 0 to 90 degrees".to_string());
-    }
-    Ok([v[0], v[1]])
-}
-
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum PresentModeArg {
     Fifo,
     Mailbox,
     Immediate,
-}
-
-fn parse_frames(s: &str) -> Result<u64, String> {
-    parse_whole(s, 1, u32::MAX as u64)
-}
-
-fn parse_size(s: &str) -> Result<(u32, u32), String> {
-    let (w, h) = s
-        .split_once(['x', 'X'])
-        .ok_or("expected WIDTHxHEIGHT, e.g. 1280x720")?;
-    let side = |v: &str| -> Result<u32, String> {
-        let n: u64 = v
-            .trim()
-            .parse()
-            .map_err(|_| "expected WIDTHxHEIGHT with whole numbers, e.g. 1280x720".to_string())?;
-        if n == 0 || n > MAX_SIDE as u64 {
-            return Err(format!("each side must be from 1 to {MAX_SIDE} pixels"));
-        }
-        Ok(n as u32)
-    };
-    Ok((side(w)?, side(h)?))
-}
-
-/// `flag PATH` must name a `.want` file (any case), when given.
-fn require_extension(
-    flag: &str,
-    path: Option<&std::path::Path>,
-    want: &str,
-) -> Result<(), UsageError> {
-    let Some(path) = path else { return Ok(()) };
-    let ext = path.extension().and_then(|e| e.to_str());
-    if ext.is_some_and(|e| e.eq_ignore_ascii_case(want)) {
-        Ok(())
-    } else {
-        Err(UsageError(format!(
-            "{flag} {}: the file name must end in .{want}",
-            path.display()
-        )))
-    }
 }
 
 /// A command-line value that is wrong (exit code 2).
@@ -789,114 +678,9 @@ impl Cli {
     }
 }
 
-/// Expands `--config FILE.toml` (anywhere in `args`): the file's settings become flags inserted
-/// right after the program name, so the command line's own flags, coming later, win.
-pub fn with_config(args: Vec<std::ffi::OsString>) -> Result<Vec<std::ffi::OsString>, UsageError> {
-    use clap::CommandFactory;
-    let mut path = None;
-    let mut iter = args.iter().skip(1);
-    while let Some(arg) = iter.next() {
-        let arg = arg.to_string_lossy();
-        if arg == "--" {
-            break;
-        } else if arg == "--config" {
-            path = iter.next().map(PathBuf::from);
-        } else if let Some(value) = arg.strip_prefix("--config=") {
-            path = Some(PathBuf::from(value));
-        }
-    }
-    let Some(path) = path else { return Ok(args) };
-    require_extension("--config", Some(&path), "toml")?;
-    let shown = path.display().to_string();
-    let fail = |what: String| UsageError(format!("--config {shown}: {what}"));
-    let text = std::fs::read_to_string(&path).map_err(|e| fail(e.to_string()))?;
-    let doc: toml_edit::DocumentMut = text.parse().map_err(|e: toml_edit::TomlError| {
-        fail(
-            e.to_string()
-                .lines()
-                .next()
-                .unwrap_or("not TOML")
-                .to_string(),
-        )
-    })?;
-    let command = Cli::command();
-    let mut extra: Vec<std::ffi::OsString> = Vec::new();
-    for (key, item) in doc.as_table().iter() {
-        let long = key.replace('_', "-");
-        let arg = command
-            .get_arguments()
-            .find(|a| a.get_long() == Some(long.as_str()) && !a.is_hide_set())
-            .filter(|_| !["config", "help", "version"].contains(&long.as_str()))
-            .ok_or_else(|| fail(format!("unknown key '{key}'")))?;
-        let flag = matches!(arg.get_action(), clap::ArgAction::SetTrue);
-        let value = item
-            .as_value()
-            .ok_or_else(|| fail(format!("key '{key}': expected a value, not a table")))?;
-        let scalar = |v: &toml_edit::Value| -> Option<String> {
-            match v {
-                toml_edit::Value::Integer(i) => Some(i.value().to_string()),
-                toml_edit::Value::Float(f) => Some(f.value().to_string()),
-                toml_edit::Value::String(s) => Some(s.value().clone()),
-                _ => None,
-            }
-        };
-        match (flag, value) {
-            (true, toml_edit::Value::Boolean(b)) => {
-                if *b.value() {
-                    extra.push(format!("--{long}").into());
-                }
-            }
-            (true, _) => return Err(fail(format!("key '{key}': expected true or false"))),
-            (false, toml_edit::Value::Array(list)) => {
-                let parts: Option<Vec<String>> = list.iter().map(scalar).collect();
-                let parts = parts
-                    .ok_or_else(|| fail(format!("key '{key}': expected a list of numbers")))?;
-                extra.push(format!("--{long}={}", parts.join(",")).into());
-            }
-            (false, v) => {
-                let text = scalar(v)
-                    .ok_or_else(|| fail(format!("key '{key}': expected a number or a string")))?;
-                extra.push(format!("--{long}={text}").into());
-            }
-        }
-    }
-    // Check the file's settings on their own, so an error names the file.
-    let mut alone = vec![args[0].clone()];
-    alone.extend(extra.iter().cloned());
-    if let Err(e) = Cli::try_parse_from(&alone) {
-        let text = e.to_string();
-        let first = text.lines().next().unwrap_or("invalid value");
-        return Err(fail(first.trim_start_matches("error: ").to_string()));
-    }
-    let mut out = vec![args[0].clone()];
-    out.extend(extra);
-    out.extend(args.into_iter().skip(1));
-    Ok(out)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn sizes() {
-        assert_eq!(parse_size("1280x720"), Ok((1280, 720)));
-        assert_eq!(parse_size("64X32"), Ok((64, 32)));
-        assert!(parse_size("0x0").is_err());
-        assert!(parse_size("100000x10").is_err());
-        assert!(parse_size("12x").is_err());
-        assert!(parse_size("axb").is_err());
-        assert!(parse_size("1280").is_err());
-    }
-
-    #[test]
-    fn frames() {
-        assert_eq!(parse_frames("60"), Ok(60));
-        assert!(parse_frames("0").is_err());
-        assert!(parse_frames("-3").is_err());
-        assert!(parse_frames("1.5").is_err());
-        assert!(parse_frames("99999999999").is_err());
-    }
 
     #[test]
     fn headless_defaults() {
