@@ -125,6 +125,10 @@ fn bench_frames_reports_passes_frames_and_settings() {
         "160x90",
         "--cascades",
         "1",
+        "--quality",
+        "low",
+        "--terrain-grid",
+        "32",
         "--json",
         json_path.to_str().unwrap(),
         "--csv",
@@ -152,6 +156,10 @@ fn bench_frames_reports_passes_frames_and_settings() {
     assert_eq!(report["settings"]["fft_size"], 64);
     assert_eq!(report["settings"]["size"], "160x90");
     assert_eq!(report["settings"]["validation"], true);
+    // --quality low fills what was not given: its render scale, but not its terrain grid (64).
+    assert_eq!(report["settings"]["quality"], "low");
+    assert_eq!(report["settings"]["render_scale"], 0.5);
+    assert_eq!(report["settings"]["terrain_grid"], 32);
     let warmup = report["warmup_frames"].as_u64().unwrap();
     assert!(warmup >= 1, "{report}");
     assert_eq!(report["frames"].as_u64().unwrap(), warmup + 4);

@@ -122,6 +122,10 @@ fn bad_usage_exits_2_with_one_line() {
         (&["--headless", "--fresnel", "fake"], "--fresnel"),
         (&["--headless", "--rtt-scale", "0"], "--rtt-scale"),
         (&["--headless", "--tess-edge", "1"], "--tess-edge"),
+        (&["--headless", "--render-scale", "0.2"], "--render-scale"),
+        (&["--headless", "--render-scale", "inf"], "--render-scale"),
+        (&["--headless", "--terrain-grid", "8"], "--terrain-grid"),
+        (&["--headless", "--terrain-grid", "4096"], "--terrain-grid"),
         (&["--headless", "--sun", "0,95"], "elevation"),
         (
             &["--headless", "--dudv", "/nonexistent/d.png"],

@@ -3,7 +3,8 @@
 // octaves of rotated sine ridges (deterministic, no textures). Mirrored on the CPU by
 // `terrain_height` in src/render/scene.rs (tests use it to place cameras).
 const float PEAK_M = 48.0;
-const int TERRAIN_QUADS = 160;       // grid quads per side (src/render/passes/terrain.rs)
+// Grid quads per side: specialized by TerrainPass (--terrain-grid, src/render/passes/terrain.rs).
+layout(constant_id = 0) const int TERRAIN_QUADS = 160;
 const float TERRAIN_EXTENT = 2.4;    // grid half-side in island radii
 
 float terrain_height(vec2 xz) {

@@ -192,7 +192,9 @@ pub fn cost_settings(run: &RunSettings, quality: Option<&str>) -> Vec<(&'static 
         }
     }
     out.extend([
+        ("render_scale", json!(sc.render_scale)),
         ("rtt_scale", json!(sc.rtt_scale)),
+        ("terrain_grid", json!(sc.terrain_grid)),
         ("tess_edge_px", json!(sc.tess_edge_px)),
         ("view", json!(format!("{:?}", sc.view).to_lowercase())),
         (

@@ -80,8 +80,8 @@ pub struct Cli {
     #[arg(long, global = true, value_name = "FILE.toml")]
     pub config: Option<PathBuf>,
 
-    /// Cost level: low, medium or high (the default): FFT size, cascades, RTT scale and
-    /// tessellation edge (table in README); flags given explicitly win.
+    /// Cost level: low, medium or high (the default): FFT size, cascades, render scale, RTT
+    /// scale, tessellation edge and terrain grid (table in README); flags given explicitly win.
     #[arg(long, global = true, value_enum, value_name = "LEVEL")]
     pub quality: Option<QualityArg>,
 
@@ -199,6 +199,16 @@ pub struct Cli {
     #[arg(long, global = true, value_name = "S", allow_hyphen_values = true,
           value_parser = |s: &str| parse_real(s, 0.1, 1.0, true), help_heading = "Scene")]
     pub rtt_scale: Option<f64>,
+
+    /// Size of the scene (and water) target relative to the window (0.25 to 1); the composite pass scales it up. [default: 1; --quality sets it]
+    #[arg(long, global = true, value_name = "S", allow_hyphen_values = true,
+          value_parser = |s: &str| parse_real(s, 0.25, 1.0, true), help_heading = "Scene")]
+    pub render_scale: Option<f64>,
+
+    /// Quads per side of the island's terrain lattice (16 to 512). [default: 160; --quality sets it]
+    #[arg(long, global = true, value_name = "N", allow_hyphen_values = true,
+          value_parser = |s: &str| parse_whole(s, 16, 512).map(|n| n as u32), help_heading = "Scene")]
+    pub terrain_grid: Option<u32>,
 
     /// Target on-screen length of a tessellated ocean edge (px, 2 to 256); smaller is finer. [default: 16; --quality sets it]
     #[arg(long, global = true, value_name = "PX", allow_hyphen_values = true,
@@ -388,12 +398,30 @@ pub enum QualityArg {
     High,
 }
 
-/// What a `--quality` level sets: (FFT size, cascades, RTT scale, tessellation edge px).
-pub fn quality_level(q: QualityArg) -> (usize, usize, f64, f64) {
-    match q {
-        QualityArg::Low => (64, 2, 0.25, 48.0),
-        QualityArg::Medium => (128, 3, 0.35, 24.0),
-        QualityArg::High => (256, 3, 0.5, 16.0),
+/// What a `--quality` level sets (each flag given explicitly wins).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Quality {
+    pub fft_size: usize,
+    pub cascades: usize,
+    pub render_scale: f64,
+    pub rtt_scale: f64,
+    pub tess_edge_px: f64,
+    pub terrain_grid: u32,
+}
+
+pub fn quality_level(q: QualityArg) -> Quality {
+    let (fft_size, cascades, render_scale, rtt_scale, tess_edge_px, terrain_grid) = match q {
+        QualityArg::Low => (64, 2, 0.5, 0.25, 48.0, 64),
+        QualityArg::Medium => (128, 3, 0.75, 0.35, 24.0, 96),
+        QualityArg::High => (256, 3, 1.0, 0.5, 16.0, 160),
+    };
+    Quality {
+        fft_size,
+        cascades,
+        render_scale,
+        rtt_scale,
+        tess_edge_px,
+        terrain_grid,
     }
 }
 
@@ -539,8 +567,10 @@ impl Cli {
                 FresnelArg::Exact => FresnelModel::Exact,
                 FresnelArg::Power => FresnelModel::Power,
             },
-            rtt_scale: self.rtt_scale.unwrap_or(quality.2) as f32,
-            tess_edge_px: self.tess_edge.unwrap_or(quality.3) as f32,
+            rtt_scale: self.rtt_scale.unwrap_or(quality.rtt_scale) as f32,
+            render_scale: self.render_scale.unwrap_or(quality.render_scale) as f32,
+            terrain_grid: self.terrain_grid.unwrap_or(quality.terrain_grid),
+            tess_edge_px: self.tess_edge.unwrap_or(quality.tess_edge_px) as f32,
             layout: SceneLayout {
                 buoy_xz: self.buoy,
                 sea_floor_m: self.sea_floor as f32,
@@ -667,9 +697,9 @@ impl Cli {
                     fetch_km: self.fetch.unwrap_or(sea.1),
                     depth_m: self.depth,
                 },
-                fft_size: self.fft_size.unwrap_or(quality.0),
+                fft_size: self.fft_size.unwrap_or(quality.fft_size),
                 patch_size_m: self.patch_size.unwrap_or(sea.3),
-                cascades: self.cascades.unwrap_or(quality.1),
+                cascades: self.cascades.unwrap_or(quality.cascades),
                 choppiness: self.choppiness.unwrap_or(sea.2),
                 seed: self.seed,
                 waves,

@@ -58,9 +58,9 @@ pub fn run(s: &RunSettings) -> anyhow::Result<Outcome> {
                 &[ImageBarrier {
                     image: target.raw,
                     range: full_range(vk::ImageAspectFlags::COLOR, 1),
-                    old_layout: vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL,
+                    old_layout: OutputTarget::FINAL_LAYOUT,
                     new_layout: vk::ImageLayout::TRANSFER_SRC_OPTIMAL,
-                    src: Access::COLOUR_WRITE,
+                    src: OutputTarget::FINAL_ACCESS,
                     dst: Access::COPY_READ,
                 }],
                 &[],
@@ -136,7 +136,7 @@ impl Offscreen {
                 name: "headless output",
                 extent,
                 format: OUTPUT_FORMAT,
-                usage: vk::ImageUsageFlags::COLOR_ATTACHMENT | vk::ImageUsageFlags::TRANSFER_SRC,
+                usage: vk::ImageUsageFlags::TRANSFER_DST | vk::ImageUsageFlags::TRANSFER_SRC,
                 layers: 1,
                 array_view: false,
                 shared: false,
@@ -150,10 +150,9 @@ impl Offscreen {
     pub fn output(&self) -> OutputTarget {
         OutputTarget {
             image: self.image.raw,
-            view: self.image.view,
             extent: self.extent,
-            // The previous frame wrote the target and may have copied from it.
-            prior: Access::COLOUR_WRITE.or(Access::COPY_READ),
+            // The previous frame copied into the target and may have copied from it.
+            prior: OutputTarget::FINAL_ACCESS.or(Access::COPY_READ),
         }
     }
 }

@@ -244,17 +244,16 @@ impl App {
 
         let output = OutputTarget {
             image: image.image,
-            view: image.view,
             extent,
             // Chained to the acquire semaphore wait at the same stage.
             prior: Access {
-                stage: vk::PipelineStageFlags2::COLOR_ATTACHMENT_OUTPUT,
+                stage: vk::PipelineStageFlags2::COPY,
                 access: vk::AccessFlags2::NONE,
             },
         };
         let waits = [vk::SemaphoreSubmitInfo::default()
             .semaphore(image.acquired)
-            .stage_mask(vk::PipelineStageFlags2::COLOR_ATTACHMENT_OUTPUT)];
+            .stage_mask(vk::PipelineStageFlags2::COPY)];
         let signals = [vk::SemaphoreSubmitInfo::default()
             .semaphore(image.ready)
             .stage_mask(vk::PipelineStageFlags2::ALL_COMMANDS)];
@@ -292,8 +291,8 @@ impl App {
                 match readback {
                     None => rec.barrier(
                         &[to_present(
-                            vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL,
-                            Access::COLOUR_WRITE,
+                            OutputTarget::FINAL_LAYOUT,
+                            OutputTarget::FINAL_ACCESS,
                         )],
                         &[],
                     ),
@@ -302,9 +301,9 @@ impl App {
                             &[ImageBarrier {
                                 image: image.image,
                                 range,
-                                old_layout: vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL,
+                                old_layout: OutputTarget::FINAL_LAYOUT,
                                 new_layout: vk::ImageLayout::TRANSFER_SRC_OPTIMAL,
-                                src: Access::COLOUR_WRITE,
+                                src: OutputTarget::FINAL_ACCESS,
                                 dst: Access::COPY_READ,
                             }],
                             &[],

@@ -340,6 +340,35 @@ impl<'a> Recorder<'a> {
         };
     }
 
+    /// Copies a single-layer colour image (TRANSFER_SRC_OPTIMAL) into another of the same extent
+    /// and texel size (TRANSFER_DST_OPTIMAL), bit for bit (e.g. UNORM bytes into an sRGB image).
+    pub fn copy_image(&self, src: vk::Image, dst: vk::Image, extent: vk::Extent2D) {
+        let layer = packed_region(extent, 1).image_subresource;
+        let region = vk::ImageCopy {
+            src_subresource: layer,
+            src_offset: vk::Offset3D::default(),
+            dst_subresource: layer,
+            dst_offset: vk::Offset3D::default(),
+            extent: vk::Extent3D {
+                width: extent.width,
+                height: extent.height,
+                depth: 1,
+            },
+        };
+        // SAFETY: recording-state invariant; both images are in the layouts named above (the
+        // caller's barriers) and have at least `extent` texels of the same size.
+        unsafe {
+            self.ctx.device.cmd_copy_image(
+                self.cmd,
+                src,
+                vk::ImageLayout::TRANSFER_SRC_OPTIMAL,
+                dst,
+                vk::ImageLayout::TRANSFER_DST_OPTIMAL,
+                &[region],
+            )
+        };
+    }
+
     /// Copies every layer of a colour image (in `layout`: GENERAL or TRANSFER_SRC_OPTIMAL) into a
     /// buffer, tightly packed, layer after layer.
     pub fn copy_image_layers_to_buffer(

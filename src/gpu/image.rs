@@ -30,7 +30,8 @@ pub struct ImageDesc<'a> {
     pub cube: bool,
 }
 
-/// A 2D (array) image in device memory with a view of all its layers.
+/// A 2D (array) image in device memory with a view of all its layers (none for an image with
+/// transfer usage only).
 pub struct Image {
     ctx: Arc<Context>,
     pub raw: vk::Image,
@@ -129,6 +130,15 @@ impl Image {
                 .bind_image_memory(raw, allocation.memory(), allocation.offset())
         }
         .vk("vkBindImageMemory")?;
+        ctx.name(raw, desc.name);
+        // Copy-only images (transfer usage alone) cannot have views; `view` stays null.
+        let viewable = vk::ImageUsageFlags::SAMPLED
+            | vk::ImageUsageFlags::STORAGE
+            | vk::ImageUsageFlags::COLOR_ATTACHMENT
+            | vk::ImageUsageFlags::DEPTH_STENCIL_ATTACHMENT;
+        if !desc.usage.intersects(viewable) {
+            return Ok(image);
+        }
         let view_info = vk::ImageViewCreateInfo::default()
             .image(raw)
             .view_type(if desc.cube {
@@ -143,7 +153,6 @@ impl Image {
         // SAFETY: the image is live and bound; the range is within it.
         image.view =
             unsafe { ctx.device.create_image_view(&view_info, None) }.vk("vkCreateImageView")?;
-        ctx.name(raw, desc.name);
         ctx.name(image.view, &format!("{} view", desc.name));
         if desc.cube {
             for layer in 0..layers {

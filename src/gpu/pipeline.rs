@@ -82,6 +82,33 @@ impl Drop for ShaderModule<'_> {
     }
 }
 
+/// Specialization constants `constant_id = 0, 1, …`, each 32 bits.
+struct Specialization {
+    entries: Vec<vk::SpecializationMapEntry>,
+    data: Vec<u8>,
+}
+
+impl Specialization {
+    fn new(constants: &[u32]) -> Specialization {
+        Specialization {
+            entries: (0..constants.len() as u32)
+                .map(|i| vk::SpecializationMapEntry {
+                    constant_id: i,
+                    offset: i * 4,
+                    size: 4,
+                })
+                .collect(),
+            data: constants.iter().flat_map(|c| c.to_ne_bytes()).collect(),
+        }
+    }
+
+    fn info(&self) -> vk::SpecializationInfo<'_> {
+        vk::SpecializationInfo::default()
+            .map_entries(&self.entries)
+            .data(&self.data)
+    }
+}
+
 /// Fixed-function state of a graphics pipeline (viewport and scissor are dynamic).
 #[derive(Clone, Debug)]
 pub struct GraphicsDesc<'a> {
@@ -98,6 +125,8 @@ pub struct GraphicsDesc<'a> {
     /// Control points per patch (tessellation pipelines).
     pub patch_control_points: u32,
     pub polygon_mode: vk::PolygonMode,
+    /// `constants[i]` specializes `constant_id = i` in every stage (32-bit values).
+    pub constants: &'a [u32],
 }
 
 impl Default for GraphicsDesc<'_> {
@@ -113,6 +142,7 @@ impl Default for GraphicsDesc<'_> {
             topology: vk::PrimitiveTopology::TRIANGLE_LIST,
             patch_control_points: 0,
             polygon_mode: vk::PolygonMode::FILL,
+            constants: &[],
         }
     }
 }
@@ -138,12 +168,15 @@ impl Pipeline {
                 ShaderModule::new(ctx, &format!("{} {stage:?}", desc.name), spirv)
             })
             .collect::<GpuResult<Vec<_>>>()?;
+        let constants = Specialization::new(desc.constants);
+        let specialization = constants.info();
         let stages: Vec<_> = desc
             .stages
             .iter()
             .zip(&modules)
             .map(|((stage, _), module)| {
                 vk::PipelineShaderStageCreateInfo::default()
+                    .specialization_info(&specialization)
                     .stage(*stage)
                     .module(module.raw)
                     .name(c"main")
@@ -226,17 +259,8 @@ impl Pipeline {
         constants: &[u32],
     ) -> GpuResult<Pipeline> {
         let module = ShaderModule::new(ctx, name, spirv)?;
-        let entries: Vec<_> = (0..constants.len() as u32)
-            .map(|i| vk::SpecializationMapEntry {
-                constant_id: i,
-                offset: i * 4,
-                size: 4,
-            })
-            .collect();
-        let data: Vec<u8> = constants.iter().flat_map(|c| c.to_ne_bytes()).collect();
-        let specialization = vk::SpecializationInfo::default()
-            .map_entries(&entries)
-            .data(&data);
+        let constants = Specialization::new(constants);
+        let specialization = constants.info();
         let stage = vk::PipelineShaderStageCreateInfo::default()
             .specialization_info(&specialization)
             .stage(vk::ShaderStageFlags::COMPUTE)

@@ -42,8 +42,8 @@ impl PresentMode {
 pub struct AcquiredImage {
     pub index: u32,
     pub image: vk::Image,
-    pub view: vk::ImageView,
-    /// Signalled when the image may be written (wait on it at COLOR_ATTACHMENT_OUTPUT).
+    /// Signalled when the image may be written (wait on it where the frame first touches the
+    /// image: the composite pass's copy).
     pub acquired: vk::Semaphore,
     /// Signal this when rendering is done; presentation waits on it.
     pub ready: vk::Semaphore,
@@ -62,7 +62,6 @@ pub struct Swapchain {
     fns: ash::khr::swapchain::Device,
     raw: vk::SwapchainKHR,
     images: Vec<vk::Image>,
-    views: Vec<vk::ImageView>,
     ready: Vec<vk::Semaphore>,
     acquire: Vec<vk::Semaphore>,
     retired: Vec<Retired>,
@@ -86,7 +85,6 @@ impl Swapchain {
             fns: ash::khr::swapchain::Device::new(&ctx.instance, &ctx.device),
             raw: vk::SwapchainKHR::null(),
             images: Vec::new(),
-            views: Vec::new(),
             ready: Vec::new(),
             acquire: Vec::new(),
             retired: Vec::new(),
@@ -202,7 +200,16 @@ impl Swapchain {
         let can_copy = caps
             .supported_usage_flags
             .contains(vk::ImageUsageFlags::TRANSFER_SRC);
-        let mut usage = vk::ImageUsageFlags::COLOR_ATTACHMENT;
+        // The renderer's composite pass copies each frame into the image.
+        if !caps
+            .supported_usage_flags
+            .contains(vk::ImageUsageFlags::TRANSFER_DST)
+        {
+            return Err(GpuError::Unsupported(
+                "the window surface's images cannot be copied into (no TRANSFER_DST usage)".into(),
+            ));
+        }
+        let mut usage = vk::ImageUsageFlags::TRANSFER_DST;
         if can_copy {
             usage |= vk::ImageUsageFlags::TRANSFER_SRC;
         }
@@ -223,12 +230,6 @@ impl Swapchain {
             .old_swapchain(old);
         // SAFETY: valid create info; `old` (possibly null) is retired by this call.
         let raw = unsafe { self.fns.create_swapchain(&info, None) }.vk("vkCreateSwapchainKHR")?;
-        // SAFETY: the device is idle, so no command uses the old image views.
-        unsafe {
-            for view in self.views.drain(..) {
-                self.ctx.device.destroy_image_view(view, None);
-            }
-        }
         self.images.clear();
         if old != vk::SwapchainKHR::null() {
             self.retired.push(Retired {
@@ -247,16 +248,6 @@ impl Swapchain {
         for i in 0..self.images.len() {
             let image = self.images[i];
             self.ctx.name(image, &format!("swapchain image {i}"));
-            let view_info = vk::ImageViewCreateInfo::default()
-                .image(image)
-                .view_type(vk::ImageViewType::TYPE_2D)
-                .format(format.format)
-                .subresource_range(super::image::full_range(vk::ImageAspectFlags::COLOR, 1));
-            // SAFETY: the image belongs to the live swapchain.
-            let view = unsafe { self.ctx.device.create_image_view(&view_info, None) }
-                .vk("vkCreateImageView")?;
-            self.ctx.name(view, &format!("swapchain image {i} view"));
-            self.views.push(view);
             let ready = self.semaphore(&format!("swapchain image {i} ready to present"))?;
             self.ready.push(ready);
         }
@@ -293,7 +284,6 @@ impl Swapchain {
                 let image = AcquiredImage {
                     index,
                     image: self.images[i],
-                    view: self.views[i],
                     acquired: semaphore,
                     ready: self.ready[i],
                 };
@@ -361,9 +351,6 @@ impl Drop for Swapchain {
         // SAFETY: the device is idle; at shutdown there is no later point to wait for pending
         // presents (without VK_EXT_swapchain_maintenance1), so this is the best available.
         unsafe {
-            for view in self.views.drain(..) {
-                self.ctx.device.destroy_image_view(view, None);
-            }
             for s in self.ready.drain(..).chain(self.acquire.drain(..)) {
                 self.ctx.device.destroy_semaphore(s, None);
             }

@@ -56,6 +56,11 @@ pub struct SceneSettings {
     pub fresnel: FresnelModel,
     /// Reflection and refraction target size relative to the output (0 < s <= 1).
     pub rtt_scale: f32,
+    /// Main (scene and water) target size relative to the output (0 < s <= 1); composite scales
+    /// it up.
+    pub render_scale: f32,
+    /// Island lattice quads per side.
+    pub terrain_grid: u32,
     /// Target on-screen length of a tessellated ocean edge (px).
     pub tess_edge_px: f32,
     pub layout: SceneLayout,
@@ -81,6 +86,8 @@ impl Default for SceneSettings {
             view: ViewMode::Final,
             fresnel: FresnelModel::Schlick,
             rtt_scale: 0.5,
+            render_scale: 1.0,
+            terrain_grid: 160,
             tess_edge_px: 16.0,
             layout: SceneLayout::default(),
             sun_dir: default_sun_dir(),

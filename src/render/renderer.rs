@@ -5,12 +5,16 @@
 //!  sky cube    the analytic sky into the cubemap's 6 faces       (only when the sun changed)
 //!  reflection  sky + island + objects, mirrored camera, clip below the water  -> reflection colour
 //!  refraction  island + objects below the water (clip above)   -> refraction colour + depth
-//!  scene       sky + island + objects                          -> hdr colour + depth (main view)
+//!  scene       island + objects                                -> hdr colour + depth (main view,
+//!                                                                 at --render-scale)
 //!  water       tessellated ocean patches: displaced by the simulation images of slot f % 2
 //!              (after the compute timeline wait), shaded with reflection, refraction, DU/DV
-//!  composite   tone map (or a debug view's texture)            -> output image
+//!  sky         the sky where nothing else was drawn
+//!  composite   compute: tone map (or a debug view's texture), sRGB-encode, scale up
+//!              -> display image, copied into the output image
 //! ```
-//! The output is left in COLOR_ATTACHMENT_OPTIMAL; the frontend transitions it for present or copy.
+//! The output is left in [`OutputTarget::FINAL_LAYOUT`] after a copy write
+//! ([`OutputTarget::FINAL_ACCESS`]); the frontend transitions it for present or readback.
 
 use std::sync::Arc;
 
@@ -24,7 +28,6 @@ use super::scene::{generate_dudv, load_dudv, DUDV_SIDE};
 use super::targets::{ColourDepth, Targets};
 use super::{SceneSettings, ViewMode};
 use crate::gpu::descriptors::{self, Write};
-use crate::gpu::image::full_range;
 use crate::gpu::oneshot::upload_image;
 use crate::gpu::{
     Access, Attachment, Buffer, Context, DescriptorPool, DescriptorSetLayout, Frame, GpuResult,
@@ -36,14 +39,24 @@ use crate::gpu::{
 /// (`WATER_COLOUR` in water.frag), linear.
 const DEEP_WATER: [f32; 4] = [0.004, 0.045, 0.075, 1.0];
 
-/// The image a frame ends in.
+/// Textures the scene passes (fragment) and composite (compute) sample.
+const SAMPLED: Access = Access::FRAGMENT_SAMPLED.or(Access::COMPUTE_READ);
+
+/// The image a frame ends in: written by a copy (it needs TRANSFER_DST usage), never rendered
+/// to.
 #[derive(Clone, Copy, Debug)]
 pub struct OutputTarget {
     pub image: vk::Image,
-    pub view: vk::ImageView,
     pub extent: vk::Extent2D,
     /// The last access to the image before this frame (its contents are discarded).
     pub prior: Access,
+}
+
+impl OutputTarget {
+    /// The output's layout when the frame's commands end.
+    pub const FINAL_LAYOUT: vk::ImageLayout = vk::ImageLayout::TRANSFER_DST_OPTIMAL;
+    /// The frame's last access to the output.
+    pub const FINAL_ACCESS: Access = Access::COPY_WRITE;
 }
 
 /// Per-frame inputs.
@@ -95,7 +108,7 @@ impl Renderer {
         ocean: OceanBindings,
         settings: &SceneSettings,
     ) -> anyhow::Result<Renderer> {
-        let targets = Targets::new(ctx, extent, settings.rtt_scale)?;
+        let targets = Targets::new(ctx, extent, settings.render_scale, settings.rtt_scale)?;
         let graphics = vk::ShaderStageFlags::ALL_GRAPHICS;
         let sampled = vk::DescriptorType::COMBINED_IMAGE_SAMPLER;
         let frame_set_layout = DescriptorSetLayout::new(
@@ -206,7 +219,7 @@ impl Renderer {
             repeat: repeat_sampler.raw,
         };
         let sky = SkyPass::new(ctx, &frame_set_layout)?;
-        let terrain = TerrainPass::new(ctx, &frame_set_layout)?;
+        let terrain = TerrainPass::new(ctx, &frame_set_layout, settings.terrain_grid)?;
         let water = WaterPass::new(ctx, &frame_set_layout, &targets, dudv.view, &samplers)?;
         if settings.view == ViewMode::Wireframe && !water.has_wireframe() {
             anyhow::bail!(
@@ -241,9 +254,9 @@ impl Renderer {
         })
     }
 
-    /// Size of the scene targets.
+    /// Size of the output the renderer was made for.
     pub fn extent(&self) -> vk::Extent2D {
-        self.targets.extent()
+        self.targets.output_extent()
     }
 
     fn samplers(&self) -> WaterSamplers {
@@ -254,35 +267,26 @@ impl Renderer {
         }
     }
 
-    /// Recreates the size-dependent targets, and the composite pipeline if the output format
-    /// changed (a recreated swapchain may pick another). Waits for the device to go idle first
-    /// (resizes are rare).
+    /// Recreates the size-dependent targets for a new output size, and follows a change of the
+    /// output format (a recreated swapchain may pick another byte order). Waits for the device
+    /// to go idle first (resizes are rare).
     pub fn resize(&mut self, extent: vk::Extent2D, output_format: vk::Format) -> GpuResult<()> {
-        if extent == self.targets.extent() && output_format == self.composite.output_format {
+        self.composite.output_format = output_format;
+        if extent == self.targets.output_extent() {
             return Ok(());
         }
         self.ctx.wait_idle()?;
-        if extent != self.targets.extent() {
-            self.targets = Targets::new(&self.ctx, extent, self.settings.rtt_scale)?;
-            self.water
-                .resize(&self.targets, self.dudv.view, &self.samplers());
-        }
-        if output_format == self.composite.output_format {
-            self.composite
-                .resize(&self.targets, &self.dudv, self.repeat_sampler.raw);
-        } else {
-            self.composite = CompositePass::new(
-                &self.ctx,
-                output_format,
-                &self.targets,
-                &self.dudv,
-                self.repeat_sampler.raw,
-            )?;
-        }
+        let s = &self.settings;
+        self.targets = Targets::new(&self.ctx, extent, s.render_scale, s.rtt_scale)?;
+        self.water
+            .resize(&self.targets, self.dudv.view, &self.samplers());
+        self.composite
+            .resize(&self.targets, &self.dudv, self.repeat_sampler.raw);
         Ok(())
     }
 
-    /// Records the frame into `rec`. `output` must have the extent of the scene targets.
+    /// Records the frame into `rec`. `output` must have the size the renderer was made (or last
+    /// resized) for.
     pub fn record(
         &mut self,
         rec: &Recorder,
@@ -291,8 +295,9 @@ impl Renderer {
         output: &OutputTarget,
         inputs: &FrameInputs,
     ) {
-        debug_assert_eq!(output.extent, self.targets.extent());
-        let extent = self.targets.extent();
+        debug_assert_eq!(output.extent, self.targets.output_extent());
+        // The main target's size (--render-scale of the output's).
+        let extent = self.targets.main.extent();
         let s = &self.settings;
         let uniforms = FrameUniforms::new(
             &self.camera,
@@ -322,7 +327,7 @@ impl Renderer {
 
         let t = &self.targets;
         // Every target is rewritten whole this frame; the previous frame sampled the colour
-        // targets (fragment) and wrote the depth targets.
+        // targets (fragment, composite) and wrote the depth targets.
         let mut to_attachments = Vec::new();
         for cd in [&t.reflection, &t.refraction, &t.main] {
             to_attachments.push(ImageBarrier {
@@ -330,7 +335,7 @@ impl Renderer {
                 range: cd.colour.range(),
                 old_layout: vk::ImageLayout::UNDEFINED,
                 new_layout: vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL,
-                src: Access::FRAGMENT_SAMPLED.or(Access::COLOUR_WRITE),
+                src: SAMPLED.or(Access::COLOUR_WRITE),
                 dst: Access::COLOUR_RW,
             });
             to_attachments.push(ImageBarrier {
@@ -392,7 +397,7 @@ impl Renderer {
                     old_layout: vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL,
                     new_layout: read,
                     src: Access::COLOUR_RW,
-                    dst: Access::FRAGMENT_SAMPLED,
+                    dst: SAMPLED,
                 },
                 ImageBarrier {
                     image: t.refraction.colour.raw,
@@ -400,7 +405,7 @@ impl Renderer {
                     old_layout: vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL,
                     new_layout: read,
                     src: Access::COLOUR_RW,
-                    dst: Access::FRAGMENT_SAMPLED,
+                    dst: SAMPLED,
                 },
                 ImageBarrier {
                     image: t.refraction.depth.raw,
@@ -483,36 +488,19 @@ impl Renderer {
         });
 
         rec.barrier(
-            &[
-                ImageBarrier {
-                    image: t.main.colour.raw,
-                    range: t.main.colour.range(),
-                    old_layout: vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL,
-                    new_layout: read,
-                    src: Access::COLOUR_RW,
-                    dst: Access::FRAGMENT_SAMPLED,
-                },
-                ImageBarrier {
-                    image: output.image,
-                    range: full_range(vk::ImageAspectFlags::COLOR, 1),
-                    old_layout: vk::ImageLayout::UNDEFINED,
-                    new_layout: vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL,
-                    src: output.prior,
-                    dst: Access::COLOUR_WRITE,
-                },
-            ],
+            &[ImageBarrier {
+                image: t.main.colour.raw,
+                range: t.main.colour.range(),
+                old_layout: vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL,
+                new_layout: read,
+                src: Access::COLOUR_RW,
+                dst: SAMPLED,
+            }],
             &[],
         );
         profiler.pass(rec, "composite", || {
-            let target = Attachment {
-                view: output.view,
-                layout: vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL,
-                // Composite writes every pixel.
-                load: Load::DontCare,
-            };
-            rec.begin_rendering(extent, &[target], None);
-            self.composite.record(rec, s.view);
-            rec.end_rendering();
+            self.composite
+                .record(rec, &self.targets.display, output, s.view)
         });
     }
 }

@@ -1,26 +1,38 @@
-//! Composite pass: tone-maps the HDR target into the output image (swapchain image or the
-//! headless target), shaders/post/composite.frag.
+//! Composite pass, in compute (shaders/post/composite.comp): tone-maps the HDR target (scaling
+//! it up from `--render-scale`) into the display image, sRGB-encoded by the shader, then copies
+//! that bit for bit into the output image (swapchain image or the headless target).
+//!
+//! Why compute and a copy rather than a full-screen triangle into the output: on lavapipe a
+//! textured full-screen fragment pass at 1280x720 cost 25–30 ms, the compute pass and the copy
+//! a few ms (README, "Measured on lavapipe"). The copy also frees the output from needing
+//! STORAGE usage, which 8-bit sRGB swapchain formats rarely offer.
 
 use std::sync::Arc;
 
 use ash::vk;
 
 use crate::gpu::descriptors::{self, Write};
+use crate::gpu::image::full_range;
 use crate::gpu::{
-    Context, DescriptorPool, DescriptorSetLayout, GpuResult, GraphicsDesc, Image, Pipeline,
+    Access, Context, DescriptorPool, DescriptorSetLayout, GpuResult, Image, ImageBarrier, Pipeline,
     PipelineLayout, Recorder, Sampler,
 };
 use crate::render::targets::Targets;
-use crate::render::ViewMode;
+use crate::render::{OutputTarget, ViewMode};
 use crate::shaders;
 
-/// Push constants of composite.frag.
+/// Workgroup side of composite.comp (`local_size_x`, `local_size_y`).
+const GROUP: u32 = 8;
+
+/// Push constants of composite.comp.
 #[repr(C)]
 #[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
 struct CompositeParams {
     exposure: f32,
     /// `ViewMode` as u32: which texture to show.
     view: u32,
+    /// 1: store BGRA (the output is a B8G8R8A8 image).
+    bgra: u32,
 }
 
 pub struct CompositePass {
@@ -29,10 +41,10 @@ pub struct CompositePass {
     _set_layout: DescriptorSetLayout,
     layout: PipelineLayout,
     pipeline: Pipeline,
-    /// Output format the pipeline was built for.
+    /// Format of the output image (decides the byte order).
     pub output_format: vk::Format,
     _pool: DescriptorPool,
-    /// Binds the HDR target (rewritten on resize, with the device idle).
+    /// Binds the targets (rewritten on resize, with the device idle).
     set: vk::DescriptorSet,
     sampler: Sampler,
     pub exposure: f32,
@@ -46,47 +58,32 @@ impl CompositePass {
         dudv: &Image,
         dudv_sampler: vk::Sampler,
     ) -> GpuResult<CompositePass> {
+        let compute = vk::ShaderStageFlags::COMPUTE;
+        let sampled = vk::DescriptorType::COMBINED_IMAGE_SAMPLER;
         let set_layout = DescriptorSetLayout::new(
             ctx,
             "composite set layout",
-            &[0, 1, 2, 3].map(|binding| {
-                (
-                    binding,
-                    vk::DescriptorType::COMBINED_IMAGE_SAMPLER,
-                    vk::ShaderStageFlags::FRAGMENT,
-                )
-            }),
+            &[
+                (0, sampled, compute),
+                (1, sampled, compute),
+                (2, sampled, compute),
+                (3, sampled, compute),
+                (4, vk::DescriptorType::STORAGE_IMAGE, compute),
+            ],
         )?;
         let layout = PipelineLayout::new(
             ctx,
             "composite layout",
             &[&set_layout],
-            Some((
-                vk::ShaderStageFlags::FRAGMENT,
-                std::mem::size_of::<CompositeParams>() as u32,
-            )),
+            Some((compute, std::mem::size_of::<CompositeParams>() as u32)),
         )?;
-        let pipeline = Pipeline::graphics(
-            ctx,
-            &layout,
-            &GraphicsDesc {
-                name: "composite",
-                stages: &[
-                    (
-                        vk::ShaderStageFlags::VERTEX,
-                        shaders::COMMON_FULLSCREEN_VERT,
-                    ),
-                    (vk::ShaderStageFlags::FRAGMENT, shaders::POST_COMPOSITE_FRAG),
-                ],
-                colour_formats: &[output_format],
-                ..Default::default()
-            },
-        )?;
+        let pipeline =
+            Pipeline::compute(ctx, &layout, "composite", shaders::POST_COMPOSITE_COMP, &[])?;
         let pool = DescriptorPool::new(
             ctx,
             "composite descriptors",
             1,
-            &[(vk::DescriptorType::COMBINED_IMAGE_SAMPLER, 4)],
+            &[(sampled, 4), (vk::DescriptorType::STORAGE_IMAGE, 1)],
         )?;
         let set = pool.allocate(&set_layout, "composite set")?;
         let sampler = Sampler::linear(
@@ -118,7 +115,7 @@ impl CompositePass {
             (targets.refraction.colour.view, self.sampler.raw),
             (dudv.view, dudv_sampler),
         ];
-        let writes: Vec<_> = views
+        let mut writes: Vec<_> = views
             .iter()
             .enumerate()
             .map(|(binding, &(view, sampler))| Write::SampledImage {
@@ -128,20 +125,71 @@ impl CompositePass {
                 layout: read,
             })
             .collect();
+        writes.push(Write::StorageImage {
+            binding: 4,
+            view: targets.display.view,
+        });
         descriptors::update(&self.ctx, self.set, &writes);
     }
 
-    /// Draws inside a rendering scope on the output image.
-    pub fn record(&self, rec: &Recorder, view: ViewMode) {
+    /// Records the dispatch into `display` and its copy into `output`, outside any rendering
+    /// scope. The sampled targets must be readable by compute; `output` ends in
+    /// [`OutputTarget::FINAL_LAYOUT`] after a copy write.
+    pub fn record(&self, rec: &Recorder, display: &Image, output: &OutputTarget, view: ViewMode) {
+        let range = full_range(vk::ImageAspectFlags::COLOR, 1);
+        // The previous frame's copy read the display image; its contents are rewritten whole.
+        rec.barrier(
+            &[ImageBarrier {
+                image: display.raw,
+                range,
+                old_layout: vk::ImageLayout::UNDEFINED,
+                new_layout: vk::ImageLayout::GENERAL,
+                src: Access::COPY_READ,
+                dst: Access::COMPUTE_WRITE,
+            }],
+            &[],
+        );
         rec.bind_pipeline(&self.pipeline);
         rec.bind_sets(&self.pipeline, &self.layout, &[self.set]);
+        let bgra = matches!(
+            self.output_format,
+            vk::Format::B8G8R8A8_SRGB | vk::Format::B8G8R8A8_UNORM
+        );
         rec.push_constants(
             &self.layout,
             &CompositeParams {
                 exposure: self.exposure,
                 view: view as u32,
+                bgra: bgra as u32,
             },
         );
-        rec.draw(3, 1);
+        let extent = output.extent;
+        rec.dispatch(
+            extent.width.div_ceil(GROUP),
+            extent.height.div_ceil(GROUP),
+            1,
+        );
+        rec.barrier(
+            &[
+                ImageBarrier {
+                    image: display.raw,
+                    range,
+                    old_layout: vk::ImageLayout::GENERAL,
+                    new_layout: vk::ImageLayout::TRANSFER_SRC_OPTIMAL,
+                    src: Access::COMPUTE_WRITE,
+                    dst: Access::COPY_READ,
+                },
+                ImageBarrier {
+                    image: output.image,
+                    range,
+                    old_layout: vk::ImageLayout::UNDEFINED,
+                    new_layout: OutputTarget::FINAL_LAYOUT,
+                    src: output.prior,
+                    dst: Access::COPY_WRITE,
+                },
+            ],
+            &[],
+        );
+        rec.copy_image(display.raw, output.image, extent);
     }
 }

@@ -16,15 +16,16 @@ use crate::gpu::{
 use crate::render::camera::ViewIndex;
 use crate::shaders;
 
-/// Grid quads per side (`TERRAIN_QUADS` in shaders/common/terrain.glsl).
-pub const TERRAIN_QUADS: u32 = 160;
 /// Cylinder segments of an object (`SEGMENTS` in objects.vert), 9 vertices each.
 const OBJECT_SEGMENTS: u32 = 20;
 /// Entries of `FrameUniforms::objects`.
 const OBJECTS: u32 = 4;
 
 pub struct TerrainPass {
-    /// Two triangles per grid quad over the (QUADS + 1)² lattice, row by row: each lattice
+    /// Grid quads per side (`--terrain-grid`; `TERRAIN_QUADS`, specialization constant 0 of
+    /// shaders/common/terrain.glsl).
+    quads: u32,
+    /// Two triangles per grid quad over the (quads + 1)² lattice, row by row: each lattice
     /// vertex is shaded once per batch instead of six times (lavapipe's vertex stage runs on
     /// one CPU thread, so this matters in every view).
     indices: Buffer,
@@ -34,7 +35,12 @@ pub struct TerrainPass {
 }
 
 impl TerrainPass {
-    pub fn new(ctx: &Arc<Context>, frame_layout: &DescriptorSetLayout) -> GpuResult<TerrainPass> {
+    /// `quads`: grid quads per side of the island's lattice.
+    pub fn new(
+        ctx: &Arc<Context>,
+        frame_layout: &DescriptorSetLayout,
+        quads: u32,
+    ) -> GpuResult<TerrainPass> {
         let layout = scene_layout(ctx, "terrain layout", frame_layout, &[])?;
         let pipeline = |name, vert| {
             scene_pipeline(
@@ -49,6 +55,7 @@ impl TerrainPass {
                             shaders::TERRAIN_TERRAIN_FRAG,
                         ),
                     ],
+                    constants: &[quads],
                     ..Default::default()
                 },
                 Depth::TestWrite,
@@ -56,10 +63,10 @@ impl TerrainPass {
         };
         let terrain = pipeline("terrain", shaders::TERRAIN_TERRAIN_VERT)?;
         let objects = pipeline("objects", shaders::TERRAIN_OBJECTS_VERT)?;
-        let lattice = |x: u32, z: u32| z * (TERRAIN_QUADS + 1) + x;
-        let mut list = Vec::with_capacity((TERRAIN_QUADS * TERRAIN_QUADS * 6) as usize);
-        for z in 0..TERRAIN_QUADS {
-            for x in 0..TERRAIN_QUADS {
+        let lattice = |x: u32, z: u32| z * (quads + 1) + x;
+        let mut list = Vec::with_capacity((quads * quads * 6) as usize);
+        for z in 0..quads {
+            for x in 0..quads {
                 // The corners of terrain.vert's former CORNERS table: (0,0) (1,1) (1,0), (0,0) (0,1) (1,1).
                 list.extend([
                     lattice(x, z),
@@ -81,6 +88,7 @@ impl TerrainPass {
         )?;
         upload(ctx, &indices, bytes)?;
         Ok(TerrainPass {
+            quads,
             indices,
             layout,
             terrain,
@@ -92,7 +100,7 @@ impl TerrainPass {
     pub fn record(&self, rec: &Recorder, frame_set: vk::DescriptorSet, view: ViewIndex) {
         bind_scene(rec, &self.terrain, &self.layout, &[frame_set], view);
         rec.bind_index_buffer(&self.indices);
-        rec.draw_indexed(TERRAIN_QUADS * TERRAIN_QUADS * 6, 1);
+        rec.draw_indexed(self.quads * self.quads * 6, 1);
         bind_scene(rec, &self.objects, &self.layout, &[frame_set], view);
         rec.draw(OBJECT_SEGMENTS * 9, OBJECTS);
     }
