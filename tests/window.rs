@@ -93,6 +93,78 @@ fn window_resizes_twice_and_stays_validation_clean() {
     );
 }
 
+/// Twenty sizes, each different from the one before, down to 1x1 and back up.
+const RESIZES: [(u32, u32); 20] = [
+    (400, 300),
+    (200, 120),
+    (64, 48),
+    (16, 16),
+    (1, 1),
+    (2, 1),
+    (1, 2),
+    (33, 17),
+    (640, 360),
+    (100, 700),
+    (700, 100),
+    (1, 1),
+    (320, 200),
+    (321, 201),
+    (8, 600),
+    (600, 8),
+    (256, 256),
+    (1, 1),
+    (480, 270),
+    (320, 180),
+];
+
+#[test]
+fn window_survives_twenty_resizes_minimize_and_six_hundred_frames() {
+    let sizes: Vec<String> = RESIZES.iter().map(|(w, h)| format!("{w} {h}")).collect();
+    let script = format!(
+        r#"
+        "$VKOCEAN" --validation --quality low --size 320x180 --frames 600 &
+        pid=$!
+        wid=""
+        for _ in $(seq 300); do
+            wid=$(xdotool search --onlyvisible --name '^vkocean$' 2>/dev/null | head -n1) || true
+            [ -n "$wid" ] && break
+            kill -0 "$pid" 2>/dev/null || break
+            sleep 0.1
+        done
+        if [ -z "$wid" ]; then echo "no vkocean window appeared" >&2; wait "$pid"; exit 1; fi
+        sleep 0.5
+        for size in {sizes}; do
+            kill -0 "$pid" 2>/dev/null || {{ echo "vkocean exited during the resizes" >&2; break; }}
+            xdotool windowsize "$wid" $size
+            sleep 0.25
+        done
+        # Minimise and restore: without a window manager, unmapping is what hides the window.
+        xdotool windowminimize "$wid" 2>/dev/null || true
+        xdotool windowunmap "$wid"
+        sleep 1
+        xdotool windowmap "$wid"
+        wait "$pid"
+        "#,
+        sizes = sizes
+            .iter()
+            .map(|s| format!("'{s}'"))
+            .collect::<Vec<_>>()
+            .join(" ")
+    );
+    let out = under_xvfb(&script);
+    let err = stderr(&out);
+    assert_eq!(out.status.code(), Some(0), "{err}");
+    assert!(!err.contains("exited during the resizes"), "{err}");
+    assert_eq!(validation_counts(&err), Some((0, 0)), "{err}");
+    assert_eq!(frames_rendered(&err), Some(600), "{err}");
+    // The initial swapchain and one per resize: every size differs from the one before.
+    assert!(
+        err.contains(&format!("swapchain created {} times", RESIZES.len() + 1)),
+        "initial + {} resizes: {err}",
+        RESIZES.len()
+    );
+}
+
 #[test]
 fn window_stops_after_frames() {
     let dir = scratch("window-frames");

@@ -163,6 +163,11 @@ pub struct Cli {
     #[arg(long)]
     pub stats: bool,
 
+    /// With --headless: every N frames, print resident memory and the number of live Vulkan
+    /// objects on stderr (for leak hunting over long runs).
+    #[arg(long, value_name = "N", value_parser = |s: &str| parse_whole(s, 1, u64::MAX))]
+    pub log_resources: Option<u64>,
+
     /// With --headless: write the last frame's h0.npy, displacement.npy, normals.npy and
     /// params.json into DIR (created if missing). Layout in README.
     #[arg(long, value_name = "DIR")]
@@ -649,6 +654,9 @@ impl Cli {
         if self.dump.is_some() && !self.headless {
             return Err(UsageError("--dump needs --headless".to_string()));
         }
+        if self.log_resources.is_some() && !self.headless {
+            return Err(UsageError("--log-resources needs --headless".to_string()));
+        }
         let frames = match (self.frames, self.headless, self.profile.is_some()) {
             (Some(n), _, true) if n <= WARMUP_FRAMES => {
                 return Err(UsageError(format!(
@@ -684,6 +692,7 @@ impl Cli {
             },
             inject_sync_hazard: self.inject_sync_hazard,
             stats: self.stats,
+            log_resources: self.log_resources,
             dump: self.dump.clone(),
             ocean: OceanSettings {
                 sea: SeaState {

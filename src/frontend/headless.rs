@@ -71,6 +71,14 @@ pub fn run(s: &RunSettings) -> anyhow::Result<Outcome> {
         if s.stats {
             session.print_stats()?;
         }
+        if s.log_resources.is_some_and(|n| (i + 1) % n == 0) {
+            let rss = resident_kib().map_or("unknown".to_string(), |kib| format!("{kib} kB"));
+            eprintln!(
+                "vkocean: frame {}: resident {rss}, {} Vulkan objects live",
+                i + 1,
+                ctx.live_objects()
+            );
+        }
         if last_progress.elapsed() > Duration::from_secs(5) {
             eprintln!(
                 "vkocean: frame {}/{frames} ({:.1} s)",
@@ -164,4 +172,11 @@ pub fn frame_inputs(s: &RunSettings, i: u64) -> FrameInputs {
         time_s: (s.start_time_s + i as f64 * s.dt_s.unwrap_or(FIXED_DT_S as f64)) as f32,
         ..FrameInputs::default()
     }
+}
+
+/// Resident set size of this process (kB), from /proc/self/status (Linux); `None` elsewhere.
+fn resident_kib() -> Option<u64> {
+    let status = std::fs::read_to_string("/proc/self/status").ok()?;
+    let line = status.lines().find(|l| l.starts_with("VmRSS:"))?;
+    line.split_whitespace().nth(1)?.parse().ok()
 }

@@ -29,6 +29,8 @@ pub struct RunSettings {
     pub ocean: crate::ocean::OceanSettings,
     /// `--stats`: one JSON line of height statistics per frame on stdout.
     pub stats: bool,
+    /// `--log-resources N`: every N headless frames, resident memory and live Vulkan objects.
+    pub log_resources: Option<u64>,
     /// `--dump DIR`: the last frame's h0, displacement, normals (.npy) and params.json.
     pub dump: Option<PathBuf>,
     /// How the scene looks (views, Fresnel, island, sky, DU/DV).

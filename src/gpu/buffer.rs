@@ -35,6 +35,7 @@ impl Buffer {
             .sharing_mode(vk::SharingMode::EXCLUSIVE);
         // SAFETY: valid create info on a live device.
         let raw = unsafe { ctx.device.create_buffer(&info, None) }.vk("vkCreateBuffer")?;
+        ctx.count_created(1);
         // SAFETY: `raw` is a live buffer of this device.
         let requirements = unsafe { ctx.device.get_buffer_memory_requirements(raw) };
         let allocation = ctx.allocator().allocate(&AllocationCreateDesc {
@@ -49,6 +50,7 @@ impl Buffer {
             Err(source) => {
                 // SAFETY: the buffer was never used or bound.
                 unsafe { ctx.device.destroy_buffer(raw, None) };
+                ctx.count_destroyed(1);
                 return Err(GpuError::Alloc {
                     name: name.to_string(),
                     source,
@@ -128,6 +130,7 @@ impl BufferView {
             .range(vk::WHOLE_SIZE);
         // SAFETY: `buffer` is live and the create info is valid for it (caller's usage contract).
         let raw = unsafe { ctx.device.create_buffer_view(&info, None) }.vk("vkCreateBufferView")?;
+        ctx.count_created(1);
         ctx.name(raw, name);
         Ok(BufferView {
             ctx: ctx.clone(),

@@ -33,6 +33,7 @@ impl ComputeQueue {
         // SAFETY: valid create info on a live device.
         let timeline =
             unsafe { ctx.device.create_semaphore(&info, None) }.vk("vkCreateSemaphore")?;
+        ctx.count_created(1);
         ctx.name(timeline, "compute timeline");
         // Pushed as made: an error drops (and frees) what exists.
         let mut queue = ComputeQueue {

@@ -70,6 +70,9 @@ pub struct Context {
     signaled_value: AtomicU64,
     /// Validation message counts; dropped after the instance.
     counters: Arc<MessageCounters>,
+    /// Device objects created and destroyed through the GPU layer (`live_objects`).
+    objects_created: AtomicU64,
+    objects_destroyed: AtomicU64,
 }
 
 impl Context {
@@ -226,6 +229,8 @@ impl Context {
             pending_value: AtomicU64::new(1),
             signaled_value: AtomicU64::new(0),
             counters,
+            objects_created: AtomicU64::new(0),
+            objects_destroyed: AtomicU64::new(0),
         };
         ctx.name(
             ctx.device.handle(),
@@ -311,6 +316,26 @@ impl Context {
                 result,
             }),
         }
+    }
+
+    /// Counts `n` device objects just created (every `vkCreate*` of the GPU layer reports here).
+    pub(crate) fn count_created(&self, n: u64) {
+        self.objects_created.fetch_add(n, Ordering::Relaxed);
+    }
+
+    /// Counts `n` device objects just destroyed (every `vkDestroy*` of the GPU layer).
+    pub(crate) fn count_destroyed(&self, n: u64) {
+        self.objects_destroyed.fetch_add(n, Ordering::Relaxed);
+    }
+
+    /// Vulkan objects alive now that the GPU layer made: buffers, images and their views,
+    /// samplers, pipelines and their layouts, shader modules, descriptor set layouts and pools,
+    /// command pools, semaphores, fences, query pools and swapchains. The context's own objects
+    /// (instance, device, surface, messenger, frame timeline) are not counted; objects waiting in
+    /// the deferred-deletion queue are still alive. A steady frame loop keeps this constant.
+    pub fn live_objects(&self) -> u64 {
+        self.objects_created.load(Ordering::Relaxed)
+            - self.objects_destroyed.load(Ordering::Relaxed)
     }
 
     /// Destroys the garbage whose frames the GPU has finished.

@@ -36,6 +36,7 @@ impl DescriptorSetLayout {
         // SAFETY: valid create info on a live device.
         let raw = unsafe { ctx.device.create_descriptor_set_layout(&info, None) }
             .vk("vkCreateDescriptorSetLayout")?;
+        ctx.count_created(1);
         ctx.name(raw, name);
         Ok(Self {
             ctx: ctx.clone(),
@@ -77,6 +78,7 @@ impl DescriptorPool {
         // SAFETY: valid create info on a live device.
         let raw = unsafe { ctx.device.create_descriptor_pool(&info, None) }
             .vk("vkCreateDescriptorPool")?;
+        ctx.count_created(1);
         ctx.name(raw, name);
         Ok(Self {
             ctx: ctx.clone(),

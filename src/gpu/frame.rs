@@ -29,6 +29,7 @@ pub(crate) fn command_slot(
         .flags(vk::CommandPoolCreateFlags::TRANSIENT);
     // SAFETY: valid create info on a live device.
     let pool = unsafe { ctx.device.create_command_pool(&info, None) }.vk("vkCreateCommandPool")?;
+    ctx.count_created(1);
     let alloc = vk::CommandBufferAllocateInfo::default()
         .command_pool(pool)
         .level(vk::CommandBufferLevel::PRIMARY)

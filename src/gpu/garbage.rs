@@ -28,6 +28,10 @@ pub(crate) enum Garbage {
 
 impl Garbage {
     pub(crate) fn destroy(self, ctx: &Context) {
+        ctx.count_destroyed(match &self {
+            Garbage::Image { views, .. } => 1 + views.len() as u64,
+            _ => 1,
+        });
         let d = &ctx.device;
         // SAFETY: the object was created from `ctx.device`, its owner is gone, and the frame
         // timeline says the GPU finished every submission that could reference it.

@@ -92,6 +92,7 @@ impl Image {
         };
         // SAFETY: valid create info on a live device.
         let raw = unsafe { ctx.device.create_image(&info, None) }.vk("vkCreateImage")?;
+        ctx.count_created(1);
         // SAFETY: `raw` is a live image of this device.
         let requirements = unsafe { ctx.device.get_image_memory_requirements(raw) };
         let allocation = match ctx.allocator().allocate(&AllocationCreateDesc {
@@ -105,6 +106,7 @@ impl Image {
             Err(source) => {
                 // SAFETY: the image was never used or bound.
                 unsafe { ctx.device.destroy_image(raw, None) };
+                ctx.count_destroyed(1);
                 return Err(GpuError::Alloc {
                     name: desc.name.to_string(),
                     source,
@@ -153,6 +155,7 @@ impl Image {
         // SAFETY: the image is live and bound; the range is within it.
         image.view =
             unsafe { ctx.device.create_image_view(&view_info, None) }.vk("vkCreateImageView")?;
+        ctx.count_created(1);
         ctx.name(image.view, &format!("{} view", desc.name));
         if desc.cube {
             for layer in 0..layers {
@@ -166,6 +169,7 @@ impl Image {
                 // SAFETY: as above; the range is one layer of the image.
                 let view =
                     unsafe { ctx.device.create_image_view(&info, None) }.vk("vkCreateImageView")?;
+                ctx.count_created(1);
                 ctx.name(view, &format!("{} face {layer}", desc.name));
                 image.layer_views.push(view);
             }
@@ -244,6 +248,7 @@ impl Sampler {
             .max_lod(vk::LOD_CLAMP_NONE);
         // SAFETY: valid create info on a live device.
         let raw = unsafe { ctx.device.create_sampler(&info, None) }.vk("vkCreateSampler")?;
+        ctx.count_created(1);
         ctx.name(raw, name);
         Ok(Sampler {
             ctx: ctx.clone(),

@@ -34,6 +34,7 @@ pub fn run_once_waiting<R>(
     // SAFETY: valid create info on a live device; destroyed below after the wait.
     let pool =
         unsafe { ctx.device.create_command_pool(&pool_info, None) }.vk("vkCreateCommandPool")?;
+    ctx.count_created(1);
     let result = (|| {
         let alloc = vk::CommandBufferAllocateInfo::default()
             .command_pool(pool)
@@ -62,6 +63,7 @@ pub fn run_once_waiting<R>(
                 .create_fence(&vk::FenceCreateInfo::default(), None)
         }
         .vk("vkCreateFence")?;
+        ctx.count_created(1);
         let cmds = [vk::CommandBufferSubmitInfo::default().command_buffer(cmd)];
         let submit = vk::SubmitInfo2::default()
             .wait_semaphore_infos(waits)
@@ -91,10 +93,12 @@ pub fn run_once_waiting<R>(
         });
         // SAFETY: the fence is no longer in use (waited, or never submitted).
         unsafe { ctx.device.destroy_fence(fence, None) };
+        ctx.count_destroyed(1);
         waited.map(|()| value)
     })();
     // SAFETY: the submission (if any) has completed, so the pool's command buffer is idle.
     unsafe { ctx.device.destroy_command_pool(pool, None) };
+    ctx.count_destroyed(1);
     result
 }
 

@@ -112,6 +112,7 @@ impl Swapchain {
                 .create_semaphore(&vk::SemaphoreCreateInfo::default(), None)
         }
         .vk("vkCreateSemaphore")?;
+        self.ctx.count_created(1);
         self.ctx.name(s, name);
         Ok(s)
     }
@@ -230,6 +231,7 @@ impl Swapchain {
             .old_swapchain(old);
         // SAFETY: valid create info; `old` (possibly null) is retired by this call.
         let raw = unsafe { self.fns.create_swapchain(&info, None) }.vk("vkCreateSwapchainKHR")?;
+        self.ctx.count_created(1);
         self.images.clear();
         if old != vk::SwapchainKHR::null() {
             self.retired.push(Retired {
@@ -332,6 +334,7 @@ impl Swapchain {
         for r in done {
             // SAFETY: the swapchain was retired by a newer one and its presents have been
             // processed (module comment); the semaphores were only used by those presents.
+            self.ctx.count_destroyed(r.ready.len() as u64 + 1);
             unsafe {
                 for s in r.ready {
                     self.ctx.device.destroy_semaphore(s, None);
@@ -353,9 +356,11 @@ impl Drop for Swapchain {
         unsafe {
             for s in self.ready.drain(..).chain(self.acquire.drain(..)) {
                 self.ctx.device.destroy_semaphore(s, None);
+                self.ctx.count_destroyed(1);
             }
             if self.raw != vk::SwapchainKHR::null() {
                 self.fns.destroy_swapchain(self.raw, None);
+                self.ctx.count_destroyed(1);
             }
         }
     }

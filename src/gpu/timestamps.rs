@@ -92,6 +92,7 @@ impl Profiler {
                     // SAFETY: valid create info on a live device with pipelineStatisticsQuery.
                     let pool = unsafe { ctx.device.create_query_pool(&info, None) }
                         .vk("vkCreateQueryPool")?;
+                    ctx.count_created(1);
                     ctx.name(pool, &format!("tessellation statistics slot {i}"));
                     profiler.statistics_pools.push(pool);
                 }
@@ -144,6 +145,7 @@ impl Profiler {
                 // SAFETY: valid create info on a live device.
                 let pool =
                     unsafe { ctx.device.create_query_pool(&info, None) }.vk("vkCreateQueryPool")?;
+                ctx.count_created(1);
                 ctx.name(pool, &format!("{queue} timestamps slot {i}"));
                 profiler.pools.push(pool);
             }
