@@ -190,3 +190,131 @@ fn gerstner_dump_from_a_wave_file() {
     let (header, _) = read_npy_f32(&out_dir.join("displacement.npy"));
     assert!(header.contains("(1, 64, 64, 4)"), "{header}");
 }
+
+/// Every extreme the command line accepts (wind, fetch, depth, patch size, choppiness, cascades,
+/// time; render scale, RTT scale, tessellation edge, terrain grid, camera height, sun, a 1x1
+/// image): the run succeeds validation-clean, no NaN or Inf reaches the dumped fields (h0,
+/// displacement, normals), and the screenshot has the requested size.
+#[test]
+fn accepted_extremes_give_finite_dumps_and_pictures() {
+    let cases: [&[&str]; 10] = [
+        &[
+            "--wind-speed",
+            "100",
+            "--fetch",
+            "10000",
+            "--choppiness",
+            "10",
+        ],
+        &[
+            "--wind-speed",
+            "0.001",
+            "--fetch",
+            "0.001",
+            "--depth",
+            "0.001",
+        ],
+        &[
+            "--spectrum",
+            "phillips",
+            "--wind-speed",
+            "100",
+            "--patch-size",
+            "100000",
+            "--cascades",
+            "4",
+        ],
+        &[
+            "--spectrum",
+            "pierson-moskowitz",
+            "--wind-speed",
+            "0.001",
+            "--patch-size",
+            "0.001",
+            "--depth",
+            "11000",
+        ],
+        &["--preset", "storm", "--time", "1000000", "--dt", "10"],
+        &[
+            "--waves",
+            "gerstner",
+            "--time",
+            "1000000",
+            "--choppiness",
+            "10",
+        ],
+        &[
+            "--render-scale",
+            "0.25",
+            "--rtt-scale",
+            "0.1",
+            "--tess-edge",
+            "2",
+            "--terrain-grid",
+            "512",
+        ],
+        &[
+            "--camera",
+            "0,20000,0",
+            "--sun",
+            "0,90",
+            "--tess-edge",
+            "256",
+        ],
+        &[
+            "--camera",
+            "0,0.5,0",
+            "--sun",
+            "180,0",
+            "--sea-floor",
+            "500",
+        ],
+        &["--size", "1x1", "--quality", "low", "--sea-floor", "1"],
+    ];
+    for (i, extra) in cases.iter().enumerate() {
+        let dir = scratch(&format!("extreme-{i}"));
+        let shot = dir.join("shot.png");
+        let (dump, shot_arg) = (dir.to_str().unwrap(), shot.to_str().unwrap());
+        let mut args = vec![
+            "--headless",
+            "--validation",
+            "--size",
+            "96x54",
+            "--fft-size",
+            "64",
+            "--frames",
+            "2",
+            "--dump",
+            dump,
+            "--screenshot",
+            shot_arg,
+        ];
+        // Later flags win: a case's own --size replaces the default above.
+        args.extend_from_slice(extra);
+        let out = run(&args);
+        let err = stderr(&out);
+        assert_eq!(out.status.code(), Some(0), "{extra:?}: {err}");
+        assert!(
+            err.contains("validation: 0 warnings, 0 errors"),
+            "{extra:?}: {err}"
+        );
+        let files: &[&str] = if extra.contains(&"gerstner") {
+            &["displacement.npy", "normals.npy"]
+        } else {
+            &["h0.npy", "displacement.npy", "normals.npy"]
+        };
+        for file in files {
+            let (_, values) = read_npy_f32(&dir.join(file));
+            assert!(!values.is_empty(), "{extra:?}: {file} is empty");
+            let bad = values.iter().filter(|v| !v.is_finite()).count();
+            assert_eq!(bad, 0, "{extra:?}: {bad} NaN/Inf values in {file}");
+        }
+        let (w, h, _) = common::read_png(&shot);
+        let want = if extra.contains(&"1x1") {
+            (1, 1)
+        } else {
+            (96, 54)
+        };
+        assert_eq!((w, h), want, "{extra:?}");
+    }
+}
