@@ -35,27 +35,39 @@ vec3 srgb_encode(vec3 c) {
     return mix(hi, 12.92 * c, lessThanEqual(c, vec3(0.0031308)));
 }
 
+// Pixels per invocation, side by side in x. On lavapipe a dispatch of one invocation per pixel
+// that returned at once still cost 12–15 ms at 1280x720; runs of 8 took the whole pass from
+// 30–37 ms to 25–29 ms there (src/render/passes/composite.rs: RUN).
+const int RUN = 8;
+
+vec3 shade(vec2 uv) {
+    if (pc.view == 3u) {
+        return vec3(texture(dudv_map, uv * 4.0).rg, 0.0);
+    }
+    vec3 hdr;
+    if (pc.view == 1u) {
+        hdr = texture(reflection_colour, uv).rgb;
+    } else if (pc.view == 2u) {
+        hdr = texture(refraction_colour, uv).rgb;
+    } else {
+        hdr = texture(hdr_colour, uv).rgb;
+    }
+    return aces_fit(hdr * pc.exposure);
+}
+
 void main() {
     ivec2 size = imageSize(display);
-    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
-    if (p.x >= size.x || p.y >= size.y) {
+    ivec2 first = ivec2(gl_GlobalInvocationID.x * RUN, gl_GlobalInvocationID.y);
+    if (first.y >= size.y) {
         return;
     }
-    vec2 uv = (vec2(p) + 0.5) / vec2(size);
-    vec3 linear;
-    if (pc.view == 3u) {
-        linear = vec3(texture(dudv_map, uv * 4.0).rg, 0.0);
-    } else {
-        vec3 hdr;
-        if (pc.view == 1u) {
-            hdr = texture(reflection_colour, uv).rgb;
-        } else if (pc.view == 2u) {
-            hdr = texture(refraction_colour, uv).rgb;
-        } else {
-            hdr = texture(hdr_colour, uv).rgb;
+    for (int i = 0; i < RUN; ++i) {
+        ivec2 p = first + ivec2(i, 0);
+        if (p.x >= size.x) {
+            break;
         }
-        linear = aces_fit(hdr * pc.exposure);
+        vec2 uv = (vec2(p) + 0.5) / vec2(size);
+        vec4 encoded = vec4(srgb_encode(clamp(shade(uv), 0.0, 1.0)), 1.0);
+        imageStore(display, p, pc.bgra != 0u ? encoded.bgra : encoded);
     }
-    vec4 encoded = vec4(srgb_encode(clamp(linear, 0.0, 1.0)), 1.0);
-    imageStore(display, p, pc.bgra != 0u ? encoded.bgra : encoded);
 }

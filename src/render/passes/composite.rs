@@ -23,6 +23,8 @@ use crate::shaders;
 
 /// Workgroup side of composite.comp (`local_size_x`, `local_size_y`).
 const GROUP: u32 = 8;
+/// Pixels per invocation along x (`RUN` in composite.comp).
+const RUN: u32 = 8;
 
 /// Push constants of composite.comp.
 #[repr(C)]
@@ -165,7 +167,7 @@ impl CompositePass {
         );
         let extent = output.extent;
         rec.dispatch(
-            extent.width.div_ceil(GROUP),
+            extent.width.div_ceil(GROUP * RUN),
             extent.height.div_ceil(GROUP),
             1,
         );
