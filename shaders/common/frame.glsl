@@ -47,11 +47,10 @@ layout(set = 0, binding = 3) uniform samplerCube sky_cube;
 vec3 ocean_uv(vec2 world_xz, int c, float dist, out float weight) {
     float patch_m = frame.patch_m[c];
     vec2 uv = (world_xz - frame.ocean.zw) / patch_m;
-    weight = clamp(2.0 - dist / (patch_m * 4.0), 0.0, 1.0);
-    if (frame.ocean.y > 0.5) {
-        vec2 q = abs(uv - 0.5);
-        weight = 1.0 - smoothstep(0.35, 0.5, max(q.x, q.y));
-    }
+    vec2 q = abs(uv - 0.5);
+    // Branch-free (see ocean_displacement_at in common/water.glsl for why).
+    weight = mix(clamp(2.0 - dist / (patch_m * 4.0), 0.0, 1.0),
+                 1.0 - smoothstep(0.35, 0.5, max(q.x, q.y)), step(0.5, frame.ocean.y));
     return vec3(uv, c);
 }
 

@@ -7,8 +7,7 @@
 // the output (--render-scale): the bilinear lookup scales it up.
 // Debug views show an intermediate full screen instead: the reflection or refraction texture,
 // or the DU/DV map (tiled 4x, du in red, dv in green).
-// A compute pass rather than a full-screen triangle: on lavapipe the fragment path costs several
-// times more per pixel (README, "Measured on lavapipe").
+// A compute pass rather than a full-screen triangle (src/render/passes/composite.rs says why).
 layout(local_size_x = 8, local_size_y = 8) in;
 
 layout(set = 0, binding = 0) uniform sampler2D hdr_colour;

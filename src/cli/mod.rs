@@ -200,12 +200,12 @@ pub struct Cli {
     #[arg(long, global = true, value_enum, value_name = "MODEL", default_value_t = FresnelArg::Schlick, help_heading = "Scene")]
     pub fresnel: FresnelArg,
 
-    /// Size of the reflection and refraction textures relative to the window (0.1 to 1). [default: 0.5; --quality sets it]
+    /// Size of the reflection and refraction textures relative to the output (window or image; 0.1 to 1). [default: 0.5; --quality sets it]
     #[arg(long, global = true, value_name = "S", allow_hyphen_values = true,
           value_parser = |s: &str| parse_real(s, 0.1, 1.0, true), help_heading = "Scene")]
     pub rtt_scale: Option<f64>,
 
-    /// Size of the scene (and water) target relative to the window (0.25 to 1); the composite pass scales it up. [default: 1; --quality sets it]
+    /// Size of the scene (and water) target relative to the output (window or image; 0.25 to 1); the composite pass scales it up. [default: 1; --quality sets it]
     #[arg(long, global = true, value_name = "S", allow_hyphen_values = true,
           value_parser = |s: &str| parse_real(s, 0.25, 1.0, true), help_heading = "Scene")]
     pub render_scale: Option<f64>,
@@ -215,7 +215,7 @@ pub struct Cli {
           value_parser = |s: &str| parse_whole(s, 16, 512).map(|n| n as u32), help_heading = "Scene")]
     pub terrain_grid: Option<u32>,
 
-    /// Target on-screen length of a tessellated ocean edge (px, 2 to 256); smaller is finer. [default: 16; --quality sets it]
+    /// Target length of a tessellated ocean edge in scene-target pixels (2 to 256); smaller is finer. [default: 16; --quality sets it]
     #[arg(long, global = true, value_name = "PX", allow_hyphen_values = true,
           value_parser = |s: &str| parse_real(s, 2.0, 256.0, true), help_heading = "Scene")]
     pub tess_edge: Option<f64>,

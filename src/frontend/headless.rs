@@ -8,8 +8,7 @@ use ash::vk;
 
 use super::session::{check_size, readback_buffer, Session};
 use super::{Outcome, RunSettings};
-use crate::gpu::image::full_range;
-use crate::gpu::{Access, Context, Image, ImageBarrier, ImageDesc};
+use crate::gpu::{Access, Context, Image, ImageDesc};
 use crate::output::{encode_png, PendingFile};
 use crate::render::{FrameInputs, OutputTarget};
 
@@ -39,7 +38,7 @@ pub fn run(s: &RunSettings) -> anyhow::Result<Outcome> {
     let ctx = Context::headless(s.validation, s.gpu)?;
     let counters = ctx.counters();
     let offscreen = Offscreen::new(&ctx, s.size)?;
-    let (target, extent, output) = (&offscreen.image, offscreen.extent, offscreen.output());
+    let (extent, output) = (offscreen.extent, offscreen.output());
     let readback = if screenshot.is_some() {
         Some(readback_buffer(&ctx, extent)?)
     } else {
@@ -53,20 +52,9 @@ pub fn run(s: &RunSettings) -> anyhow::Result<Outcome> {
         let capture = readback.as_ref().filter(|_| i + 1 == frames);
         let inputs = frame_inputs(s, i);
         last_value = session.frame(&output, &inputs, &[], &[], |rec| {
-            let Some(buffer) = capture else { return };
-            rec.barrier(
-                &[ImageBarrier {
-                    image: target.raw,
-                    range: full_range(vk::ImageAspectFlags::COLOR, 1),
-                    old_layout: OutputTarget::FINAL_LAYOUT,
-                    new_layout: vk::ImageLayout::TRANSFER_SRC_OPTIMAL,
-                    src: OutputTarget::FINAL_ACCESS,
-                    dst: Access::COPY_READ,
-                }],
-                &[],
-            );
-            rec.copy_image_to_buffer(target.raw, extent, buffer);
-            rec.barrier(&[], &[(buffer.raw, Access::COPY_WRITE, Access::HOST_READ)]);
+            if let Some(buffer) = capture {
+                output.record_readback(rec, buffer);
+            }
         })?;
         if s.stats {
             session.print_stats()?;

@@ -71,7 +71,7 @@ impl Session {
         if let Some(camera) = s.camera {
             renderer.camera = camera;
         }
-        Ok(Session {
+        let mut session = Session {
             ctx: ctx.clone(),
             frames: Frames::new(ctx)?,
             profiler,
@@ -84,7 +84,14 @@ impl Session {
             last_frame_start: None,
             started: Instant::now(),
             last: None,
-        })
+        };
+        // Per-frame timings are kept for the whole run (medians, the CSV), so only runs that
+        // report them keep any: without --profile (and until a bench starts measuring) memory
+        // stays flat however long the run (tests/soak.rs).
+        if s.profile.is_none() {
+            session.defer_measuring();
+        }
+        Ok(session)
     }
 
     /// Records and submits one frame into `output`. `finish` records after the composite pass

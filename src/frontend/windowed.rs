@@ -297,24 +297,13 @@ impl App {
                         &[],
                     ),
                     Some(buffer) => {
-                        rec.barrier(
-                            &[ImageBarrier {
-                                image: image.image,
-                                range,
-                                old_layout: OutputTarget::FINAL_LAYOUT,
-                                new_layout: vk::ImageLayout::TRANSFER_SRC_OPTIMAL,
-                                src: OutputTarget::FINAL_ACCESS,
-                                dst: Access::COPY_READ,
-                            }],
-                            &[],
-                        );
-                        rec.copy_image_to_buffer(image.image, extent, buffer);
+                        output.record_readback(rec, buffer);
                         rec.barrier(
                             &[to_present(
                                 vk::ImageLayout::TRANSFER_SRC_OPTIMAL,
                                 Access::COPY_READ,
                             )],
-                            &[(buffer.raw, Access::COPY_WRITE, Access::HOST_READ)],
+                            &[],
                         );
                     }
                 }
@@ -386,10 +375,7 @@ impl App {
 /// Swapchain bytes to RGBA (B8G8R8A8 formats swap red and blue).
 fn bgra_to_rgba(bytes: &[u8], format: vk::Format) -> Vec<u8> {
     let mut pixels = bytes.to_vec();
-    if matches!(
-        format,
-        vk::Format::B8G8R8A8_SRGB | vk::Format::B8G8R8A8_UNORM
-    ) {
+    if crate::gpu::image::is_bgra(format) {
         for px in pixels.chunks_exact_mut(4) {
             px.swap(0, 2);
         }

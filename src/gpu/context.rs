@@ -334,8 +334,8 @@ impl Context {
     /// (instance, device, surface, messenger, frame timeline) are not counted; objects waiting in
     /// the deferred-deletion queue are still alive. A steady frame loop keeps this constant.
     pub fn live_objects(&self) -> u64 {
-        self.objects_created.load(Ordering::Relaxed)
-            - self.objects_destroyed.load(Ordering::Relaxed)
+        let created = self.objects_created.load(Ordering::Relaxed);
+        created.saturating_sub(self.objects_destroyed.load(Ordering::Relaxed))
     }
 
     /// Destroys the garbage whose frames the GPU has finished.

@@ -45,6 +45,14 @@ pub struct Image {
     pub aspect: vk::ImageAspectFlags,
 }
 
+/// A B8G8R8A8 format: bytes in blue, green, red, alpha order (swapchains often use one).
+pub fn is_bgra(format: vk::Format) -> bool {
+    matches!(
+        format,
+        vk::Format::B8G8R8A8_SRGB | vk::Format::B8G8R8A8_UNORM
+    )
+}
+
 /// The aspect a format's views and barriers use.
 pub fn aspect_of(format: vk::Format) -> vk::ImageAspectFlags {
     match format {

@@ -40,6 +40,7 @@ impl PipelineLayout {
         // SAFETY: valid create info on a live device; the set layouts are live.
         let raw = unsafe { ctx.device.create_pipeline_layout(&info, None) }
             .vk("vkCreatePipelineLayout")?;
+        ctx.count_created(1);
         ctx.name(raw, name);
         let push_stages = push_constants.map(|(s, _)| s).unwrap_or_default();
         Ok(Self {
@@ -70,6 +71,7 @@ impl<'a> ShaderModule<'a> {
         // SAFETY: `words` is SPIR-V produced by glslc at build time.
         let raw =
             unsafe { ctx.device.create_shader_module(&info, None) }.vk("vkCreateShaderModule")?;
+        ctx.count_created(1);
         ctx.name(raw, name);
         Ok(Self { ctx, raw })
     }
@@ -79,6 +81,7 @@ impl Drop for ShaderModule<'_> {
     fn drop(&mut self) {
         // SAFETY: modules are only referenced during pipeline creation, which has returned.
         unsafe { self.ctx.device.destroy_shader_module(self.raw, None) };
+        self.ctx.count_destroyed(1);
     }
 }
 
@@ -240,6 +243,7 @@ impl Pipeline {
             call: "vkCreateGraphicsPipelines",
             result,
         })?[0];
+        ctx.count_created(1);
         ctx.name(raw, desc.name);
         Ok(Pipeline {
             ctx: ctx.clone(),
@@ -278,6 +282,7 @@ impl Pipeline {
             call: "vkCreateComputePipelines",
             result,
         })?[0];
+        ctx.count_created(1);
         ctx.name(raw, name);
         Ok(Pipeline {
             ctx: ctx.clone(),

@@ -207,7 +207,7 @@ impl Swapchain {
             .contains(vk::ImageUsageFlags::TRANSFER_DST)
         {
             return Err(GpuError::Unsupported(
-                "the window surface's images cannot be copied into (no TRANSFER_DST usage)".into(),
+                "the window surface's images cannot be copied into (no TRANSFER_DST usage), and vkocean's composite pass copies every frame into them".into(),
             ));
         }
         let mut usage = vk::ImageUsageFlags::TRANSFER_DST;

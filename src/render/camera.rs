@@ -217,6 +217,8 @@ pub struct FrameParams<'a> {
     pub time_s: f32,
     /// Main target size (px).
     pub size: (u32, u32),
+    /// Width / height of the output (the main target's rounded size may differ slightly).
+    pub aspect: f32,
     pub ocean: &'a OceanBindings,
     pub inputs: &'a super::renderer::FrameInputs,
     pub view_mode: u32,
@@ -229,11 +231,11 @@ pub struct FrameParams<'a> {
 impl FrameUniforms {
     pub fn new(camera: &Camera, p: &FrameParams) -> Self {
         let (w, h) = (p.size.0.max(1) as f32, p.size.1.max(1) as f32);
-        let projection = camera.projection(w / h);
+        let projection = camera.projection(p.aspect);
         // |P[1][1]| = 1 / tan(fov/2): the focal length in pixels is that times half the height.
         let focal_px = projection.y_axis.y.abs() * h * 0.5;
         FrameUniforms {
-            views: frame_views(camera, w / h),
+            views: frame_views(camera, p.aspect),
             time: [
                 p.time_s,
                 WATER_LEVEL_M,

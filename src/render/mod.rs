@@ -61,7 +61,7 @@ pub struct SceneSettings {
     pub render_scale: f32,
     /// Island lattice quads per side.
     pub terrain_grid: u32,
-    /// Target on-screen length of a tessellated ocean edge (px).
+    /// Target length of a tessellated ocean edge in pixels of the main (scene) target.
     pub tess_edge_px: f32,
     pub layout: SceneLayout,
     /// Unit vector toward the sun.

@@ -57,6 +57,24 @@ impl OutputTarget {
     pub const FINAL_LAYOUT: vk::ImageLayout = vk::ImageLayout::TRANSFER_DST_OPTIMAL;
     /// The frame's last access to the output.
     pub const FINAL_ACCESS: Access = Access::COPY_WRITE;
+
+    /// Records, after the frame, a copy of the output into `buffer` for the host (screenshots):
+    /// the output ends in TRANSFER_SRC_OPTIMAL after a copy read.
+    pub fn record_readback(&self, rec: &Recorder, buffer: &Buffer) {
+        rec.barrier(
+            &[ImageBarrier {
+                image: self.image,
+                range: crate::gpu::image::full_range(vk::ImageAspectFlags::COLOR, 1),
+                old_layout: Self::FINAL_LAYOUT,
+                new_layout: vk::ImageLayout::TRANSFER_SRC_OPTIMAL,
+                src: Self::FINAL_ACCESS,
+                dst: Access::COPY_READ,
+            }],
+            &[],
+        );
+        rec.copy_image_to_buffer(self.image, self.extent, buffer);
+        rec.barrier(&[], &[(buffer.raw, Access::COPY_WRITE, Access::HOST_READ)]);
+    }
 }
 
 /// Per-frame inputs.
@@ -220,7 +238,14 @@ impl Renderer {
         };
         let sky = SkyPass::new(ctx, &frame_set_layout)?;
         let terrain = TerrainPass::new(ctx, &frame_set_layout, settings.terrain_grid)?;
-        let water = WaterPass::new(ctx, &frame_set_layout, &targets, dudv.view, &samplers)?;
+        let water = WaterPass::new(
+            ctx,
+            &frame_set_layout,
+            &targets,
+            dudv.view,
+            &samplers,
+            ocean.cascades,
+        )?;
         if settings.view == ViewMode::Wireframe && !water.has_wireframe() {
             anyhow::bail!(
                 "--view wireframe: {} cannot draw lines (no fillModeNonSolid)",
@@ -306,6 +331,7 @@ impl Renderer {
                 sun_scale: self.sun_scale,
                 time_s: inputs.time_s,
                 size: (extent.width, extent.height),
+                aspect: output.extent.width as f32 / output.extent.height.max(1) as f32,
                 ocean: &self.ocean,
                 inputs,
                 view_mode: s.view as u32,

@@ -43,12 +43,15 @@ pub struct WaterPass {
 }
 
 impl WaterPass {
+    /// `cascades`: layers of the ocean images (a specialization constant of the evaluation
+    /// shader's loop).
     pub fn new(
         ctx: &Arc<Context>,
         frame_layout: &DescriptorSetLayout,
         targets: &Targets,
         dudv: vk::ImageView,
         samplers: &WaterSamplers,
+        cascades: u32,
     ) -> GpuResult<WaterPass> {
         let sampled = vk::DescriptorType::COMBINED_IMAGE_SAMPLER;
         let fragment = vk::ShaderStageFlags::FRAGMENT;
@@ -85,6 +88,7 @@ impl WaterPass {
                     topology: vk::PrimitiveTopology::PATCH_LIST,
                     patch_control_points: 4,
                     polygon_mode,
+                    constants: &[cascades],
                     ..Default::default()
                 },
                 Depth::TestWrite,
