@@ -13,6 +13,17 @@ use common::{frames_rendered, read_png, scratch, stderr, validation_counts};
 /// Two `xvfb-run -a` started together may pick the same display: run window tests one at a time.
 static XVFB: Mutex<()> = Mutex::new(());
 
+/// Bash: after `"$VKOCEAN" ... & pid=$!`, sets $wid to the vkocean window, giving up as soon as
+/// vkocean exits (a crash must fail fast).
+const WAIT_FOR_WINDOW: &str = r#"wid=""
+        for _ in $(seq 300); do
+            wid=$(xdotool search --onlyvisible --name '^vkocean$' 2>/dev/null | head -n1) || true
+            [ -n "$wid" ] && break
+            kill -0 "$pid" 2>/dev/null || break
+            sleep 0.1
+        done
+        if [ -z "$wid" ]; then echo "no vkocean window appeared" >&2; wait "$pid"; exit 1; fi"#;
+
 /// Runs `script` (bash) under xvfb-run with $VKOCEAN set to the binary; 120 s cap.
 fn under_xvfb(script: &str) -> std::process::Output {
     let _guard = XVFB.lock().unwrap_or_else(|p| p.into_inner());
@@ -41,15 +52,7 @@ fn window_resizes_twice_and_stays_validation_clean() {
         r#"
         "$VKOCEAN" --validation --size 640x360 --fft-size 64 --cascades 2 --screenshot '{shot}' &
         pid=$!
-        # Wait for the window, but give up as soon as vkocean exits (a crash must fail fast).
-        wid=""
-        for _ in $(seq 300); do
-            wid=$(xdotool search --onlyvisible --name '^vkocean$' 2>/dev/null | head -n1) || true
-            [ -n "$wid" ] && break
-            kill -0 "$pid" 2>/dev/null || break
-            sleep 0.1
-        done
-        if [ -z "$wid" ]; then echo "no vkocean window appeared" >&2; wait "$pid"; exit 1; fi
+        {wait}
         sleep 1.5
         xdotool windowsize "$wid" 800 500
         sleep 1.5
@@ -65,7 +68,8 @@ fn window_resizes_twice_and_stays_validation_clean() {
         kill "$pid" 2>/dev/null && echo "vkocean did not exit on Esc" >&2
         wait "$pid"
         "#,
-        shot = shot.display()
+        shot = shot.display(),
+        wait = WAIT_FOR_WINDOW
     );
     let out = under_xvfb(&script);
     let err = stderr(&out);
@@ -124,14 +128,7 @@ fn window_survives_twenty_resizes_minimize_and_six_hundred_frames() {
         r#"
         "$VKOCEAN" --validation --quality low --size 320x180 --frames 600 &
         pid=$!
-        wid=""
-        for _ in $(seq 300); do
-            wid=$(xdotool search --onlyvisible --name '^vkocean$' 2>/dev/null | head -n1) || true
-            [ -n "$wid" ] && break
-            kill -0 "$pid" 2>/dev/null || break
-            sleep 0.1
-        done
-        if [ -z "$wid" ]; then echo "no vkocean window appeared" >&2; wait "$pid"; exit 1; fi
+        {wait}
         sleep 0.5
         for size in {sizes}; do
             kill -0 "$pid" 2>/dev/null || {{ echo "vkocean exited during the resizes" >&2; break; }}
@@ -145,6 +142,7 @@ fn window_survives_twenty_resizes_minimize_and_six_hundred_frames() {
         xdotool windowmap "$wid"
         wait "$pid"
         "#,
+        wait = WAIT_FOR_WINDOW,
         sizes = sizes
             .iter()
             .map(|s| format!("'{s}'"))

@@ -1,0 +1,60 @@
+//! What `--quality` and `--preset` set: cost levels (FFT size, cascades, render and RTT scale,
+//! tessellation edge, terrain grid) and sea states by the Beaufort scale. Each fills only what the
+//! command line and the config file leave unset (`Cli::settings`).
+
+use clap::ValueEnum;
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum QualityArg {
+    Low,
+    Medium,
+    High,
+}
+
+/// What a `--quality` level sets (each flag given explicitly wins).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Quality {
+    pub fft_size: usize,
+    pub cascades: usize,
+    pub render_scale: f64,
+    pub rtt_scale: f64,
+    pub tess_edge_px: f64,
+    pub terrain_grid: u32,
+}
+
+pub fn quality_level(q: QualityArg) -> Quality {
+    let (fft_size, cascades, render_scale, rtt_scale, tess_edge_px, terrain_grid) = match q {
+        QualityArg::Low => (64, 2, 0.5, 0.25, 48.0, 64),
+        QualityArg::Medium => (128, 3, 0.75, 0.35, 24.0, 96),
+        QualityArg::High => (256, 3, 1.0, 0.5, 16.0, 160),
+    };
+    Quality {
+        fft_size,
+        cascades,
+        render_scale,
+        rtt_scale,
+        tess_edge_px,
+        terrain_grid,
+    }
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum PresetArg {
+    Calm,
+    Breeze,
+    Moderate,
+    Storm,
+}
+
+/// What a `--preset` sets: (U10 m/s, fetch km, choppiness, largest patch m). Wind speeds are
+/// mid-range of their Beaufort force (WMO: force 2 light breeze 1.6–3.3 m/s, 4 moderate breeze
+/// 5.5–7.9, 6 strong breeze 10.8–13.8, 10 storm 24.5–28.4); fetches grow with the force, the
+/// storm's patch holds its ~570 m peak wavelength (2πg/ω_p², ω_p = 0.877 g/U).
+pub fn sea_preset(p: PresetArg) -> (f64, f64, f64, f64) {
+    match p {
+        PresetArg::Calm => (2.5, 10.0, 0.5, 400.0),
+        PresetArg::Breeze => (6.7, 50.0, 0.8, 400.0),
+        PresetArg::Moderate => (12.3, 200.0, 1.0, 400.0),
+        PresetArg::Storm => (26.5, 1000.0, 1.2, 1000.0),
+    }
+}
