@@ -3,7 +3,7 @@
 
 mod common;
 
-use common::{run, scratch, stderr};
+use common::{clean_run, run, scratch, stderr};
 
 #[test]
 fn bench_fft_rejects_bad_values() {
@@ -77,9 +77,7 @@ fn bench_fft_writes_rows() {
         json.to_str().unwrap(),
         "--validation",
     ]);
-    let err = stderr(&out);
-    assert_eq!(out.status.code(), Some(0), "{err}");
-    assert!(err.contains("validation: 0 warnings, 0 errors"), "{err}");
+    clean_run(&out, "bench");
     let table = String::from_utf8_lossy(&out.stdout);
     assert!(
         table.contains("gpu_ms") && table.contains("rustfft_ms") && table.contains("ratio"),
@@ -135,9 +133,7 @@ fn bench_frames_reports_passes_frames_and_settings() {
         csv_path.to_str().unwrap(),
         "--validation",
     ]);
-    let err = stderr(&out);
-    assert_eq!(out.status.code(), Some(0), "{err}");
-    assert!(err.contains("validation: 0 warnings, 0 errors"), "{err}");
+    clean_run(&out, "bench");
     let table = String::from_utf8_lossy(&out.stdout);
     for row in [
         "ocean fft",
@@ -250,9 +246,7 @@ fn bench_gerstner_prints_both_tables() {
         json_path.to_str().unwrap(),
         "--validation",
     ]);
-    let err = stderr(&out);
-    assert_eq!(out.status.code(), Some(0), "{err}");
-    assert!(err.contains("validation: 0 warnings, 0 errors"), "{err}");
+    clean_run(&out, "bench");
     let table = String::from_utf8_lossy(&out.stdout);
     assert!(
         table.contains("Table 4-1") && table.contains("Table 4-2"),

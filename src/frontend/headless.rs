@@ -60,10 +60,12 @@ pub fn run(s: &RunSettings) -> anyhow::Result<Outcome> {
             session.print_stats()?;
         }
         if s.log_resources.is_some_and(|n| (i + 1) % n == 0) {
-            let rss = resident_kib().map_or("unknown".to_string(), |kib| format!("{kib} kB"));
+            let kib = |key| proc_status_kib(key).map_or("unknown".into(), |v| format!("{v} kB"));
             eprintln!(
-                "vkocean: frame {}: resident {rss}, {} Vulkan objects live",
+                "vkocean: frame {}: resident {} (peak {}), {} Vulkan objects live",
                 i + 1,
+                kib("VmRSS:"),
+                kib("VmHWM:"),
                 ctx.live_objects()
             );
         }
@@ -162,9 +164,10 @@ pub fn frame_inputs(s: &RunSettings, i: u64) -> FrameInputs {
     }
 }
 
-/// Resident set size of this process (kB), from /proc/self/status (Linux); `None` elsewhere.
-fn resident_kib() -> Option<u64> {
+/// A kB figure of this process from /proc/self/status (Linux), e.g. `VmRSS:` (resident set) or
+/// `VmHWM:` (its peak); `None` elsewhere.
+fn proc_status_kib(key: &str) -> Option<u64> {
     let status = std::fs::read_to_string("/proc/self/status").ok()?;
-    let line = status.lines().find(|l| l.starts_with("VmRSS:"))?;
+    let line = status.lines().find(|l| l.starts_with(key))?;
     line.split_whitespace().nth(1)?.parse().ok()
 }

@@ -48,6 +48,15 @@ pub fn entries(dir: &Path) -> Vec<String> {
     names
 }
 
+/// Asserts a `--validation` run exited 0 with `validation: 0 warnings, 0 errors`; returns its
+/// stderr. `what` names the run in failure messages.
+pub fn clean_run(out: &Output, what: &str) -> String {
+    let err = stderr(out);
+    assert_eq!(out.status.code(), Some(0), "{what}: {err}");
+    assert_eq!(validation_counts(&err), Some((0, 0)), "{what}: {err}");
+    err
+}
+
 /// Parses `validation: N warnings, M errors` from stderr.
 pub fn validation_counts(stderr: &str) -> Option<(u32, u32)> {
     let line = stderr.lines().find(|l| l.starts_with("validation: "))?;
