@@ -84,9 +84,18 @@ fn main() {
             }
         };
         if !output.status.success() {
-            // glslc reports `shaders/dir/file.ext:LINE: error: message`.
-            eprint!("{}", String::from_utf8_lossy(&output.stderr));
-            for line in String::from_utf8_lossy(&output.stderr).lines() {
+            // glslc reports `shaders/dir/file.ext:LINE: error: message`; its optimizer can also
+            // crash without a word (spirv-opt in Debian 12's glslc segfaulted on early returns
+            // from a function inlined into unrolled loops), so say so.
+            let mut stderr = String::from_utf8_lossy(&output.stderr).into_owned();
+            if stderr.trim().is_empty() {
+                stderr = format!(
+                    "shaders/{rel_str}: error: `{glslc}` failed without a message ({})\n",
+                    output.status
+                );
+            }
+            eprint!("{stderr}");
+            for line in stderr.lines() {
                 println!("cargo:warning={line}");
             }
             failed = true;
