@@ -6,21 +6,43 @@
 //   for j < N/R: k = j mod Ns, v_q = x[j + q N/R] w^{qk} (w = e^{±2πi/(Ns R)}),
 //                v = DFT_R(v) by r radix-2 stages, y[(j - k) R + k + q Ns] = v_q.
 // Mirrors `stockham_model` and `pass_schedule` in src/ocean/fft.rs.
+//
+// The butterflies always run the inverse transform (roots e^{+2πi m/n}), so every root inside a
+// group is a constant; a forward transform conjugates its input and output instead
+// (DFT(x) = conj(IDFT(conj x))): `conj_if_forward` at the first load and the last store.
 // Needs: `params.direction` (+1 inverse, -1 forward) declared before the include.
+
+const float TAU = 6.283185307179586;
 
 vec2 cmul(vec2 a, vec2 b) { return vec2(a.x * b.x - a.y * b.y, a.x * b.y + a.y * b.x); }
 
-// w for the inverse transform, its conjugate for the forward one.
-vec2 conj_if_forward(vec2 w) { return vec2(w.x, w.y * params.direction); }
+// v for the inverse transform, its conjugate for the forward one.
+vec2 conj_if_forward(vec2 v) { return vec2(v.x, v.y * params.direction); }
 
-// e^{+2πi m/16}, m < 16: the roots inside an 8- or 16-point group.
-const vec2 ROOTS16[16] = vec2[](
-    vec2(1.0, 0.0), vec2(0.92387953, 0.38268343), vec2(0.70710678, 0.70710678), vec2(0.38268343, 0.92387953),
-    vec2(0.0, 1.0), vec2(-0.38268343, 0.92387953), vec2(-0.70710678, 0.70710678), vec2(-0.92387953, 0.38268343),
-    vec2(-1.0, 0.0), vec2(-0.92387953, -0.38268343), vec2(-0.70710678, -0.70710678), vec2(-0.38268343, -0.92387953),
-    vec2(0.0, -1.0), vec2(0.38268343, -0.92387953), vec2(0.70710678, -0.70710678), vec2(0.92387953, -0.38268343));
+// v e^{+2πi m/n} for m and n constant after unrolling (n a power of two). The roots on the axes
+// and diagonals (m/n a multiple of 1/8) are applied with adds and sign flips, without the
+// multiplies by 0 and ±1 a general complex product would keep (IEEE rules forbid the compiler to
+// drop them); the others multiply by a constant folded from cos/sin.
+vec2 rotate(vec2 v, uint m, uint n) {
+    m &= n - 1u;
+    const float H = 0.70710678118654752;
+    float a = float(m) * (TAU / float(n));
+    vec2 r = cmul(v, vec2(cos(a), sin(a)));
+    if ((m * 8u) % n == 0u) {
+        uint e = m * 8u / n;
+        r = e == 0u ? v
+          : e == 1u ? H * vec2(v.x - v.y, v.x + v.y)
+          : e == 2u ? vec2(-v.y, v.x)
+          : e == 3u ? H * vec2(-v.x - v.y, v.x - v.y)
+          : e == 4u ? -v
+          : e == 5u ? H * vec2(v.y - v.x, -v.x - v.y)
+          : e == 6u ? vec2(v.y, -v.x)
+          : H * vec2(v.x + v.y, v.y - v.x);
+    }
+    return r;
+}
 
-// v = DFT_R(v) in place, R = 2^LOG_R <= 16, by LOG_R radix-2 Stockham stages. `v` must be a
+// v = IDFT_R(v) in place, R = 2^LOG_R <= 16, by LOG_R radix-2 Stockham stages. `v` must be a
 // register array of R vec2 and every loop unrolled, so every index is a constant.
 #define DFT_IN_REGISTERS(v, LOG_R)                                                           \
     [[unroll]] for (uint ls = 0u; ls < LOG_R; ++ls) {                                        \
@@ -30,7 +52,7 @@ const vec2 ROOTS16[16] = vec2[](
         [[unroll]] for (uint jj = 0u; jj < R_ / 2u; ++jj) {                                  \
             uint kk = jj & (s_ - 1u);                                                        \
             vec2 a = v[jj];                                                                  \
-            vec2 b = cmul(v[jj + R_ / 2u], conj_if_forward(ROOTS16[kk * (16u / (2u * s_))])); \
+            vec2 b = rotate(v[jj + R_ / 2u], kk, 2u * s_);                                   \
             u_[2u * jj - kk] = a + b;                                                        \
             u_[2u * jj - kk + s_] = a - b;                                                   \
         }                                                                                    \

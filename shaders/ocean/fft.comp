@@ -39,10 +39,10 @@ shared vec2 buf[2][N];
             vec2 v[R];                                                                       \
             [[unroll]] for (uint q = 0u; q < R; ++q) {                                       \
                 uint i = j + q * (N / R);                                                    \
-                v[q] = first ? src[row_base + i] : buf[in_slot][i];                          \
+                v[q] = first ? conj_if_forward(src[row_base + i]) : buf[in_slot][i];         \
             }                                                                                \
             if (ns > 1u) {                                                                   \
-                vec2 w1 = conj_if_forward(twiddle[k * (N / (ns * R))]);                      \
+                vec2 w1 = twiddle[k * (N / (ns * R))];                                       \
                 vec2 w = w1;                                                                 \
                 [[unroll]] for (uint q = 1u; q < R; ++q) {                                   \
                     v[q] = cmul(v[q], w);                                                    \
@@ -54,7 +54,7 @@ shared vec2 buf[2][N];
             [[unroll]] for (uint q = 0u; q < R; ++q) {                                       \
                 uint i = o + q * ns;                                                         \
                 if (last) {                                                                  \
-                    dst[out_base + i * N] = v[q];                                            \
+                    dst[out_base + i * N] = conj_if_forward(v[q]);                           \
                 } else {                                                                     \
                     buf[out_slot][i] = v[q];                                                 \
                 }                                                                            \

@@ -378,6 +378,7 @@ fn create_device(
     }
     let features = vk::PhysicalDeviceFeatures::default()
         .tessellation_shader(true)
+        .shader_int64(chosen.info.shader_int64)
         .shader_clip_distance(true)
         .fill_mode_non_solid(chosen.info.fill_mode_non_solid)
         .sampler_anisotropy(chosen.info.sampler_anisotropy)

@@ -27,6 +27,8 @@ pub struct DeviceInfo {
     pub sampler_anisotropy: bool,
     /// Pipeline-statistics queries (tessellation counters in `--profile`).
     pub pipeline_statistics_query: bool,
+    /// 64-bit integers in shaders (the CPU FFT kernel's 32-byte stores).
+    pub shader_int64: bool,
     /// Invocations per subgroup (SIMD width on CPU drivers).
     pub subgroup_size: u32,
     /// Compute shaders can use subgroup shuffles (GL_KHR_shader_subgroup_shuffle).
@@ -218,6 +220,7 @@ pub(crate) fn inspect(
         fill_mode_non_solid: f.fill_mode_non_solid == vk::TRUE,
         sampler_anisotropy: f.sampler_anisotropy == vk::TRUE,
         pipeline_statistics_query: f.pipeline_statistics_query == vk::TRUE,
+        shader_int64: f.shader_int64 == vk::TRUE,
         subgroup_size,
         compute_subgroup_shuffle,
     };

@@ -1,18 +1,19 @@
 //! Our GPU FFT: 2D complex transforms of a batch of N×N arrays by Stockham radix-2 autosort
 //! passes. One dispatch per axis covers the whole batch (every packed field of every cascade);
-//! each dispatch transforms rows without a round trip through global memory between stages and
-//! writes them transposed, so the second dispatch reads contiguous rows too and leaves the result
-//! in the original orientation.
+//! each dispatch transforms one axis without a round trip through global memory between stages
+//! and writes the result transposed, so the second dispatch does the other axis and leaves the
+//! result in the original orientation.
 //!
 //! Two kernels share the butterfly code (shaders/common/fft.glsl), picked per device by
 //! [`Kernel::for_device`]:
 //! - [`Kernel::Shared`] (shaders/ocean/fft.comp), for GPUs: a workgroup per row, radix-8/16
 //!   groups in registers exchanged through shared memory, coalesced loads.
-//! - [`Kernel::Registers`] (shaders/ocean/fft_rows.comp), for CPU drivers (lavapipe): a row per
-//!   SIMD lane (two lanes joined by subgroup shuffles for N = 512), all passes in registers,
-//!   loads as RGBA32F texel fetches. On llvmpipe a storage or shared memory access costs a branch
-//!   per lane and component while arithmetic is 8-wide, so this kernel minimizes memory
-//!   operations; it is 4–6× faster there (`vkocean bench fft`, README).
+//! - [`Kernel::Registers`] (shaders/ocean/fft_rows.comp), for CPU drivers (lavapipe): two
+//!   columns per SIMD lane (one lane pair per column pair, joined by subgroup shuffles, for
+//!   N = 512), all passes in registers, strided RGBA32F texel fetches in and contiguous 32-byte
+//!   stores out. On llvmpipe a storage-buffer store costs a branch per lane and component while
+//!   arithmetic is 8-wide and texel fetches are gathers, so this kernel is built around its
+//!   stores; it is 8× faster there than the shared-memory one (`vkocean bench fft`, README).
 //!
 //! Transforms are unnormalized: inverse out[j] = Σ_n in[n] e^{+2πi nj/N} per axis (rustfft's
 //! convention); forward uses e^{−2πi nj/N}.
@@ -38,11 +39,11 @@ pub const THREADS_ENV: &str = "VKOCEAN_FFT_THREADS";
 /// Environment variable forcing a kernel: `shared` or `registers` (experiments, comparisons).
 pub const KERNEL_ENV: &str = "VKOCEAN_FFT_KERNEL";
 
-/// Rows per workgroup of the register kernel (one SIMD vector of lanes per row slot).
-const REGISTER_ROWS: u32 = 8;
-/// Largest row the register kernel keeps in the registers of one invocation; larger rows are
-/// split over 2 subgroup lanes. N = 1024 would need 2 lanes of 512 values, which llvmpipe takes
-/// about 20 s to compile, so it uses the shared-memory kernel.
+/// Column pairs per workgroup of the register kernel (one SIMD vector of lanes).
+const REGISTER_PAIRS: u32 = 8;
+/// Longest column the register kernel keeps in the registers of one invocation (which holds
+/// two); longer columns are split over 2 subgroup lanes. N = 1024 would need 2 lanes of 2 × 512
+/// values, which llvmpipe takes tens of seconds to compile, so it uses the shared-memory kernel.
 const REGISTER_MAX_M: usize = 256;
 const REGISTER_MAX_N: usize = 2 * REGISTER_MAX_M;
 
@@ -60,7 +61,8 @@ pub enum Direction {
 pub enum Kernel {
     /// fft.comp: a workgroup of `threads` invocations per row, shared memory between passes.
     Shared { threads: u32 },
-    /// fft_rows.comp: 2^`log2_lanes` invocations (subgroup lanes) per row, registers only.
+    /// fft_rows.comp: 2^`log2_lanes` invocations (subgroup lanes) per pair of columns,
+    /// registers only.
     Registers { log2_lanes: u32 },
 }
 
@@ -84,13 +86,15 @@ impl Kernel {
         }
     }
 
-    /// The register kernel, if the device can run it for N and this batch: N ≤ 512, subgroup
-    /// shuffles (two lanes per row above 256) and the batch within maxTexelBufferElements.
+    /// The register kernel, if the device can run it for N and this batch: N ≤ 512, 64-bit
+    /// integers (its stores), subgroup shuffles (two lanes per column above 256) and the batch
+    /// within maxTexelBufferElements.
     pub fn registers(ctx: &Context, n: usize, batch: usize) -> Option<Kernel> {
         let lanes = n.div_ceil(REGISTER_MAX_M).max(1);
         let info = &ctx.info;
         let texels = batch * n * n / 2;
         let fits = n <= REGISTER_MAX_N
+            && info.shader_int64
             && texels <= info.limits.max_texel_buffer_elements as usize
             && (lanes == 1
                 || (info.compute_subgroup_shuffle && info.subgroup_size as usize >= lanes));
@@ -231,10 +235,10 @@ impl GpuFft {
                 vec![
                     log2_n,
                     log2_lanes,
-                    REGISTER_ROWS,
-                    REGISTER_ROWS << log2_lanes,
+                    REGISTER_PAIRS,
+                    REGISTER_PAIRS << log2_lanes,
                 ],
-                n as u32 / REGISTER_ROWS,
+                n as u32 / (2 * REGISTER_PAIRS),
             ),
         };
         let set_layout = DescriptorSetLayout::new(ctx, "fft set layout", &bindings)?;
