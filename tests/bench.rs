@@ -97,6 +97,9 @@ fn bench_fft_writes_rows() {
         );
         assert!(gpu > 0.0 && cpu > 0.0, "{row}");
         assert!((ratio - gpu / cpu).abs() < 1e-9 * ratio.max(1.0), "{row}");
+        assert_eq!(row["runs"], 3, "--runs 3: {row}");
+        let steal = row["steal_pct"].as_f64().expect("Linux has /proc/stat");
+        assert!((0.0..=100.0).contains(&steal), "{row}");
     }
 }
 

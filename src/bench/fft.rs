@@ -7,17 +7,20 @@
 //! transpose back, which is the work the GPU does. `rustfft_ms` (the ratio's denominator) counts
 //! the 2·batch·N one-dimensional transforms only, the measure of the anchors in MEASURED.md
 //! (VkFFT ≈ 9× rustfft at N = 256); `rustfft_2d_ms` adds the transposes. Medians of the same
-//! number of runs.
+//! number of runs: `--runs R`, or by default at least `MIN_RUNS` and as many more as fit in
+//! `MIN_SECONDS` per size (this 2-core VM loses a core to steal time for tenths of a second at a
+//! time, so a median over a few hundred milliseconds can land inside one such episode).
 
 use std::path::PathBuf;
 use std::sync::Arc;
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
 use ash::vk;
 use rustfft::num_complex::Complex32;
 use rustfft::FftPlanner;
 use serde_json::json;
 
+use super::CpuTimes;
 use crate::frontend::Outcome;
 use crate::gpu::oneshot::upload;
 use crate::gpu::{Access, Buffer, Context, Frames, MemoryLocation, Profiler};
@@ -30,8 +33,9 @@ use crate::profile::{Stats, WARMUP_FRAMES};
 pub struct FftBenchSettings {
     pub sizes: Vec<usize>,
     pub batch: usize,
-    /// Measured runs per size (after warm-up).
-    pub runs: usize,
+    /// Measured runs per size (after warm-up); `None`: at least `MIN_RUNS`, more until
+    /// `MIN_SECONDS` have passed (at most `MAX_RUNS`).
+    pub runs: Option<usize>,
     pub json: Option<PathBuf>,
     pub validation: bool,
     pub gpu: Option<usize>,
@@ -47,9 +51,20 @@ pub struct FftRow {
     pub rustfft_ms: f64,
     /// With the transposes between the axes.
     pub rustfft_2d_ms: f64,
-    /// The GPU kernel, e.g. "registers, 1 lane per row".
+    /// The GPU kernel, e.g. "registers, 1 lane per 2 columns".
     pub kernel: String,
+    /// Measured runs behind the medians.
+    pub runs: usize,
+    /// Share of the machine's CPU time the hypervisor took during the runs (Linux only).
+    pub steal_pct: Option<f64>,
 }
+
+/// Default run count: at least this many runs per size...
+const MIN_RUNS: usize = 30;
+/// ... and more until this much time has passed ...
+const MIN_SECONDS: f64 = 3.0;
+/// ... but no more than this.
+const MAX_RUNS: usize = 2000;
 
 pub fn fft(s: &FftBenchSettings) -> anyhow::Result<Outcome> {
     let json_file = PendingFile::create_if("--json", s.json.as_deref())?;
@@ -58,43 +73,41 @@ pub fn fft(s: &FftBenchSettings) -> anyhow::Result<Outcome> {
     for &n in &s.sizes {
         crate::ocean::fft::check_plan(&ctx, n, s.batch).map_err(anyhow::Error::msg)?;
     }
+    let runs = match s.runs {
+        Some(r) => format!("{r} runs"),
+        None => format!("at least {MIN_RUNS} runs over at least {MIN_SECONDS} s"),
+    };
     crate::outln!(
-        "FFT benchmark: {} ({}); batch of {} 2D complex transforms, median of {} runs",
+        "FFT benchmark: {} ({}); batch of {} 2D complex transforms, median of {runs} per size",
         ctx.info.name,
         ctx.info.driver,
         s.batch,
-        s.runs
     );
     crate::outln!(
-        "{:>6} {:>6} {:>10} {:>12} {:>8} {:>14}  kernel",
+        "{:>6} {:>6} {:>10} {:>12} {:>8} {:>14} {:>6} {:>7}  kernel",
         "N",
         "batch",
         "gpu_ms",
         "rustfft_ms",
         "ratio",
-        "rustfft_2d_ms"
+        "rustfft_2d_ms",
+        "runs",
+        "steal%"
     );
     let mut rows = Vec::new();
     for &n in &s.sizes {
         let input = test_signal(s.batch * n * n, n as u64);
-        let (gpu_ms, kernel, rustfft_ms, rustfft_2d_ms) =
-            measure(&ctx, n, s.batch, s.runs, &input)?;
-        let row = FftRow {
-            n,
-            batch: s.batch,
-            gpu_ms,
-            rustfft_ms,
-            rustfft_2d_ms,
-            kernel: kernel_name(kernel),
-        };
+        let row = measure(&ctx, n, s.batch, s.runs, &input)?;
         crate::outln!(
-            "{:>6} {:>6} {:>10.3} {:>12.3} {:>8.2} {:>14.3}  {}",
+            "{:>6} {:>6} {:>10.3} {:>12.3} {:>8.2} {:>14.3} {:>6} {:>7}  {}",
             n,
             s.batch,
-            gpu_ms,
-            rustfft_ms,
-            gpu_ms / rustfft_ms,
-            rustfft_2d_ms,
+            row.gpu_ms,
+            row.rustfft_ms,
+            row.gpu_ms / row.rustfft_ms,
+            row.rustfft_2d_ms,
+            row.runs,
+            row.steal_pct.map_or("-".to_string(), |p| format!("{p:.1}")),
             row.kernel
         );
         rows.push(row);
@@ -106,7 +119,7 @@ pub fn fft(s: &FftBenchSettings) -> anyhow::Result<Outcome> {
             .map(|r| {
                 json!({"n": r.n, "batch": r.batch, "gpu_ms": r.gpu_ms, "rustfft_ms": r.rustfft_ms,
                        "ratio": r.gpu_ms / r.rustfft_ms, "rustfft_2d_ms": r.rustfft_2d_ms,
-                       "kernel": r.kernel})
+                       "kernel": r.kernel, "runs": r.runs, "steal_pct": r.steal_pct})
             })
             .collect();
         file.commit((serde_json::to_string_pretty(&value)? + "\n").as_bytes())?;
@@ -126,16 +139,17 @@ pub fn test_signal(len: usize, seed: u64) -> Vec<Complex32> {
     (0..len).map(|_| Complex32::new(next(), next())).collect()
 }
 
-/// Medians of the GPU transform and of rustfft (1D transforms only; with transposes), in ms,
-/// and the GPU kernel. Runs alternate: one GPU frame, waited for, then one CPU run, so both see
-/// the same machine (this 2-core VM's speed drifts by 2× over minutes).
+/// One row: medians of the GPU transform and of rustfft (1D transforms only; with transposes),
+/// in ms, the GPU kernel, the number of measured runs and the steal time meanwhile. Runs
+/// alternate: one GPU frame, waited for, then one CPU run, so both see the same machine (this
+/// 2-core VM's speed drifts by 2× over minutes).
 fn measure(
     ctx: &Arc<Context>,
     n: usize,
     batch: usize,
-    runs: usize,
+    runs: Option<usize>,
     input: &[Complex32],
-) -> anyhow::Result<(f64, Kernel, f64, f64)> {
+) -> anyhow::Result<FftRow> {
     let fft = GpuFft::new(ctx, n, batch)?;
     let mut cpu = RustFft::new(n, input);
     let bytes: Vec<u8> = input
@@ -159,9 +173,24 @@ fn measure(
             ctx.info.name
         );
     }
-    let mut cpu_fft = Vec::with_capacity(runs);
-    let mut cpu_2d = Vec::with_capacity(runs);
-    for run in 0..WARMUP_FRAMES as usize + runs {
+    let (min_runs, max_runs, min_time) = match runs {
+        Some(r) => (r, r, Duration::ZERO),
+        None => (MIN_RUNS, MAX_RUNS, Duration::from_secs_f64(MIN_SECONDS)),
+    };
+    let mut cpu_fft = Vec::new();
+    let mut cpu_2d = Vec::new();
+    let mut measuring_since = None;
+    let mut cpu_times_before = None;
+    for run in 0.. {
+        let measured = cpu_fft.len();
+        let elapsed = measuring_since.map_or(Duration::ZERO, |t: Instant| t.elapsed());
+        if measured >= max_runs || (measured >= min_runs && elapsed >= min_time) {
+            break;
+        }
+        if run == WARMUP_FRAMES as usize {
+            measuring_since = Some(Instant::now());
+            cpu_times_before = CpuTimes::now();
+        }
         let frame = frames.begin()?;
         {
             let rec = frame.recorder(ctx);
@@ -200,12 +229,19 @@ fn measure(
         .ok_or_else(|| anyhow::anyhow!("no GPU FFT timing was measured"))?
         .median;
     let cpu_median = |v: &[f64]| Stats::of(v).expect("runs > 0").median;
-    Ok((
-        median,
-        fft.kernel,
-        cpu_median(&cpu_fft),
-        cpu_median(&cpu_2d),
-    ))
+    let steal_pct = cpu_times_before
+        .zip(CpuTimes::now())
+        .map(|(before, after)| after.steal_percent_since(&before));
+    Ok(FftRow {
+        n,
+        batch,
+        gpu_ms: median,
+        rustfft_ms: cpu_median(&cpu_fft),
+        rustfft_2d_ms: cpu_median(&cpu_2d),
+        kernel: kernel_name(fft.kernel),
+        runs: cpu_fft.len(),
+        steal_pct,
+    })
 }
 
 fn kernel_name(kernel: Kernel) -> String {
@@ -214,7 +250,7 @@ fn kernel_name(kernel: Kernel) -> String {
         Kernel::Registers { log2_lanes } => {
             let lanes = 1u32 << log2_lanes;
             format!(
-                "registers, {lanes} lane{} per row",
+                "registers, {lanes} lane{} per 2 columns",
                 if lanes == 1 { "" } else { "s" }
             )
         }

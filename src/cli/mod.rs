@@ -376,10 +376,12 @@ pub struct BenchFftArgs {
     /// 2D transforms per batch.
     #[arg(long, value_name = "B", value_parser = parse_batch, allow_hyphen_values = true, default_value = "4")]
     pub batch: usize,
-    /// Measured runs per size (after 5 warm-up runs on the GPU, 3 on the CPU).
-    #[arg(long, value_name = "R", value_parser = parse_runs, allow_hyphen_values = true, default_value = "30")]
-    pub runs: usize,
-    /// Also write the table as JSON: [{"n","batch","gpu_ms","rustfft_ms","ratio","rustfft_2d_ms","kernel"}, ...].
+    /// Measured runs per size, after 5 warm-up runs on the GPU and 3 on the CPU [default: at
+    /// least 30, and more until the size has been measured for 3 s (at most 2000), so that a
+    /// median spans the drift of a shared machine]
+    #[arg(long, value_name = "R", value_parser = parse_runs, allow_hyphen_values = true)]
+    pub runs: Option<usize>,
+    /// Also write the table as JSON: [{"n","batch","gpu_ms","rustfft_ms","ratio","rustfft_2d_ms","kernel","runs"}, ...].
     #[arg(long, value_name = "PATH")]
     pub json: Option<PathBuf>,
 }
