@@ -17,7 +17,7 @@ static XVFB: Mutex<()> = Mutex::new(());
 /// vkocean exits (a crash must fail fast).
 const WAIT_FOR_WINDOW: &str = r#"wid=""
         for _ in $(seq 300); do
-            wid=$(xdotool search --onlyvisible --name '^vkocean$' 2>/dev/null | head -n1) || true
+            wid=$(xdotool search --onlyvisible --name '^vkocean( - |$)' 2>/dev/null | head -n1) || true
             [ -n "$wid" ] && break
             kill -0 "$pid" 2>/dev/null || break
             sleep 0.1
@@ -122,9 +122,12 @@ const RESIZES: [(u32, u32); 20] = [
 #[test]
 fn window_survives_twenty_resizes_minimize_and_six_hundred_frames() {
     let sizes: Vec<String> = RESIZES.iter().map(|(w, h)| format!("{w} {h}")).collect();
+    // No --frames: a fast machine drew 600 frames before the script was done with the window
+    // (xdotool then failed on a closed window). The script ends the run with Esc once the
+    // window's title (`vkocean - frame N - ...`, updated twice a second) has passed 600.
     let script = format!(
         r#"
-        "$VKOCEAN" --validation --quality low --size 320x180 --frames 600 &
+        "$VKOCEAN" --validation --quality low --size 320x180 &
         pid=$!
         {wait}
         sleep 0.5
@@ -138,6 +141,20 @@ fn window_survives_twenty_resizes_minimize_and_six_hundred_frames() {
         xdotool windowunmap "$wid"
         sleep 1
         xdotool windowmap "$wid"
+        frame=0
+        for _ in $(seq 900); do
+            kill -0 "$pid" 2>/dev/null || {{ echo "vkocean exited before 600 frames" >&2; break; }}
+            title=$(xdotool getwindowname "$wid")
+            case "$title" in
+                "vkocean - frame "*) frame=${{title#vkocean - frame }}; frame=${{frame%% *}} ;;
+            esac
+            [ "$frame" -ge 600 ] && break
+            sleep 0.1
+        done
+        xdotool windowfocus --sync "$wid" 2>/dev/null || true
+        xdotool key --window "$wid" Escape 2>/dev/null
+        for _ in $(seq 200); do kill -0 "$pid" 2>/dev/null || break; sleep 0.1; done
+        kill "$pid" 2>/dev/null && echo "vkocean did not exit on Esc" >&2
         wait "$pid"
         "#,
         wait = WAIT_FOR_WINDOW,
@@ -149,8 +166,9 @@ fn window_survives_twenty_resizes_minimize_and_six_hundred_frames() {
     );
     let out = under_xvfb(&script);
     let err = clean_run(&out, "twenty resizes");
-    assert!(!err.contains("exited during the resizes"), "{err}");
-    assert_eq!(frames_rendered(&err), Some(600), "{err}");
+    assert!(!err.contains("exited"), "{err}");
+    let frames = frames_rendered(&err).expect("summary line");
+    assert!(frames >= 600, "ran {frames} frames: {err}");
     // The initial swapchain and one per resize (every size differs from the one before). Mapping
     // the window again may leave the swapchain out of date once more (seen in CI: 22), so a few
     // extra recreations are allowed, but not one per frame.

@@ -2,6 +2,7 @@
 //! The swapchain is recreated on resize and when it is out of date or suboptimal; a minimised
 //! window (zero extent) pauses rendering. Esc or the close button end the run, `--frames N`
 //! stops after N frames, F12 saves a screenshot (to `--screenshot` or `vkocean-<frame>.png`).
+//! The title shows progress, `vkocean - frame N - X ms/frame`, updated twice a second.
 //! The camera flies with W/A/S/D, Q/E, Shift and a left mouse drag (`fly.rs`).
 
 use std::path::PathBuf;
@@ -54,6 +55,7 @@ pub fn run(s: &RunSettings) -> anyhow::Result<Outcome> {
         exit_after_capture: false,
         fly: FlyCamera::default(),
         last_frame: None,
+        title_since: None,
     };
     event_loop
         .run_app(&mut app)
@@ -96,7 +98,12 @@ struct App {
     fly: FlyCamera,
     /// When the previous frame started (camera motion uses the wall-clock step).
     last_frame: Option<std::time::Instant>,
+    /// When the title was last updated, and the frame count then.
+    title_since: Option<(std::time::Instant, u64)>,
 }
+
+/// How often the title's frame count and frame time are updated.
+const TITLE_PERIOD: std::time::Duration = std::time::Duration::from_millis(500);
 
 /// The fly camera's keys (by position, so they work on any keyboard layout).
 fn fly_key(code: KeyCode) -> Option<Move> {
@@ -310,6 +317,18 @@ impl App {
             })?;
         state.needs_recreate |= state.swapchain.present(&image)?;
         self.frames_done += 1;
+        match self.title_since {
+            Some((since, frames)) if since.elapsed() >= TITLE_PERIOD => {
+                let ms = since.elapsed().as_secs_f64() * 1e3 / (self.frames_done - frames) as f64;
+                state.window.set_title(&format!(
+                    "vkocean - frame {} - {ms:.1} ms/frame",
+                    self.frames_done
+                ));
+                self.title_since = Some((std::time::Instant::now(), self.frames_done));
+            }
+            Some(_) => {}
+            None => self.title_since = Some((std::time::Instant::now(), self.frames_done)),
+        }
         if self.settings.stats {
             state.session.print_stats()?;
         }
