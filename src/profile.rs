@@ -7,7 +7,7 @@
 
 use serde_json::{json, Value};
 
-use crate::gpu::{DeviceInfo, GpuTimings};
+use crate::gpu::{DeviceInfo, DrawStatistics, GpuTimings};
 
 /// Frames excluded from statistics (pipeline JIT, first-use allocations).
 pub const WARMUP_FRAMES: u64 = 5;
@@ -128,14 +128,16 @@ impl ProfileReport<'_> {
             "frame_cpu_ms": Stats::json(self.cpu_frame_ms),
         });
         let mut report = report;
-        if !self.gpu.tessellation.is_empty() {
-            let column = |i: usize| -> Vec<f64> {
-                self.gpu.tessellation.iter().map(|c| c[i] as f64).collect()
+        if !self.gpu.statistics.is_empty() {
+            let column = |f: fn(&DrawStatistics) -> u64| -> Vec<f64> {
+                self.gpu.statistics.iter().map(|c| f(c) as f64).collect()
             };
             report["water_tessellation"] = json!({
-                "patches": Stats::json(&column(0)),
-                "tess_eval_invocations": Stats::json(&column(1)),
-                "samples": self.gpu.tessellation.len(),
+                "patches": Stats::json(&column(|c| c.patches)),
+                "tess_eval_invocations": Stats::json(&column(|c| c.tess_eval_invocations)),
+                "primitives": Stats::json(&column(|c| c.primitives)),
+                "fragment_invocations": Stats::json(&column(|c| c.fragment_invocations)),
+                "samples": self.gpu.statistics.len(),
             });
         }
         report
@@ -158,13 +160,26 @@ impl ProfileReport<'_> {
                 "compute (GPU)", s.median, s.p95
             );
         }
-        let tess = &self.gpu.tessellation;
-        let patches = Stats::of(&tess.iter().map(|c| c[0] as f64).collect::<Vec<_>>());
-        let evals = Stats::of(&tess.iter().map(|c| c[1] as f64).collect::<Vec<_>>());
-        if let (Some(p), Some(e)) = (patches, evals) {
+        let median = |f: fn(&DrawStatistics) -> u64| {
+            Stats::of(
+                &self
+                    .gpu
+                    .statistics
+                    .iter()
+                    .map(|c| f(c) as f64)
+                    .collect::<Vec<_>>(),
+            )
+            .map(|s| s.median)
+        };
+        if let (Some(p), Some(e), Some(t), Some(f)) = (
+            median(|c| c.patches),
+            median(|c| c.tess_eval_invocations),
+            median(|c| c.primitives),
+            median(|c| c.fragment_invocations),
+        ) {
             out += &format!(
-                "  {:<16} median {:.0} patches, {:.0} tess-eval invocations (p95 {:.0})\n",
-                "water LOD", p.median, e.median, e.p95
+                "  {:<16} median {p:.0} patches, {e:.0} tess-eval invocations, {t:.0} triangles, {f:.0} fragments\n",
+                "water draw"
             );
         }
         if let Some(s) = Stats::of(&self.gpu.frames) {

@@ -291,7 +291,7 @@ fn golden_image() {
 }
 
 /// `--profile`'s tessellation counters: (patches, tess-eval invocations) medians.
-fn tessellation_counts(edge_px: &str) -> (f64, f64) {
+fn tessellation_counts(edge_px: &str) -> DrawCounts {
     let dir = scratch(&format!("render-lod-{edge_px}"));
     let profile = dir.join("p.json");
     let out = run(&[
@@ -309,28 +309,57 @@ fn tessellation_counts(edge_px: &str) -> (f64, f64) {
         profile.to_str().unwrap(),
     ]);
     let err = clean_run(&out, "vkocean");
-    assert!(err.contains("water LOD"), "{err}");
+    assert!(err.contains("water draw"), "{err}");
     let json: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(&profile).unwrap()).unwrap();
     let t = &json["water_tessellation"];
     let _ = std::fs::remove_dir_all(&dir);
-    (
-        t["patches"]["median"].as_f64().unwrap(),
-        t["tess_eval_invocations"]["median"].as_f64().unwrap(),
-    )
+    let median = |key: &str| t[key]["median"].as_f64().unwrap();
+    DrawCounts {
+        patches: median("patches"),
+        tess_eval: median("tess_eval_invocations"),
+        triangles: median("primitives"),
+        fragments: median("fragment_invocations"),
+    }
+}
+
+/// The water draw's medians in a `--profile` report.
+struct DrawCounts {
+    patches: f64,
+    tess_eval: f64,
+    triangles: f64,
+    fragments: f64,
 }
 
 #[test]
 fn profile_counts_the_tessellation_and_finer_edges_cost_more() {
-    let (coarse_patches, coarse) = tessellation_counts("32");
-    let (fine_patches, fine) = tessellation_counts("8");
+    let coarse = tessellation_counts("32");
+    let fine = tessellation_counts("8");
     // Every patch of the 32 x 32 grid reaches the control shader (culling happens there).
-    assert_eq!(coarse_patches, 1024.0);
-    assert_eq!(fine_patches, 1024.0);
-    // Edge levels scale with 1 / target length: 4x finer edges, many times more vertices.
+    assert_eq!(coarse.patches, 1024.0);
+    assert_eq!(fine.patches, 1024.0);
+    // Edge levels scale with 1 / target length: 4x finer edges, many times more vertices and
+    // triangles, and more fragments (partly covered blocks along the extra edges).
+    let (f, c) = (&fine, &coarse);
     assert!(
-        fine > 4.0 * coarse,
-        "tess-eval invocations {fine} vs {coarse}"
+        f.tess_eval > 4.0 * c.tess_eval,
+        "{} vs {}",
+        f.tess_eval,
+        c.tess_eval
+    );
+    assert!(
+        f.triangles > 4.0 * c.triangles,
+        "{} vs {}",
+        f.triangles,
+        c.triangles
+    );
+    // The water covers about half of the 320x180 target: at least that many fragments.
+    assert!(c.fragments > 0.3 * 320.0 * 180.0, "{}", c.fragments);
+    assert!(
+        f.fragments > c.fragments,
+        "{} vs {}",
+        f.fragments,
+        c.fragments
     );
 }
 

@@ -166,7 +166,7 @@ fn measure(
     )?;
     upload(ctx, &pristine, &bytes)?;
     let mut frames = Frames::new(ctx)?;
-    let mut profiler = Profiler::new(ctx, WARMUP_FRAMES)?;
+    let mut profiler = Profiler::new(ctx, WARMUP_FRAMES, false)?;
     if !profiler.enabled() {
         anyhow::bail!(
             "{} has no timestamp queries; cannot time the GPU FFT",

@@ -52,7 +52,7 @@ impl Session {
         } else {
             None
         };
-        let profiler = Profiler::new(ctx, WARMUP_FRAMES)?;
+        let profiler = Profiler::new(ctx, WARMUP_FRAMES, s.profile.is_some())?;
         if s.profile.is_some() && !profiler.enabled() {
             anyhow::bail!(
                 "--profile: {} has no timestamp queries on its graphics queue",

@@ -32,4 +32,4 @@ pub use gpu_allocator::MemoryLocation;
 pub use image::{Image, ImageDesc, Sampler};
 pub use pipeline::{GraphicsDesc, Pipeline, PipelineLayout};
 pub use swapchain::{PresentMode, Swapchain};
-pub use timestamps::{FrameTimes, GpuTimings, Profiler};
+pub use timestamps::{DrawStatistics, FrameTimes, GpuTimings, Profiler};

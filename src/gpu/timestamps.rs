@@ -12,11 +12,27 @@ use super::error::{GpuResult, VkResultExt};
 use super::frame::{Frame, FRAMES_IN_FLIGHT};
 use super::garbage::Garbage;
 
-/// The counters `Profiler::statistics` reads (results come in bit order).
+/// The counters `Profiler::statistics` reads; the results come in bit order: primitives out
+/// of clipping, fragment-shader invocations, tessellation-control patches,
+/// tessellation-evaluation invocations.
 const STATISTICS: vk::QueryPipelineStatisticFlags = vk::QueryPipelineStatisticFlags::from_raw(
-    vk::QueryPipelineStatisticFlags::TESSELLATION_CONTROL_SHADER_PATCHES.as_raw()
+    vk::QueryPipelineStatisticFlags::CLIPPING_PRIMITIVES.as_raw()
+        | vk::QueryPipelineStatisticFlags::FRAGMENT_SHADER_INVOCATIONS.as_raw()
+        | vk::QueryPipelineStatisticFlags::TESSELLATION_CONTROL_SHADER_PATCHES.as_raw()
         | vk::QueryPipelineStatisticFlags::TESSELLATION_EVALUATION_SHADER_INVOCATIONS.as_raw(),
 );
+
+/// One frame's counts in the scope of `Profiler::statistics` (the water draw).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct DrawStatistics {
+    pub patches: u64,
+    pub tess_eval_invocations: u64,
+    /// Primitives that reach the rasterizer (after clipping).
+    pub primitives: u64,
+    /// Fragment-shader invocations: covered pixels plus what the device shades besides
+    /// (helper lanes, partly covered blocks; a measure of rasterization work, overdraw).
+    pub fragment_invocations: u64,
+}
 
 /// Timestamps per frame: frame begin/end plus two per pass.
 const QUERIES_PER_FRAME: u32 = 128;
@@ -38,9 +54,8 @@ pub struct GpuTimings {
     pub frames: Vec<f64>,
     /// The same samples frame by frame (`bench frames --csv`), in frame order.
     pub per_frame: Vec<FrameTimes>,
-    /// Per frame, the scope of `Profiler::statistics`: [tessellation-control patches,
-    /// tessellation-evaluation invocations].
-    pub tessellation: Vec<[u64; 2]>,
+    /// Per frame, the counts in the scope of `Profiler::statistics`.
+    pub statistics: Vec<DrawStatistics>,
 }
 
 /// One measured frame of one queue's submission.
@@ -59,7 +74,8 @@ pub struct Profiler {
     ctx: Arc<Context>,
     /// One pool per frame slot (empty when timestamps are unsupported).
     pools: Vec<vk::QueryPool>,
-    /// One pipeline-statistics query per frame slot (empty when unsupported, and for compute).
+    /// One pipeline-statistics query per frame slot (empty unless asked for and supported, and
+    /// for compute).
     statistics_pools: Vec<vk::QueryPool>,
     records: Vec<SlotRecord>,
     /// Slot of the frame being recorded.
@@ -75,7 +91,14 @@ pub struct Profiler {
 
 impl Profiler {
     /// `warmup_frames`: leading frames whose timings are discarded (pipeline JIT, first uploads).
-    pub fn new(ctx: &Arc<Context>, warmup_frames: u64) -> GpuResult<Profiler> {
+    /// `draw_statistics`: also count the work of the `statistics` scope (`--profile`). Only
+    /// when asked: an active pipeline-statistics query made the water pass 5–7 % slower on
+    /// lavapipe (it counts every fragment), which every frame would pay.
+    pub fn new(
+        ctx: &Arc<Context>,
+        warmup_frames: u64,
+        draw_statistics: bool,
+    ) -> GpuResult<Profiler> {
         Self::for_queue(
             ctx,
             warmup_frames,
@@ -83,7 +106,7 @@ impl Profiler {
             "graphics",
         )
         .and_then(|mut profiler| {
-            if ctx.info.pipeline_statistics_query {
+            if draw_statistics && ctx.info.pipeline_statistics_query {
                 for i in 0..FRAMES_IN_FLIGHT {
                     let info = vk::QueryPoolCreateInfo::default()
                         .query_type(vk::QueryType::PIPELINE_STATISTICS)
@@ -93,7 +116,7 @@ impl Profiler {
                     let pool = unsafe { ctx.device.create_query_pool(&info, None) }
                         .vk("vkCreateQueryPool")?;
                     ctx.count_created(1);
-                    ctx.name(pool, &format!("tessellation statistics slot {i}"));
+                    ctx.name(pool, &format!("draw statistics slot {i}"));
                     profiler.statistics_pools.push(pool);
                 }
             }
@@ -225,8 +248,9 @@ impl Profiler {
         rec.end_label();
     }
 
-    /// Counts the tessellation work of `body` (once per frame; inside or outside a rendering
-    /// scope). A no-op on devices without pipeline-statistics queries.
+    /// Counts the work of `body` ([`DrawStatistics`]; once per frame, inside or outside a
+    /// rendering scope). A no-op unless the profiler was made with `draw_statistics` on a device
+    /// with pipeline-statistics queries.
     pub fn statistics<R>(&mut self, rec: &Recorder, body: impl FnOnce() -> R) -> R {
         let pool = self.statistics_pools.get(self.current).copied();
         let record = &mut self.records[self.current];
@@ -263,8 +287,8 @@ impl Profiler {
             return Ok(());
         }
         if let (true, Some(&stats_pool)) = (record.statistics, self.statistics_pools.get(slot)) {
-            let mut counts = [0u64; 2];
-            // SAFETY: as below; the query holds the two counters of STATISTICS, in bit order.
+            let mut counts = [0u64; 4];
+            // SAFETY: as below; the query holds the four counters of STATISTICS, in bit order.
             unsafe {
                 self.ctx.device.get_query_pool_results(
                     stats_pool,
@@ -274,7 +298,13 @@ impl Profiler {
                 )
             }
             .vk("vkGetQueryPoolResults")?;
-            self.timings.tessellation.push(counts);
+            let [primitives, fragment_invocations, patches, tess_eval_invocations] = counts;
+            self.timings.statistics.push(DrawStatistics {
+                patches,
+                tess_eval_invocations,
+                primitives,
+                fragment_invocations,
+            });
         }
         let mut ticks = vec![0u64; record.used as usize];
         // SAFETY: the frame that wrote these queries has completed (the caller waited on the
