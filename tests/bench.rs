@@ -142,7 +142,7 @@ fn bench_frames_reports_passes_frames_and_settings() {
         "ocean fft",
         "reflection",
         "water",
-        "composite",
+        "output",
         "frame GPU total",
         "FPS",
     ] {
@@ -173,7 +173,7 @@ fn bench_frames_reports_passes_frames_and_settings() {
         "refraction",
         "scene",
         "water",
-        "composite",
+        "output",
     ] {
         assert!(names.contains(&name), "{name} not in {names:?}");
     }

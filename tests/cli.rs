@@ -358,7 +358,7 @@ fn config_and_presets_apply_and_the_command_line_wins() {
     assert_eq!(params["choppiness"], 1.2, "{params}");
     assert_eq!(params["patch_sizes_m"][0], 1000.0, "{params}");
     assert_eq!(params["fft_size"], 64, "{params}");
-    assert_eq!(params["cascades"], 2, "{params}");
+    assert_eq!(params["cascades"], 3, "{params}");
 
     // Each preset is its Beaufort force's mid-range wind.
     for (preset, wind) in [

@@ -146,7 +146,7 @@ fn profile_has_every_pass() {
             "scene",
             "water",
             "sky",
-            "composite"
+            "output"
         ]
     );
     // (largest compute pass, largest graphics pass) medians.

@@ -1,6 +1,6 @@
 // Procedural sky radiance: zenith-to-horizon gradient, a darker haze below the horizon, a sun disc
 // with a forward-scattering glow. Shared by the sky pass and by the water's reflections so the two
-// always agree. Radiance is linear HDR; post/composite.comp tone-maps it.
+// always agree. Radiance is linear HDR; common/display.glsl tone-maps it in the main view.
 
 const vec3 SKY_ZENITH = vec3(0.09, 0.25, 0.62);
 const vec3 SKY_HORIZON = vec3(0.60, 0.72, 0.85);

@@ -3,6 +3,7 @@
 // view the ray is mirrored, so the reflection shows the sky the water reflects). With the test
 // background on (lod.w), the main view paints a solid colour found nowhere else instead.
 #include "common/frame.glsl"
+#include "common/display.glsl"
 
 layout(location = 0) in vec2 in_uv;
 layout(location = 1) in vec2 in_ndc;
@@ -10,8 +11,8 @@ layout(location = 0) out vec4 out_colour;
 
 void main() {
     if (frame.lod.w > 0.5 && pass.view == 0u) {
-        out_colour = vec4(frame.background.rgb, 1.0);
+        out_colour = target_colour(frame.background.rgb);
         return;
     }
-    out_colour = vec4(sky_lookup(view_ray(in_ndc)), 1.0);
+    out_colour = target_colour(sky_lookup(view_ray(in_ndc)));
 }

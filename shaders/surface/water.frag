@@ -7,7 +7,13 @@
 // - Fresnel weight between reflection and refraction (`--fresnel`: Schlick, exact (seed 004),
 //   or seed 001 eq. 6 r = cos θ^0.5);
 // - Blinn-Phong sun highlight (seed 003), foam from the simulation, haze toward the horizon.
+// Every texture here has one mip level, so lookups are textureLod(…, 0): the same result as
+// texture() (minification and magnification filters are both linear) without the per-quad
+// derivatives and LOD a CPU driver computes for it. The cascade loop's bound is the
+// specialization constant of common/water.glsl.
 #include "common/frame.glsl"
+#include "common/water.glsl"
+#include "common/display.glsl"
 
 layout(location = 0) in vec3 in_rel_pos;
 layout(location = 1) in vec2 in_world_xz;
@@ -33,11 +39,10 @@ const float NEAR_M = 0.1;            // Camera::near_m (depth = near / view dist
 vec4 ocean_normal_foam(vec2 world_xz, float dist) {
     vec2 slope = vec2(0.0);
     float foam = 0.0;
-    int cascades = int(frame.ocean.x);
-    for (int c = 0; c < cascades; ++c) {
+    for (int c = 0; c < CASCADES; ++c) {
         float weight;
         vec3 uv = ocean_uv(world_xz, c, dist, weight);
-        vec4 s = texture(ocean_normals, uv);
+        vec4 s = textureLod(ocean_normals, uv, 0.0);
         slope += weight * s.xy;
         foam = max(foam, weight * s.w);
     }
@@ -74,19 +79,19 @@ void main() {
     vec3 n = nf.xyz;
     int view = debug_view();
     if (view == VIEW_DISPLACEMENT) {
-        out_colour = vec4(0.5 + 0.25 * in_displacement.xzy * vec3(1.0, 1.0, 1.0), 1.0);
+        out_colour = target_colour(0.5 + 0.25 * in_displacement.xzy);
         return;
     }
     if (view == VIEW_NORMALS) {
-        out_colour = vec4(n * 0.5 + 0.5, 1.0);
+        out_colour = target_colour(n * 0.5 + 0.5);
         return;
     }
     if (view == VIEW_FOAM) {
-        out_colour = vec4(vec3(nf.w), 1.0);
+        out_colour = target_colour(vec3(nf.w));
         return;
     }
     if (view == VIEW_WIREFRAME) {
-        out_colour = vec4(0.9, 0.95, 1.0, 1.0);
+        out_colour = target_colour(vec3(0.9, 0.95, 1.0));
         return;
     }
     vec3 sun = frame.sun_dir.xyz;
@@ -94,24 +99,24 @@ void main() {
     // Distortion (seed 001 eq. 4-5): DU/DV sampled twice, scrolling in opposite directions.
     float t = fract(frame.time.x * DUDV_SPEED);
     vec2 tile = in_world_xz / DUDV_TILE_M;
-    vec2 dudv = texture(dudv_map, tile + vec2(t, 0.0)).rg * 2.0 - 1.0;
-    dudv += texture(dudv_map, tile * 0.73 + vec2(-t, t)).rg * 2.0 - 1.0;
+    vec2 dudv = textureLod(dudv_map, tile + vec2(t, 0.0), 0.0).rg * 2.0 - 1.0;
+    dudv += textureLod(dudv_map, tile * 0.73 + vec2(-t, t), 0.0).rg * 2.0 - 1.0;
     float fade = clamp(1.0 - dist / 3000.0, 0.0, 1.0) / max(1.0, dist / 40.0);
     vec2 offset = (dudv * DUDV_STRENGTH + n.xz * SLOPE_STRENGTH) * fade;
     vec2 screen = gl_FragCoord.xy * frame.viewport.zw;
 
-    vec3 c_reflect = texture(reflection_colour, clamp(screen + offset, 0.001, 0.999)).rgb;
+    vec3 c_reflect = textureLod(reflection_colour, clamp(screen + offset, 0.001, 0.999), 0.0).rgb;
 
     // Water thickness along the ray: refraction depth behind the surface minus the surface's.
     float water_view = NEAR_M / gl_FragCoord.z;
     vec2 refr_uv = clamp(screen + offset, 0.001, 0.999);
-    float floor_ndc = texture(refraction_depth, refr_uv).r;
+    float floor_ndc = textureLod(refraction_depth, refr_uv, 0.0).r;
     if (NEAR_M / max(floor_ndc, 1e-30) < water_view) {
         // The offset reached something in front of the water: use the undistorted point.
         refr_uv = screen;
-        floor_ndc = texture(refraction_depth, refr_uv).r;
+        floor_ndc = textureLod(refraction_depth, refr_uv, 0.0).r;
     }
-    vec3 c_refract = texture(refraction_colour, refr_uv).rgb;
+    vec3 c_refract = textureLod(refraction_colour, refr_uv, 0.0).rgb;
     float floor_view = floor_ndc > 0.0 ? NEAR_M / floor_ndc : 1e9;
     float thickness = max(floor_view - water_view, 0.0) * dist / water_view;
     // Seed 001 eq. 7 fades the whole colour toward c_o with depth, which removes reflections
@@ -131,5 +136,5 @@ void main() {
 
     vec3 horizon = sky_lookup(normalize(vec3(-v.x, 0.0, -v.z) + vec3(0.0, 0.002, 0.0)));
     float haze = 1.0 - exp(-dist / 9000.0);
-    out_colour = vec4(mix(colour, horizon, haze), 1.0);
+    out_colour = target_colour(mix(colour, horizon, haze));
 }

@@ -5,6 +5,7 @@
 // turning blue with depth.
 #include "common/frame.glsl"
 #include "common/terrain.glsl"
+#include "common/display.glsl"
 
 layout(location = 0) in vec3 in_rel_pos;
 layout(location = 1) in vec3 in_world;
@@ -35,5 +36,5 @@ void main() {
     float dist = length(in_rel_pos);
     vec3 horizon = sky_lookup(normalize(vec3(in_rel_pos.x, 0.0, in_rel_pos.z) + vec3(0.0, 0.02, 0.0)));
     float haze = 1.0 - exp(-dist / 9000.0);
-    out_colour = vec4(mix(colour, horizon, haze), 1.0);
+    out_colour = target_colour(mix(colour, horizon, haze));
 }

@@ -207,7 +207,7 @@ pub struct Cli {
           value_parser = |s: &str| parse_real(s, 0.1, 1.0, true), help_heading = "Scene")]
     pub rtt_scale: Option<f64>,
 
-    /// Size of the scene (and water) target relative to the output (window or image; 0.25 to 1); the composite pass scales it up. [default: 1; --quality sets it]
+    /// Size of the scene (and water) target relative to the output (window or image; 0.25 to 1); a bilinear blit scales it up. [default: 1; --quality sets it]
     #[arg(long, global = true, value_name = "S", allow_hyphen_values = true,
           value_parser = |s: &str| parse_real(s, 0.25, 1.0, true), help_heading = "Scene")]
     pub render_scale: Option<f64>,

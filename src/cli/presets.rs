@@ -24,7 +24,7 @@ pub struct Quality {
 
 pub fn quality_level(q: QualityArg) -> Quality {
     let (fft_size, cascades, render_scale, rtt_scale, tess_edge_px, terrain_grid) = match q {
-        QualityArg::Low => (64, 2, 0.5, 0.25, 48.0, 64),
+        QualityArg::Low => (64, 3, 0.5, 0.25, 48.0, 64),
         QualityArg::Medium => (128, 3, 0.75, 0.35, 24.0, 96),
         QualityArg::High => (256, 3, 1.0, 0.5, 16.0, 160),
     };

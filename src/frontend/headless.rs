@@ -149,6 +149,7 @@ impl Offscreen {
         OutputTarget {
             image: self.image.raw,
             extent: self.extent,
+            format: OUTPUT_FORMAT,
             // The previous frame copied into the target and may have copied from it.
             prior: OutputTarget::FINAL_ACCESS.or(Access::COPY_READ),
         }

@@ -94,7 +94,7 @@ impl Session {
         Ok(session)
     }
 
-    /// Records and submits one frame into `output`. `finish` records after the composite pass
+    /// Records and submits one frame into `output`. `finish` records after the output pass
     /// (the frontend's transition for present or copy). Returns the frame's timeline value.
     pub fn frame(
         &mut self,

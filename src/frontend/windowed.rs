@@ -213,10 +213,7 @@ impl App {
             state
                 .swapchain
                 .recreate(window_size, self.settings.present_mode)?;
-            state
-                .session
-                .renderer
-                .resize(state.swapchain.extent, state.swapchain.format)?;
+            state.session.renderer.resize(state.swapchain.extent)?;
             state.needs_recreate = false;
         }
         let extent = state.swapchain.extent;
@@ -252,15 +249,16 @@ impl App {
         let output = OutputTarget {
             image: image.image,
             extent,
+            format: state.swapchain.format,
             // Chained to the acquire semaphore wait at the same stage.
             prior: Access {
-                stage: vk::PipelineStageFlags2::COPY,
+                stage: vk::PipelineStageFlags2::ALL_TRANSFER,
                 access: vk::AccessFlags2::NONE,
             },
         };
         let waits = [vk::SemaphoreSubmitInfo::default()
             .semaphore(image.acquired)
-            .stage_mask(vk::PipelineStageFlags2::COPY)];
+            .stage_mask(vk::PipelineStageFlags2::ALL_TRANSFER)];
         let signals = [vk::SemaphoreSubmitInfo::default()
             .semaphore(image.ready)
             .stage_mask(vk::PipelineStageFlags2::ALL_COMMANDS)];

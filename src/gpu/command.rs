@@ -52,6 +52,15 @@ impl Access {
         stage: vk::PipelineStageFlags2::COPY,
         access: vk::AccessFlags2::TRANSFER_WRITE,
     };
+    /// A transfer command's read or write: copies, blits (the BLIT stage) and resolves.
+    pub const TRANSFER_READ: Access = Access {
+        stage: vk::PipelineStageFlags2::ALL_TRANSFER,
+        access: vk::AccessFlags2::TRANSFER_READ,
+    };
+    pub const TRANSFER_WRITE: Access = Access {
+        stage: vk::PipelineStageFlags2::ALL_TRANSFER,
+        access: vk::AccessFlags2::TRANSFER_WRITE,
+    };
     pub const HOST_READ: Access = Access {
         stage: vk::PipelineStageFlags2::HOST,
         access: vk::AccessFlags2::HOST_READ,
@@ -365,6 +374,48 @@ impl<'a> Recorder<'a> {
                 dst,
                 vk::ImageLayout::TRANSFER_DST_OPTIMAL,
                 &[region],
+            )
+        };
+    }
+
+    /// Blits the whole of `src` (TRANSFER_SRC_OPTIMAL) onto the whole of `dst`
+    /// (TRANSFER_DST_OPTIMAL), scaling with `filter` and converting between the two formats
+    /// (sRGB decoded before filtering and encoded after; channel order followed).
+    pub fn blit_image(
+        &self,
+        src: (vk::Image, vk::Extent2D),
+        dst: (vk::Image, vk::Extent2D),
+        filter: vk::Filter,
+    ) {
+        let layer = packed_region(src.1, 1).image_subresource;
+        let corners = |e: vk::Extent2D| {
+            [
+                vk::Offset3D::default(),
+                vk::Offset3D {
+                    x: e.width as i32,
+                    y: e.height as i32,
+                    z: 1,
+                },
+            ]
+        };
+        let region = vk::ImageBlit {
+            src_subresource: layer,
+            src_offsets: corners(src.1),
+            dst_subresource: layer,
+            dst_offsets: corners(dst.1),
+        };
+        // SAFETY: recording-state invariant; both images are in the layouts named above (the
+        // caller's barriers), the regions are their whole extents and their formats support
+        // BLIT_SRC / BLIT_DST (and linear filtering when `filter` is LINEAR).
+        unsafe {
+            self.ctx.device.cmd_blit_image(
+                self.cmd,
+                src.0,
+                vk::ImageLayout::TRANSFER_SRC_OPTIMAL,
+                dst.0,
+                vk::ImageLayout::TRANSFER_DST_OPTIMAL,
+                &[region],
+                filter,
             )
         };
     }

@@ -152,8 +152,8 @@ pub fn upload_image(ctx: &Arc<Context>, image: &Image, bytes: &[u8]) -> GpuResul
                 old_layout: vk::ImageLayout::TRANSFER_DST_OPTIMAL,
                 new_layout: vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL,
                 src: Access::COPY_WRITE,
-                // Sampled by the scene shaders and by the compute composite (debug views).
-                dst: Access::FRAGMENT_SAMPLED.or(Access::COMPUTE_READ),
+                // Sampled by fragment shaders (the water, the texture debug views).
+                dst: Access::FRAGMENT_SAMPLED,
             }],
             &[],
         );

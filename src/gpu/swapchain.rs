@@ -43,7 +43,7 @@ pub struct AcquiredImage {
     pub index: u32,
     pub image: vk::Image,
     /// Signalled when the image may be written (wait on it where the frame first touches the
-    /// image: the composite pass's copy).
+    /// image: the output pass's copy or blit).
     pub acquired: vk::Semaphore,
     /// Signal this when rendering is done; presentation waits on it.
     pub ready: vk::Semaphore,
@@ -201,13 +201,13 @@ impl Swapchain {
         let can_copy = caps
             .supported_usage_flags
             .contains(vk::ImageUsageFlags::TRANSFER_SRC);
-        // The renderer's composite pass copies each frame into the image.
+        // The renderer's output pass copies (or blits) each frame into the image.
         if !caps
             .supported_usage_flags
             .contains(vk::ImageUsageFlags::TRANSFER_DST)
         {
             return Err(GpuError::Unsupported(
-                "the window surface's images cannot be copied into (no TRANSFER_DST usage), and vkocean's composite pass copies every frame into them".into(),
+                "the window surface's images cannot be copied into (no TRANSFER_DST usage), and vkocean's output pass copies every frame into them".into(),
             ));
         }
         let mut usage = vk::ImageUsageFlags::TRANSFER_DST;

@@ -56,8 +56,8 @@ pub struct SceneSettings {
     pub fresnel: FresnelModel,
     /// Reflection and refraction target size relative to the output (0 < s <= 1).
     pub rtt_scale: f32,
-    /// Main (scene and water) target size relative to the output (0 < s <= 1); composite scales
-    /// it up.
+    /// Main (scene and water) target size relative to the output (0 < s <= 1); the output pass
+    /// scales it up (a bilinear blit).
     pub render_scale: f32,
     /// Island lattice quads per side.
     pub terrain_grid: u32,

@@ -10,11 +10,14 @@
 //!  water       tessellated ocean patches: displaced by the simulation images of slot f % 2
 //!              (after the compute timeline wait), shaded with reflection, refraction, DU/DV
 //!  sky         the sky where nothing else was drawn
-//!  composite   compute: tone map (or a debug view's texture), sRGB-encode, scale up
-//!              -> display image, copied into the output image
+//!  textures    --view reflection|refraction|dudv only: that texture over the main target
+//!  output      the main target copied into the output image (blit, bilinear, when
+//!              --render-scale < 1)
 //! ```
-//! The output is left in [`OutputTarget::FINAL_LAYOUT`] after a copy write
-//! ([`OutputTarget::FINAL_ACCESS`]); the frontend transitions it for present or readback.
+//! The main view's shaders write display colour (tone-mapped; the sRGB format encodes), the
+//! reflection and refraction passes linear radiance. The output is left in
+//! [`OutputTarget::FINAL_LAYOUT`] after a transfer write ([`OutputTarget::FINAL_ACCESS`]); the
+//! frontend transitions it for present or readback.
 
 use std::sync::Arc;
 
@@ -23,7 +26,7 @@ use glam::Vec3;
 
 use super::camera::{Camera, FrameParams, FrameUniforms, OceanBindings, ViewIndex};
 use super::passes::water::WaterSamplers;
-use super::passes::{CompositePass, SkyCube, SkyPass, TerrainPass, WaterPass};
+use super::passes::{output, SkyCube, SkyPass, TerrainPass, WaterPass};
 use super::scene::{generate_dudv, load_dudv, DUDV_SIDE};
 use super::targets::{ColourDepth, Targets};
 use super::{SceneSettings, ViewMode};
@@ -39,15 +42,14 @@ use crate::gpu::{
 /// (`WATER_COLOUR` in water.frag), linear.
 const DEEP_WATER: [f32; 4] = [0.004, 0.045, 0.075, 1.0];
 
-/// Textures the scene passes (fragment) and composite (compute) sample.
-const SAMPLED: Access = Access::FRAGMENT_SAMPLED.or(Access::COMPUTE_READ);
-
-/// The image a frame ends in: written by a copy (it needs TRANSFER_DST usage), never rendered
-/// to.
+/// The image a frame ends in: written by a copy or blit (it needs TRANSFER_DST usage), never
+/// rendered to.
 #[derive(Clone, Copy, Debug)]
 pub struct OutputTarget {
     pub image: vk::Image,
     pub extent: vk::Extent2D,
+    /// An 8-bit sRGB format.
+    pub format: vk::Format,
     /// The last access to the image before this frame (its contents are discarded).
     pub prior: Access,
 }
@@ -56,7 +58,7 @@ impl OutputTarget {
     /// The output's layout when the frame's commands end.
     pub const FINAL_LAYOUT: vk::ImageLayout = vk::ImageLayout::TRANSFER_DST_OPTIMAL;
     /// The frame's last access to the output.
-    pub const FINAL_ACCESS: Access = Access::COPY_WRITE;
+    pub const FINAL_ACCESS: Access = Access::TRANSFER_WRITE;
 
     /// Records, after the frame, a copy of the output into `buffer` for the host (screenshots):
     /// the output ends in TRANSFER_SRC_OPTIMAL after a copy read.
@@ -114,11 +116,11 @@ pub struct Renderer {
     sky: SkyPass,
     terrain: TerrainPass,
     water: WaterPass,
-    composite: CompositePass,
 }
 
 impl Renderer {
-    /// `output_format`: format of the images the frontend renders to.
+    /// `output_format`: format of the images the frontend renders to (8-bit sRGB); the main
+    /// target takes it, so a frame at `--render-scale 1` ends in a plain copy.
     pub fn new(
         ctx: &Arc<Context>,
         output_format: vk::Format,
@@ -126,7 +128,13 @@ impl Renderer {
         ocean: OceanBindings,
         settings: &SceneSettings,
     ) -> anyhow::Result<Renderer> {
-        let targets = Targets::new(ctx, extent, settings.render_scale, settings.rtt_scale)?;
+        let targets = Targets::new(
+            ctx,
+            extent,
+            output_format,
+            settings.render_scale,
+            settings.rtt_scale,
+        )?;
         let graphics = vk::ShaderStageFlags::ALL_GRAPHICS;
         let sampled = vk::DescriptorType::COMBINED_IMAGE_SAMPLER;
         let frame_set_layout = DescriptorSetLayout::new(
@@ -236,8 +244,13 @@ impl Renderer {
             depth: depth_sampler.raw,
             repeat: repeat_sampler.raw,
         };
-        let sky = SkyPass::new(ctx, &frame_set_layout)?;
-        let terrain = TerrainPass::new(ctx, &frame_set_layout, settings.terrain_grid)?;
+        let sky = SkyPass::new(ctx, &frame_set_layout, targets.display_format())?;
+        let terrain = TerrainPass::new(
+            ctx,
+            &frame_set_layout,
+            settings.terrain_grid,
+            targets.display_format(),
+        )?;
         let water = WaterPass::new(
             ctx,
             &frame_set_layout,
@@ -252,8 +265,6 @@ impl Renderer {
                 ctx.info.name
             );
         }
-        let composite =
-            CompositePass::new(ctx, output_format, &targets, &dudv, repeat_sampler.raw)?;
         Ok(Renderer {
             ctx: ctx.clone(),
             camera: Camera::default(),
@@ -275,7 +286,6 @@ impl Renderer {
             sky,
             terrain,
             water,
-            composite,
         })
     }
 
@@ -292,21 +302,19 @@ impl Renderer {
         }
     }
 
-    /// Recreates the size-dependent targets for a new output size, and follows a change of the
-    /// output format (a recreated swapchain may pick another byte order). Waits for the device
-    /// to go idle first (resizes are rare).
-    pub fn resize(&mut self, extent: vk::Extent2D, output_format: vk::Format) -> GpuResult<()> {
-        self.composite.output_format = output_format;
+    /// Recreates the size-dependent targets for a new output size (in the main target's
+    /// format: a swapchain recreated with another byte order is reached by a blit). Waits for
+    /// the device to go idle first (resizes are rare).
+    pub fn resize(&mut self, extent: vk::Extent2D) -> GpuResult<()> {
         if extent == self.targets.output_extent() {
             return Ok(());
         }
         self.ctx.wait_idle()?;
         let s = &self.settings;
-        self.targets = Targets::new(&self.ctx, extent, s.render_scale, s.rtt_scale)?;
+        let format = self.targets.display_format();
+        self.targets = Targets::new(&self.ctx, extent, format, s.render_scale, s.rtt_scale)?;
         self.water
             .resize(&self.targets, self.dudv.view, &self.samplers());
-        self.composite
-            .resize(&self.targets, &self.dudv, self.repeat_sampler.raw);
         Ok(())
     }
 
@@ -352,8 +360,8 @@ impl Renderer {
         }
 
         let t = &self.targets;
-        // Every target is rewritten whole this frame; the previous frame sampled the colour
-        // targets (fragment, composite) and wrote the depth targets.
+        // Every target is rewritten whole this frame; the previous frame sampled the texture
+        // targets, copied from the main one, and wrote the depth targets.
         let mut to_attachments = Vec::new();
         for cd in [&t.reflection, &t.refraction, &t.main] {
             to_attachments.push(ImageBarrier {
@@ -361,7 +369,9 @@ impl Renderer {
                 range: cd.colour.range(),
                 old_layout: vk::ImageLayout::UNDEFINED,
                 new_layout: vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL,
-                src: SAMPLED.or(Access::COLOUR_WRITE),
+                src: Access::FRAGMENT_SAMPLED
+                    .or(Access::COLOUR_WRITE)
+                    .or(Access::TRANSFER_READ),
                 dst: Access::COLOUR_RW,
             });
             to_attachments.push(ImageBarrier {
@@ -423,7 +433,7 @@ impl Renderer {
                     old_layout: vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL,
                     new_layout: read,
                     src: Access::COLOUR_RW,
-                    dst: SAMPLED,
+                    dst: Access::FRAGMENT_SAMPLED,
                 },
                 ImageBarrier {
                     image: t.refraction.colour.raw,
@@ -431,7 +441,7 @@ impl Renderer {
                     old_layout: vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL,
                     new_layout: read,
                     src: Access::COLOUR_RW,
-                    dst: SAMPLED,
+                    dst: Access::FRAGMENT_SAMPLED,
                 },
                 ImageBarrier {
                     image: t.refraction.depth.raw,
@@ -486,7 +496,7 @@ impl Renderer {
                     load: Load::Keep,
                 }),
             );
-            // Patches and tessellation-evaluation invocations, for --profile.
+            // Patches, tessellation-evaluation invocations, triangles and fragments, for --profile.
             profiler.statistics(rec, || {
                 self.water
                     .record(rec, frame_set, s.view == ViewMode::Wireframe)
@@ -513,20 +523,27 @@ impl Renderer {
             rec.end_rendering();
         });
 
-        rec.barrier(
-            &[ImageBarrier {
-                image: t.main.colour.raw,
-                range: t.main.colour.range(),
-                old_layout: vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL,
-                new_layout: read,
-                src: Access::COLOUR_RW,
-                dst: SAMPLED,
-            }],
-            &[],
-        );
-        profiler.pass(rec, "composite", || {
-            self.composite
-                .record(rec, &self.targets.display, output, s.view)
+        if matches!(
+            s.view,
+            ViewMode::Reflection | ViewMode::Refraction | ViewMode::Dudv
+        ) {
+            rec.barrier(&[main_colour_rw], &[]);
+            profiler.pass(rec, "textures view", || {
+                rec.begin_rendering(
+                    extent,
+                    &[Attachment {
+                        view: t.main.colour.view,
+                        layout: vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL,
+                        load: Load::DontCare,
+                    }],
+                    None,
+                );
+                self.water.record_textures_view(rec, frame_set);
+                rec.end_rendering();
+            });
+        }
+        profiler.pass(rec, "output", || {
+            output::record(rec, &t.main.colour, output)
         });
     }
 }

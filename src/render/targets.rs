@@ -1,7 +1,7 @@
-//! Render targets the scene passes draw into: HDR colour and depth at `--render-scale` of the
-//! output's size, the reflection and refraction textures (colour + depth) at `--rtt-scale` of it
-//! (seed 001 §3.1: the frame-buffer objects), and the display image the composite pass writes
-//! at the output's size. All are recreated on resize.
+//! Render targets the scene passes draw into: the main colour (display colour in the output's
+//! 8-bit sRGB format) and depth at `--render-scale` of the output's size, and the reflection and
+//! refraction textures (HDR colour + depth) at `--rtt-scale` of it (seed 001 §3.1: the
+//! frame-buffer objects). All are recreated on resize.
 
 use std::sync::Arc;
 
@@ -9,13 +9,11 @@ use ash::vk;
 
 use crate::gpu::{Context, GpuResult, Image, ImageDesc};
 
-/// HDR scene colour (linear radiance, tone-mapped by the composite pass).
+/// Reflection and refraction colour: linear radiance, which the water mixes before its tone
+/// map (shaders/common/display.glsl).
 pub const HDR_FORMAT: vk::Format = vk::Format::R16G16B16A16_SFLOAT;
 /// Scene depth (reversed-Z).
 pub const DEPTH_FORMAT: vk::Format = vk::Format::D32_SFLOAT;
-/// The composite pass's storage image: sRGB-encoded bytes in RGBA or BGRA order, copied
-/// bit for bit into the 8-bit sRGB output (swapchain image or headless target).
-pub const DISPLAY_FORMAT: vk::Format = vk::Format::R8G8B8A8_UNORM;
 
 /// A colour + depth pair.
 pub struct ColourDepth {
@@ -24,10 +22,12 @@ pub struct ColourDepth {
 }
 
 impl ColourDepth {
+    /// `colour_format` and `colour_usage` beside COLOR_ATTACHMENT.
     fn new(
         ctx: &Arc<Context>,
         name: &str,
         extent: vk::Extent2D,
+        (colour_format, colour_usage): (vk::Format, vk::ImageUsageFlags),
         depth_sampled: bool,
     ) -> GpuResult<ColourDepth> {
         let image = |suffix: &str, format, usage| {
@@ -41,8 +41,8 @@ impl ColourDepth {
         Ok(ColourDepth {
             colour: image(
                 "colour",
-                HDR_FORMAT,
-                vk::ImageUsageFlags::COLOR_ATTACHMENT | vk::ImageUsageFlags::SAMPLED,
+                colour_format,
+                vk::ImageUsageFlags::COLOR_ATTACHMENT | colour_usage,
             )?,
             depth: image("depth", DEPTH_FORMAT, depth_usage)?,
         })
@@ -77,15 +77,15 @@ fn plain_image(
 }
 
 pub struct Targets {
-    /// Scene radiance and depth at `render_scale` of the output; the colour is sampled (and
-    /// scaled up) by composite.
+    /// The picture at `render_scale` of the output, in display colour, and its depth; copied
+    /// or scaled into the output (passes/output.rs).
     pub main: ColourDepth,
     /// What the water reflects (mirrored camera, clipped below the water).
     pub reflection: ColourDepth,
     /// What lies under the water (clipped above it); its depth gives the water's thickness.
     pub refraction: ColourDepth,
-    /// Composite's output at the output size (`DISPLAY_FORMAT`), copied into the output.
-    pub display: Image,
+    /// The output's size.
+    output: vk::Extent2D,
 }
 
 /// `extent` scaled by `scale`, at least 1x1.
@@ -99,31 +99,33 @@ pub fn scaled(extent: vk::Extent2D, scale: f32) -> vk::Extent2D {
 
 impl Targets {
     /// `output`: the output's size; `render_scale` and `rtt_scale` size the main and the
-    /// reflection/refraction targets relative to it.
+    /// reflection/refraction targets relative to it; `display_format`: the main colour's (an
+    /// 8-bit sRGB format, the output's when the renderer was made).
     pub fn new(
         ctx: &Arc<Context>,
         output: vk::Extent2D,
+        display_format: vk::Format,
         render_scale: f32,
         rtt_scale: f32,
     ) -> GpuResult<Targets> {
         let rtt = scaled(output, rtt_scale);
-        let display = plain_image(
-            ctx,
-            "display (composite output)",
-            output,
-            DISPLAY_FORMAT,
-            vk::ImageUsageFlags::STORAGE | vk::ImageUsageFlags::TRANSFER_SRC,
-        )?;
+        let hdr = (HDR_FORMAT, vk::ImageUsageFlags::SAMPLED);
+        let display = (display_format, vk::ImageUsageFlags::TRANSFER_SRC);
         Ok(Targets {
-            main: ColourDepth::new(ctx, "main", scaled(output, render_scale), false)?,
-            reflection: ColourDepth::new(ctx, "reflection", rtt, false)?,
-            refraction: ColourDepth::new(ctx, "refraction", rtt, true)?,
-            display,
+            main: ColourDepth::new(ctx, "main", scaled(output, render_scale), display, false)?,
+            reflection: ColourDepth::new(ctx, "reflection", rtt, hdr, false)?,
+            refraction: ColourDepth::new(ctx, "refraction", rtt, hdr, true)?,
+            output,
         })
     }
 
     /// The output's size.
     pub fn output_extent(&self) -> vk::Extent2D {
-        self.display.extent
+        self.output
+    }
+
+    /// The main colour's format (the scene pipelines' for the main view).
+    pub fn display_format(&self) -> vk::Format {
+        self.main.colour.format
     }
 }

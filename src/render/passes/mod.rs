@@ -1,12 +1,13 @@
 //! One struct per pass, each owning its pipelines and layouts, with `new` and `record`
 //! (and `resize` where the pass holds size-dependent descriptors).
 //!
-//! The scene passes (sky, terrain, water) draw into HDR colour + depth targets and share the
-//! frame set (set 0: uniforms, ocean images, sky cube) and a push constant picking the view
-//! (`ViewIndex`): the same pipelines render the main view and the reflection and refraction
-//! textures.
+//! The scene passes (sky, terrain, water) share the frame set (set 0: uniforms, ocean images,
+//! sky cube) and a push constant picking the view (`ViewIndex`). They draw linear HDR radiance
+//! into the reflection and refraction textures and tone-mapped display colour into the main
+//! target ([`SceneTarget`], shaders/common/display.glsl), so terrain and sky have a pipeline for
+//! each. `output` puts the main target into the output image.
 
-pub mod composite;
+pub mod output;
 pub mod sky;
 pub mod terrain;
 pub mod water;
@@ -15,7 +16,6 @@ use std::sync::Arc;
 
 use ash::vk;
 
-pub use composite::CompositePass;
 pub use sky::{SkyCube, SkyPass};
 pub use terrain::TerrainPass;
 pub use water::WaterPass;
@@ -62,26 +62,58 @@ pub enum Depth {
     /// The background (sky) at the far plane, drawn last: only where nothing was drawn, so
     /// covered pixels are never shaded.
     Background,
+    /// No depth attachment (full-screen debug views).
+    None,
 }
 
-/// A scene pipeline drawing into HDR colour + depth.
+/// What a scene pipeline draws into.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SceneTarget {
+    /// Linear radiance (`HDR_FORMAT`): the reflection and refraction textures.
+    Hdr,
+    /// Tone-mapped colour in this 8-bit sRGB format: the main target (the output's format).
+    Display(vk::Format),
+}
+
+impl SceneTarget {
+    pub fn format(self) -> vk::Format {
+        match self {
+            SceneTarget::Hdr => HDR_FORMAT,
+            SceneTarget::Display(format) => format,
+        }
+    }
+}
+
+/// `constant_id` of `DISPLAY_TARGET` (shaders/common/display.glsl): scene shaders keep ids
+/// below it for their own constants.
+const DISPLAY_CONSTANT_ID: usize = 8;
+
+/// A scene pipeline drawing into `target`'s colour + depth; `desc.constants` are the shaders'
+/// own specialization constants (ids 0, 1, …), `DISPLAY_TARGET` is added.
 pub fn scene_pipeline(
     ctx: &Arc<Context>,
     layout: &PipelineLayout,
     desc: GraphicsDesc,
     depth: Depth,
+    target: SceneTarget,
 ) -> GpuResult<Pipeline> {
     let (compare, write) = match depth {
-        Depth::TestWrite => (vk::CompareOp::GREATER, true),
-        Depth::Background => (vk::CompareOp::GREATER_OR_EQUAL, false),
+        Depth::TestWrite => (Some(vk::CompareOp::GREATER), true),
+        Depth::Background => (Some(vk::CompareOp::GREATER_OR_EQUAL), false),
+        Depth::None => (None, false),
     };
+    assert!(desc.constants.len() <= DISPLAY_CONSTANT_ID);
+    let mut constants = desc.constants.to_vec();
+    constants.resize(DISPLAY_CONSTANT_ID, 0);
+    constants.push(matches!(target, SceneTarget::Display(_)) as u32);
     Pipeline::graphics(
         ctx,
         layout,
         &GraphicsDesc {
-            colour_formats: &[HDR_FORMAT],
-            depth_format: Some(DEPTH_FORMAT),
-            depth_compare: Some(compare),
+            colour_formats: &[target.format()],
+            constants: &constants,
+            depth_format: compare.map(|_| DEPTH_FORMAT),
+            depth_compare: compare,
             depth_write: write,
             ..desc
         },

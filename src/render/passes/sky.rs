@@ -8,7 +8,7 @@ use std::sync::Arc;
 use ash::vk;
 use glam::Vec3;
 
-use super::{bind_scene, scene_layout, scene_pipeline, Depth};
+use super::{bind_scene, scene_layout, scene_pipeline, Depth, SceneTarget};
 use crate::gpu::oneshot::upload_image;
 use crate::gpu::{
     Access, Attachment, Context, DescriptorSetLayout, GpuResult, GraphicsDesc, Image, ImageBarrier,
@@ -25,34 +25,54 @@ pub const SKYBOX_FACES: [&str; 6] = ["px", "nx", "py", "ny", "pz", "nz"];
 
 pub struct SkyPass {
     layout: PipelineLayout,
-    pipeline: Pipeline,
+    /// Into HDR (the reflection texture) and into the main target.
+    hdr: Pipeline,
+    display: Pipeline,
 }
 
 impl SkyPass {
-    pub fn new(ctx: &Arc<Context>, frame_layout: &DescriptorSetLayout) -> GpuResult<SkyPass> {
+    /// `display_format`: the main target's.
+    pub fn new(
+        ctx: &Arc<Context>,
+        frame_layout: &DescriptorSetLayout,
+        display_format: vk::Format,
+    ) -> GpuResult<SkyPass> {
         let layout = scene_layout(ctx, "sky layout", frame_layout, &[])?;
-        let pipeline = scene_pipeline(
-            ctx,
-            &layout,
-            GraphicsDesc {
-                name: "sky",
-                stages: &[
-                    (
-                        vk::ShaderStageFlags::VERTEX,
-                        shaders::COMMON_FULLSCREEN_VERT,
-                    ),
-                    (vk::ShaderStageFlags::FRAGMENT, shaders::SKY_SKY_FRAG),
-                ],
-                ..Default::default()
-            },
-            Depth::Background,
-        )?;
-        Ok(SkyPass { layout, pipeline })
+        let pipeline = |name, target| {
+            scene_pipeline(
+                ctx,
+                &layout,
+                GraphicsDesc {
+                    name,
+                    stages: &[
+                        (
+                            vk::ShaderStageFlags::VERTEX,
+                            shaders::COMMON_FULLSCREEN_VERT,
+                        ),
+                        (vk::ShaderStageFlags::FRAGMENT, shaders::SKY_SKY_FRAG),
+                    ],
+                    ..Default::default()
+                },
+                Depth::Background,
+                target,
+            )
+        };
+        let hdr = pipeline("sky (hdr)", SceneTarget::Hdr)?;
+        let display = pipeline("sky (main view)", SceneTarget::Display(display_format))?;
+        Ok(SkyPass {
+            layout,
+            hdr,
+            display,
+        })
     }
 
     /// Draws the sky where nothing else was drawn (last, inside a scene rendering scope).
     pub fn record(&self, rec: &Recorder, frame_set: vk::DescriptorSet, view: ViewIndex) {
-        bind_scene(rec, &self.pipeline, &self.layout, &[frame_set], view);
+        let pipeline = match view {
+            ViewIndex::Main => &self.display,
+            ViewIndex::Reflection | ViewIndex::Refraction => &self.hdr,
+        };
+        bind_scene(rec, pipeline, &self.layout, &[frame_set], view);
         rec.draw(3, 1);
     }
 }

@@ -1,13 +1,15 @@
 //! Terrain pass: the procedural island (shaders/terrain/terrain.vert, heights from
 //! shaders/common/terrain.glsl) and the objects standing in the water (objects.vert: capped
 //! cylinders, one instance each), lit by terrain.frag. Drawn in every view, with the view's clip
-//! plane.
+//! plane. The reflection and refraction views draw a coarser mesh over the same lattice (every
+//! other lattice point): they render at `--rtt-scale`, blurred by the waves' distortion, and a
+//! CPU driver pays for every triangle on one thread.
 
 use std::sync::Arc;
 
 use ash::vk;
 
-use super::{bind_scene, scene_layout, scene_pipeline, Depth};
+use super::{bind_scene, scene_layout, scene_pipeline, Depth, SceneTarget};
 use crate::gpu::oneshot::upload;
 use crate::gpu::{
     Buffer, Context, DescriptorSetLayout, GpuResult, GraphicsDesc, MemoryLocation, Pipeline,
@@ -22,27 +24,29 @@ const OBJECT_SEGMENTS: u32 = 20;
 const OBJECTS: u32 = 4;
 
 pub struct TerrainPass {
-    /// Grid quads per side (`--terrain-grid`; `TERRAIN_QUADS`, specialization constant 0 of
-    /// shaders/common/terrain.glsl).
-    quads: u32,
     /// Two triangles per grid quad over the (quads + 1)² lattice, row by row: each lattice
     /// vertex is shaded once per batch instead of six times (lavapipe's vertex stage runs on
     /// one CPU thread, so this matters in every view).
-    indices: Buffer,
+    indices: Mesh,
+    /// The same over every other lattice point (reflection and refraction views).
+    coarse: Mesh,
     layout: PipelineLayout,
-    terrain: Pipeline,
-    objects: Pipeline,
+    /// Island and objects into HDR (reflection, refraction) and into the main target.
+    hdr: [Pipeline; 2],
+    display: [Pipeline; 2],
 }
 
 impl TerrainPass {
-    /// `quads`: grid quads per side of the island's lattice.
+    /// `quads`: grid quads per side of the island's lattice; `display_format`: the main
+    /// target's.
     pub fn new(
         ctx: &Arc<Context>,
         frame_layout: &DescriptorSetLayout,
         quads: u32,
+        display_format: vk::Format,
     ) -> GpuResult<TerrainPass> {
         let layout = scene_layout(ctx, "terrain layout", frame_layout, &[])?;
-        let pipeline = |name, vert| {
+        let pipeline = |name: &str, vert: &[u8], target| {
             scene_pipeline(
                 ctx,
                 &layout,
@@ -59,49 +63,131 @@ impl TerrainPass {
                     ..Default::default()
                 },
                 Depth::TestWrite,
+                target,
             )
         };
-        let terrain = pipeline("terrain", shaders::TERRAIN_TERRAIN_VERT)?;
-        let objects = pipeline("objects", shaders::TERRAIN_OBJECTS_VERT)?;
-        let lattice = |x: u32, z: u32| z * (quads + 1) + x;
-        let mut list = Vec::with_capacity((quads * quads * 6) as usize);
-        for z in 0..quads {
-            for x in 0..quads {
-                // The corners of terrain.vert's former CORNERS table: (0,0) (1,1) (1,0), (0,0) (0,1) (1,1).
-                list.extend([
-                    lattice(x, z),
-                    lattice(x + 1, z + 1),
-                    lattice(x + 1, z),
-                    lattice(x, z),
-                    lattice(x, z + 1),
-                    lattice(x + 1, z + 1),
-                ]);
-            }
-        }
-        let bytes: &[u8] = bytemuck::cast_slice(&list);
-        let indices = Buffer::new(
+        let pair = |target, suffix| -> GpuResult<[Pipeline; 2]> {
+            Ok([
+                pipeline(
+                    &format!("terrain ({suffix})"),
+                    shaders::TERRAIN_TERRAIN_VERT,
+                    target,
+                )?,
+                pipeline(
+                    &format!("objects ({suffix})"),
+                    shaders::TERRAIN_OBJECTS_VERT,
+                    target,
+                )?,
+            ])
+        };
+        let hdr = pair(SceneTarget::Hdr, "hdr")?;
+        let display = pair(SceneTarget::Display(display_format), "main view")?;
+        let indices = Mesh::new(ctx, "terrain indices", &lattice_triangles(quads, 1))?;
+        let coarse = Mesh::new(
             ctx,
-            "terrain indices",
-            bytes.len() as u64,
-            vk::BufferUsageFlags::INDEX_BUFFER | vk::BufferUsageFlags::TRANSFER_DST,
-            MemoryLocation::GpuOnly,
+            "terrain indices (coarse)",
+            &lattice_triangles(quads, 2),
         )?;
-        upload(ctx, &indices, bytes)?;
         Ok(TerrainPass {
-            quads,
             indices,
+            coarse,
             layout,
-            terrain,
-            objects,
+            hdr,
+            display,
         })
     }
 
     /// Draws the island and the objects inside a scene rendering scope.
     pub fn record(&self, rec: &Recorder, frame_set: vk::DescriptorSet, view: ViewIndex) {
-        bind_scene(rec, &self.terrain, &self.layout, &[frame_set], view);
-        rec.bind_index_buffer(&self.indices);
-        rec.draw_indexed(self.quads * self.quads * 6, 1);
-        bind_scene(rec, &self.objects, &self.layout, &[frame_set], view);
+        let ([terrain, objects], mesh) = match view {
+            ViewIndex::Main => (&self.display, &self.indices),
+            ViewIndex::Reflection | ViewIndex::Refraction => (&self.hdr, &self.coarse),
+        };
+        bind_scene(rec, terrain, &self.layout, &[frame_set], view);
+        rec.bind_index_buffer(&mesh.buffer);
+        rec.draw_indexed(mesh.count, 1);
+        bind_scene(rec, objects, &self.layout, &[frame_set], view);
         rec.draw(OBJECT_SEGMENTS * 9, OBJECTS);
+    }
+}
+
+/// An index buffer and how many indices it holds.
+struct Mesh {
+    buffer: Buffer,
+    count: u32,
+}
+
+impl Mesh {
+    fn new(ctx: &Arc<Context>, name: &str, indices: &[u32]) -> GpuResult<Mesh> {
+        let bytes: &[u8] = bytemuck::cast_slice(indices);
+        let buffer = Buffer::new(
+            ctx,
+            name,
+            bytes.len() as u64,
+            vk::BufferUsageFlags::INDEX_BUFFER | vk::BufferUsageFlags::TRANSFER_DST,
+            MemoryLocation::GpuOnly,
+        )?;
+        upload(ctx, &buffer, bytes)?;
+        Ok(Mesh {
+            buffer,
+            count: indices.len() as u32,
+        })
+    }
+}
+
+/// Two triangles per cell of the (quads + 1)² lattice taken `step` points at a time (the last
+/// row and column of cells are narrower when `step` does not divide `quads`), row by row.
+fn lattice_triangles(quads: u32, step: u32) -> Vec<u32> {
+    let lattice = |x: u32, z: u32| z * (quads + 1) + x;
+    let edges: Vec<(u32, u32)> = (0..quads)
+        .step_by(step as usize)
+        .map(|a| (a, (a + step).min(quads)))
+        .collect();
+    let mut list = Vec::with_capacity(edges.len() * edges.len() * 6);
+    for &(z0, z1) in &edges {
+        for &(x0, x1) in &edges {
+            // Corners (0,0) (1,1) (1,0), (0,0) (0,1) (1,1) of the cell.
+            list.extend([
+                lattice(x0, z0),
+                lattice(x1, z1),
+                lattice(x1, z0),
+                lattice(x0, z0),
+                lattice(x0, z1),
+                lattice(x1, z1),
+            ]);
+        }
+    }
+    list
+}
+
+#[cfg(test)]
+mod tests {
+    use super::lattice_triangles;
+
+    /// Area of the triangles in lattice units (both windings count as positive).
+    fn area(quads: u32, indices: &[u32]) -> f64 {
+        let point = |i: u32| ((i % (quads + 1)) as f64, (i / (quads + 1)) as f64);
+        indices
+            .chunks_exact(3)
+            .map(|t| {
+                let (a, b, c) = (point(t[0]), point(t[1]), point(t[2]));
+                ((b.0 - a.0) * (c.1 - a.1) - (c.0 - a.0) * (b.1 - a.1)).abs() / 2.0
+            })
+            .sum()
+    }
+
+    #[test]
+    fn both_meshes_cover_the_whole_lattice_once() {
+        for quads in [16, 17, 64, 161] {
+            let full = (quads * quads) as f64;
+            let fine = lattice_triangles(quads, 1);
+            let coarse = lattice_triangles(quads, 2);
+            assert_eq!(fine.len() as u32, quads * quads * 6);
+            assert_eq!(coarse.len() as u32, quads.div_ceil(2).pow(2) * 6);
+            assert!((area(quads, &fine) - full).abs() < 1e-9, "quads {quads}");
+            assert!((area(quads, &coarse) - full).abs() < 1e-9, "quads {quads}");
+            let last = (quads + 1) * (quads + 1) - 1;
+            assert!(coarse.iter().all(|&i| i <= last) && coarse.contains(&last));
+        }
     }
 }

@@ -2,13 +2,15 @@
 //! layout in shaders/common/water.glsl). The control shader picks each edge's level from its
 //! screen size and culls patches outside the frustum; the evaluation shader displaces the
 //! vertices by the simulation's images; the fragment shader shades with the reflection and
-//! refraction textures (set 1, rewritten on resize), the DU/DV map and the sky cube.
+//! refraction textures (set 1, rewritten on resize), the DU/DV map and the sky cube. The same
+//! set feeds the texture debug views (`--view reflection|refraction|dudv`,
+//! shaders/post/textures.frag), drawn over the whole main target.
 
 use std::sync::Arc;
 
 use ash::vk;
 
-use super::{bind_scene, scene_layout, scene_pipeline, Depth};
+use super::{bind_scene, scene_layout, scene_pipeline, Depth, SceneTarget};
 use crate::gpu::descriptors::{self, Write};
 use crate::gpu::{
     Context, DescriptorPool, DescriptorSetLayout, GpuResult, GraphicsDesc, Pipeline,
@@ -38,13 +40,15 @@ pub struct WaterPass {
     fill: Pipeline,
     /// Line rendering (`--view wireframe`), when the device has fillModeNonSolid.
     wireframe: Option<Pipeline>,
+    /// A texture of the set over the whole main target (debug views).
+    textures_view: Pipeline,
     _pool: DescriptorPool,
     set: vk::DescriptorSet,
 }
 
 impl WaterPass {
     /// `cascades`: layers of the ocean images (a specialization constant of the evaluation
-    /// shader's loop).
+    /// shader's loop). Draws into the main target (`targets.display_format`).
     pub fn new(
         ctx: &Arc<Context>,
         frame_layout: &DescriptorSetLayout,
@@ -53,6 +57,7 @@ impl WaterPass {
         samplers: &WaterSamplers,
         cascades: u32,
     ) -> GpuResult<WaterPass> {
+        let target = SceneTarget::Display(targets.display_format());
         let sampled = vk::DescriptorType::COMBINED_IMAGE_SAMPLER;
         let fragment = vk::ShaderStageFlags::FRAGMENT;
         let set_layout = DescriptorSetLayout::new(
@@ -92,6 +97,7 @@ impl WaterPass {
                     ..Default::default()
                 },
                 Depth::TestWrite,
+                target,
             )
         };
         let fill = pipeline("water", vk::PolygonMode::FILL)?;
@@ -100,6 +106,23 @@ impl WaterPass {
         } else {
             None
         };
+        let textures_view = scene_pipeline(
+            ctx,
+            &layout,
+            GraphicsDesc {
+                name: "water textures view",
+                stages: &[
+                    (
+                        vk::ShaderStageFlags::VERTEX,
+                        shaders::COMMON_FULLSCREEN_VERT,
+                    ),
+                    (vk::ShaderStageFlags::FRAGMENT, shaders::POST_TEXTURES_FRAG),
+                ],
+                ..Default::default()
+            },
+            Depth::None,
+            target,
+        )?;
         let pool = DescriptorPool::new(ctx, "water descriptors", 1, &[(sampled, 4)])?;
         let set = pool.allocate(&set_layout, "water textures set")?;
         let pass = WaterPass {
@@ -108,6 +131,7 @@ impl WaterPass {
             layout,
             fill,
             wireframe,
+            textures_view,
             _pool: pool,
             set,
         };
@@ -170,5 +194,18 @@ impl WaterPass {
         );
         // One instance per row of patches (see water.vert).
         rec.draw(PATCHES * 4, PATCHES);
+    }
+
+    /// Draws `--view reflection|refraction|dudv` over the whole main target, inside a rendering
+    /// scope with the main colour attachment only.
+    pub fn record_textures_view(&self, rec: &Recorder, frame_set: vk::DescriptorSet) {
+        bind_scene(
+            rec,
+            &self.textures_view,
+            &self.layout,
+            &[frame_set, self.set],
+            ViewIndex::Main,
+        );
+        rec.draw(3, 1);
     }
 }
