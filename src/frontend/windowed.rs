@@ -207,6 +207,7 @@ impl App {
         let window_size = physical_size(state.window.inner_size());
         let extent = state.swapchain.surface_extent(window_size)?;
         if extent.width == 0 || extent.height == 0 {
+            self.title_since = None; // the title's next frame time starts after the pause
             return Ok(()); // minimised: pause until the next resize
         }
         if state.needs_recreate || extent != state.swapchain.extent {
@@ -316,16 +317,16 @@ impl App {
         state.needs_recreate |= state.swapchain.present(&image)?;
         self.frames_done += 1;
         match self.title_since {
-            Some((since, frames)) if since.elapsed() >= TITLE_PERIOD => {
-                let ms = since.elapsed().as_secs_f64() * 1e3 / (self.frames_done - frames) as f64;
+            Some((since, frames)) if now - since >= TITLE_PERIOD => {
+                let ms = (now - since).as_secs_f64() * 1e3 / (self.frames_done - frames) as f64;
                 state.window.set_title(&format!(
                     "vkocean - frame {} - {ms:.1} ms/frame",
                     self.frames_done
                 ));
-                self.title_since = Some((std::time::Instant::now(), self.frames_done));
+                self.title_since = Some((now, self.frames_done));
             }
             Some(_) => {}
-            None => self.title_since = Some((std::time::Instant::now(), self.frames_done)),
+            None => self.title_since = Some((now, self.frames_done)),
         }
         if self.settings.stats {
             state.session.print_stats()?;
@@ -447,9 +448,11 @@ impl ApplicationHandler for App {
                 Key::Named(NamedKey::F12) => self.capture_next = true,
                 _ => {}
             },
-            WindowEvent::Resized(_) => {
+            WindowEvent::Resized(size) => {
+                // A resize often reaches the swapchain first (out of date at the next acquire,
+                // recreated at the new size); the event arriving after that needs nothing more.
                 if let Some(state) = self.state.as_mut() {
-                    state.needs_recreate = true;
+                    state.needs_recreate |= physical_size(size) != state.swapchain.extent;
                 }
             }
             WindowEvent::RedrawRequested => {
