@@ -129,9 +129,7 @@ impl ProfileReport<'_> {
         });
         let mut report = report;
         if !self.gpu.statistics.is_empty() {
-            let column = |f: fn(&DrawStatistics) -> u64| -> Vec<f64> {
-                self.gpu.statistics.iter().map(|c| f(c) as f64).collect()
-            };
+            let column = |f| self.statistics_column(f);
             report["water_tessellation"] = json!({
                 "patches": Stats::json(&column(|c| c.patches)),
                 "tess_eval_invocations": Stats::json(&column(|c| c.tess_eval_invocations)),
@@ -141,6 +139,15 @@ impl ProfileReport<'_> {
             });
         }
         report
+    }
+
+    /// One counter of the water draw's statistics, frame by frame.
+    fn statistics_column(&self, counter: fn(&DrawStatistics) -> u64) -> Vec<f64> {
+        self.gpu
+            .statistics
+            .iter()
+            .map(|c| counter(c) as f64)
+            .collect()
     }
 
     /// A short human-readable table (logged at the end of a profiled run).
@@ -160,17 +167,7 @@ impl ProfileReport<'_> {
                 "compute (GPU)", s.median, s.p95
             );
         }
-        let median = |f: fn(&DrawStatistics) -> u64| {
-            Stats::of(
-                &self
-                    .gpu
-                    .statistics
-                    .iter()
-                    .map(|c| f(c) as f64)
-                    .collect::<Vec<_>>(),
-            )
-            .map(|s| s.median)
-        };
+        let median = |f| Stats::of(&self.statistics_column(f)).map(|s| s.median);
         if let (Some(p), Some(e), Some(t), Some(f)) = (
             median(|c| c.patches),
             median(|c| c.tess_eval_invocations),

@@ -352,7 +352,7 @@ fn config_and_presets_apply_and_the_command_line_wins() {
     let params: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(dump.join("params.json")).unwrap()).unwrap();
     // The command line beats the preset; the file's own key beats the preset; the preset fills
-    // the rest; --quality low sets the grid.
+    // the rest; --quality low sets the grid (FFT size 64; its 3 cascades are also the default).
     assert_eq!(params["wind_speed_m_s"], 20.0, "{params}");
     assert_eq!(params["fetch_km"], 300.0, "{params}");
     assert_eq!(params["choppiness"], 1.2, "{params}");

@@ -290,7 +290,7 @@ fn golden_image() {
     );
 }
 
-/// `--profile`'s tessellation counters: (patches, tess-eval invocations) medians.
+/// `--profile`'s water-draw counters (medians) at `--tess-edge edge_px`.
 fn tessellation_counts(edge_px: &str) -> DrawCounts {
     let dir = scratch(&format!("render-lod-{edge_px}"));
     let profile = dir.join("p.json");
@@ -339,7 +339,7 @@ fn profile_counts_the_tessellation_and_finer_edges_cost_more() {
     assert_eq!(coarse.patches, 1024.0);
     assert_eq!(fine.patches, 1024.0);
     // Edge levels scale with 1 / target length: 4x finer edges, many times more vertices and
-    // triangles, and more fragments (partly covered blocks along the extra edges).
+    // triangles.
     let (f, c) = (&fine, &coarse);
     assert!(
         f.tess_eval > 4.0 * c.tess_eval,
@@ -353,10 +353,12 @@ fn profile_counts_the_tessellation_and_finer_edges_cost_more() {
         f.triangles,
         c.triangles
     );
-    // The water covers about half of the 320x180 target: at least that many fragments.
+    // The water covers about half of the 320x180 target: at least that many fragments. More
+    // triangles over the same pixels never shade fewer (lavapipe, shading whole 4x4 blocks,
+    // shades more; a device counting covered samples only, the same).
     assert!(c.fragments > 0.3 * 320.0 * 180.0, "{}", c.fragments);
     assert!(
-        f.fragments > c.fragments,
+        f.fragments >= c.fragments,
         "{} vs {}",
         f.fragments,
         c.fragments

@@ -24,12 +24,13 @@ const WAIT_FOR_WINDOW: &str = r#"wid=""
         done
         if [ -z "$wid" ]; then echo "no vkocean window appeared" >&2; wait "$pid"; exit 1; fi"#;
 
-/// Runs `script` (bash) under xvfb-run with $VKOCEAN set to the binary; 120 s cap.
+/// Runs `script` (bash) under xvfb-run with $VKOCEAN set to the binary; 180 s cap (above the
+/// scripts' own waits: 30 s for the window, 60 s for 600 frames, 20 s for Esc).
 fn under_xvfb(script: &str) -> std::process::Output {
     let _guard = XVFB.lock().unwrap_or_else(|p| p.into_inner());
     Command::new("timeout")
         .args([
-            "120",
+            "180",
             "xvfb-run",
             "-a",
             "-s",
@@ -142,7 +143,7 @@ fn window_survives_twenty_resizes_minimize_and_six_hundred_frames() {
         sleep 1
         xdotool windowmap "$wid"
         frame=0
-        for _ in $(seq 900); do
+        for _ in $(seq 600); do
             kill -0 "$pid" 2>/dev/null || {{ echo "vkocean exited before 600 frames" >&2; break; }}
             title=$(xdotool getwindowname "$wid")
             case "$title" in

@@ -381,7 +381,7 @@ pub struct BenchFftArgs {
     /// median spans the drift of a shared machine]
     #[arg(long, value_name = "R", value_parser = parse_runs, allow_hyphen_values = true)]
     pub runs: Option<usize>,
-    /// Also write the table as JSON: [{"n","batch","gpu_ms","rustfft_ms","ratio","rustfft_2d_ms","kernel","runs"}, ...].
+    /// Also write the table as JSON: [{"n","batch","gpu_ms","rustfft_ms","ratio","rustfft_2d_ms","kernel","runs","steal_pct"}, ...].
     #[arg(long, value_name = "PATH")]
     pub json: Option<PathBuf>,
 }

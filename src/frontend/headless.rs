@@ -150,7 +150,7 @@ impl Offscreen {
             image: self.image.raw,
             extent: self.extent,
             format: OUTPUT_FORMAT,
-            // The previous frame copied into the target and may have copied from it.
+            // The previous frame copied (or blitted) into the target and may have copied from it.
             prior: OutputTarget::FINAL_ACCESS.or(Access::COPY_READ),
         }
     }

@@ -25,7 +25,7 @@ pub struct DeviceInfo {
     pub compute_timestamp_valid_bits: u32,
     pub fill_mode_non_solid: bool,
     pub sampler_anisotropy: bool,
-    /// Pipeline-statistics queries (tessellation counters in `--profile`).
+    /// Pipeline-statistics queries (the water draw's counters in `--profile`).
     pub pipeline_statistics_query: bool,
     /// 64-bit integers in shaders (the CPU FFT kernel's 32-byte stores).
     pub shader_int64: bool,

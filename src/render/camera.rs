@@ -6,6 +6,8 @@
 
 use glam::{Mat4, Vec3, Vec4};
 
+use super::ViewMode;
+
 /// A perspective camera in world space (metres, y up).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Camera {
@@ -71,7 +73,8 @@ pub struct OceanBindings {
     /// Patch side of each cascade (m), padded to four.
     pub patch_m: [f32; 4],
     pub cascades: u32,
-    /// Bound on the surface's displacement from its rest position (m), for patch culling.
+    /// Bound on the surface's displacement from its rest position (m): patch culling, and how
+    /// deep the main view can see under the water (`frame_views`).
     pub max_displacement_m: f32,
 }
 
@@ -126,22 +129,24 @@ impl ViewUniforms {
 /// distances (eq. 2, p · v_world) keep what lies above the water for the reflection and below
 /// it for the refraction.
 ///
-/// The main view clips what lies deeper than the waves reach (`wave_reach_m` below the water
-/// plane) while the camera is above their reach: from there every ray to such a point crosses
-/// the opaque water surface, which shows what is under it from the refraction texture. Without
-/// that clip the sea floor around the island, most of the terrain grid, was set up, binned and
-/// rasterized every frame only to be drawn over by the water (4 ms a frame at --quality low on
-/// lavapipe).
-pub fn frame_views(camera: &Camera, aspect: f32, wave_reach_m: f32) -> [ViewUniforms; 3] {
+/// `hidden_below_m`: when the water is drawn opaque (every view but the wireframe), the depth
+/// below the water plane beyond which the waves never reach. The main view then clips what lies
+/// deeper while the camera (and its near plane) is above the waves: from there every ray to such
+/// a point crosses the water surface, which shows what is under it from the refraction texture.
+/// Without that clip the sea floor around the island, most of the terrain grid, was set up,
+/// binned and rasterized every frame only to be drawn over by the water (4 ms a frame at
+/// --quality low on lavapipe).
+pub fn frame_views(camera: &Camera, aspect: f32, hidden_below_m: Option<f32>) -> [ViewUniforms; 3] {
     let d = WATER_LEVEL_M;
     let vp = camera.view_proj(aspect);
     let mirror = Mat4::from_scale(Vec3::new(1.0, -1.0, 1.0));
     let mut mirrored_eye = camera.position;
     mirrored_eye.y -= 2.0 * (camera.position.y - d);
-    let main_clip = if camera.position.y > d + wave_reach_m {
-        Vec4::new(0.0, 1.0, 0.0, -(d - wave_reach_m))
-    } else {
-        Vec4::new(0.0, 0.0, 0.0, 1.0) // among or under the waves: keep everything
+    let main_clip = match hidden_below_m {
+        Some(reach) if camera.position.y > d + reach + camera.near_m => {
+            Vec4::new(0.0, 1.0, 0.0, -(d - reach))
+        }
+        _ => Vec4::new(0.0, 0.0, 0.0, 1.0), // keep everything
     };
     [
         ViewUniforms::new(vp, camera.position, main_clip),
@@ -247,7 +252,12 @@ impl FrameUniforms {
         // |P[1][1]| = 1 / tan(fov/2): the focal length in pixels is that times half the height.
         let focal_px = projection.y_axis.y.abs() * h * 0.5;
         FrameUniforms {
-            views: frame_views(camera, p.aspect, p.ocean.max_displacement_m),
+            views: frame_views(
+                camera,
+                p.aspect,
+                // The wireframe view draws the water as lines: what lies under it shows.
+                (p.view_mode != ViewMode::Wireframe as u32).then_some(p.ocean.max_displacement_m),
+            ),
             time: [
                 p.time_s,
                 WATER_LEVEL_M,
@@ -312,7 +322,7 @@ mod tests {
         // its mirror image below the water: the water samples both at its own screen position.
         let cam = Camera::default();
         let reach = 3.0;
-        let [main, refl, refr] = frame_views(&cam, 1.5, reach);
+        let [main, refl, refr] = frame_views(&cam, 1.5, Some(reach));
         let project = |v: &ViewUniforms, world: Vec3| {
             let clip = Mat4::from_cols_array_2d(&v.view_proj)
                 * (world - Vec3::from_slice(&v.eye[..3])).extend(1.0);
@@ -331,12 +341,15 @@ mod tests {
         let trough = Vec3::new(30.0, WATER_LEVEL_M - 0.9 * reach, -200.0);
         assert!(plane(&main, above) > 0.0 && plane(&main, trough) > 0.0);
         assert!(plane(&main, mirrored) < 0.0);
-        // A camera among the waves (or under them) keeps everything.
+        // A camera among the waves, and a view where the water does not hide (wireframe), keep
+        // everything.
         let low = Camera {
             position: Vec3::new(0.0, WATER_LEVEL_M + 0.5 * reach, 0.0),
             ..Camera::default()
         };
-        let [main, _, _] = frame_views(&low, 1.5, reach);
+        let [main, _, _] = frame_views(&low, 1.5, Some(reach));
+        assert!(plane(&main, mirrored) > 0.0);
+        let [main, _, _] = frame_views(&cam, 1.5, None);
         assert!(plane(&main, mirrored) > 0.0);
     }
 

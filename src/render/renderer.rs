@@ -3,10 +3,12 @@
 //! ```text
 //!  frame uniforms (slot f % 2): three views (camera, mirrored camera, refraction), sun, ocean
 //!  sky cube    the analytic sky into the cubemap's 6 faces       (only when the sun changed)
-//!  reflection  sky + island + objects, mirrored camera, clip below the water  -> reflection colour
-//!  refraction  island + objects below the water (clip above)   -> refraction colour + depth
-//!  scene       island + objects                                -> hdr colour + depth (main view,
-//!                                                                 at --render-scale)
+//!  reflection  sky + island (coarse) + objects, mirrored camera, clip below the water
+//!                                                              -> reflection HDR colour + depth
+//!  refraction  island (coarse) + objects below the water (clip above)
+//!                                                              -> refraction HDR colour + depth
+//!  scene       island + objects, clip below the waves' reach   -> main (display) colour + depth
+//!                                                                 (at --render-scale)
 //!  water       tessellated ocean patches: displaced by the simulation images of slot f % 2
 //!              (after the compute timeline wait), shaded with reflection, refraction, DU/DV
 //!  sky         the sky where nothing else was drawn
@@ -360,18 +362,20 @@ impl Renderer {
         }
 
         let t = &self.targets;
-        // Every target is rewritten whole this frame; the previous frame sampled the texture
-        // targets, copied from the main one, and wrote the depth targets.
+        // Every target is rewritten whole this frame; the previous frame wrote the colour and
+        // depth targets, sampled the texture targets and copied from the main one.
         let mut to_attachments = Vec::new();
-        for cd in [&t.reflection, &t.refraction, &t.main] {
+        for (cd, read) in [
+            (&t.reflection, Access::FRAGMENT_SAMPLED),
+            (&t.refraction, Access::FRAGMENT_SAMPLED),
+            (&t.main, Access::TRANSFER_READ),
+        ] {
             to_attachments.push(ImageBarrier {
                 image: cd.colour.raw,
                 range: cd.colour.range(),
                 old_layout: vk::ImageLayout::UNDEFINED,
                 new_layout: vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL,
-                src: Access::FRAGMENT_SAMPLED
-                    .or(Access::COLOUR_WRITE)
-                    .or(Access::TRANSFER_READ),
+                src: read.or(Access::COLOUR_WRITE),
                 dst: Access::COLOUR_RW,
             });
             to_attachments.push(ImageBarrier {

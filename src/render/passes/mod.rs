@@ -89,7 +89,9 @@ impl SceneTarget {
 const DISPLAY_CONSTANT_ID: usize = 8;
 
 /// A scene pipeline drawing into `target`'s colour + depth; `desc.constants` are the shaders'
-/// own specialization constants (ids 0, 1, …), `DISPLAY_TARGET` is added.
+/// own specialization constants (ids 0, 1, …), `DISPLAY_TARGET` is added at id 8 and the ids
+/// between are specialized to 0 (so a scene shader's own constant must be given a value here,
+/// not left to its default).
 pub fn scene_pipeline(
     ctx: &Arc<Context>,
     layout: &PipelineLayout,

@@ -12,18 +12,18 @@ use ash::vk;
 
 use crate::gpu::image::full_range;
 use crate::gpu::{Access, Image, ImageBarrier, Recorder};
+
 use crate::render::OutputTarget;
 
 /// Records the copy or blit of `main` (the main colour, last written as a colour attachment)
 /// into `output`, which ends in [`OutputTarget::FINAL_LAYOUT`] after
 /// [`OutputTarget::FINAL_ACCESS`]. Outside any rendering scope.
 pub fn record(rec: &Recorder, main: &Image, output: &OutputTarget) {
-    let range = full_range(vk::ImageAspectFlags::COLOR, 1);
     rec.barrier(
         &[
             ImageBarrier {
                 image: main.raw,
-                range,
+                range: main.range(),
                 old_layout: vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL,
                 new_layout: vk::ImageLayout::TRANSFER_SRC_OPTIMAL,
                 src: Access::COLOUR_WRITE,
@@ -31,7 +31,7 @@ pub fn record(rec: &Recorder, main: &Image, output: &OutputTarget) {
             },
             ImageBarrier {
                 image: output.image,
-                range,
+                range: full_range(vk::ImageAspectFlags::COLOR, 1),
                 old_layout: vk::ImageLayout::UNDEFINED,
                 new_layout: OutputTarget::FINAL_LAYOUT,
                 src: output.prior,

@@ -177,7 +177,7 @@ mod tests {
     }
 
     #[test]
-    fn both_meshes_cover_the_whole_lattice_once() {
+    fn both_meshes_span_the_lattice_with_its_area_and_corner() {
         for quads in [16, 17, 64, 161] {
             let full = (quads * quads) as f64;
             let fine = lattice_triangles(quads, 1);

@@ -47,8 +47,8 @@ pub struct WaterPass {
 }
 
 impl WaterPass {
-    /// `cascades`: layers of the ocean images (a specialization constant of the evaluation
-    /// shader's loop). Draws into the main target (`targets.display_format`).
+    /// `cascades`: layers of the ocean images (a specialization constant: the loop bound of the
+    /// evaluation and fragment shaders). Draws into the main target (`targets.display_format`).
     pub fn new(
         ctx: &Arc<Context>,
         frame_layout: &DescriptorSetLayout,
