@@ -82,6 +82,41 @@ impl SceneTarget {
             SceneTarget::Display(format) => format,
         }
     }
+
+    /// For object names: "hdr" or "main view".
+    pub fn label(self) -> &'static str {
+        match self {
+            SceneTarget::Hdr => "hdr",
+            SceneTarget::Display(_) => "main view",
+        }
+    }
+}
+
+/// One `T` per scene target (pipelines, meshes), picked by the view a draw renders: the main
+/// view draws into the display target, the reflection and refraction views into HDR textures.
+pub struct PerTarget<T> {
+    hdr: T,
+    display: T,
+}
+
+impl<T> PerTarget<T> {
+    /// `make` builds the `T` of a target.
+    pub fn new(
+        display_format: vk::Format,
+        mut make: impl FnMut(SceneTarget) -> GpuResult<T>,
+    ) -> GpuResult<PerTarget<T>> {
+        Ok(PerTarget {
+            hdr: make(SceneTarget::Hdr)?,
+            display: make(SceneTarget::Display(display_format))?,
+        })
+    }
+
+    pub fn for_view(&self, view: ViewIndex) -> &T {
+        match view {
+            ViewIndex::Main => &self.display,
+            ViewIndex::Reflection | ViewIndex::Refraction => &self.hdr,
+        }
+    }
 }
 
 /// `constant_id` of `DISPLAY_TARGET` (shaders/common/display.glsl): scene shaders keep ids

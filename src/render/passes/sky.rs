@@ -8,7 +8,7 @@ use std::sync::Arc;
 use ash::vk;
 use glam::Vec3;
 
-use super::{bind_scene, scene_layout, scene_pipeline, Depth, SceneTarget};
+use super::{bind_scene, scene_layout, scene_pipeline, Depth, PerTarget};
 use crate::gpu::oneshot::upload_image;
 use crate::gpu::{
     Access, Attachment, Context, DescriptorSetLayout, GpuResult, GraphicsDesc, Image, ImageBarrier,
@@ -26,8 +26,7 @@ pub const SKYBOX_FACES: [&str; 6] = ["px", "nx", "py", "ny", "pz", "nz"];
 pub struct SkyPass {
     layout: PipelineLayout,
     /// Into HDR (the reflection texture) and into the main target.
-    hdr: Pipeline,
-    display: Pipeline,
+    pipelines: PerTarget<Pipeline>,
 }
 
 impl SkyPass {
@@ -38,12 +37,12 @@ impl SkyPass {
         display_format: vk::Format,
     ) -> GpuResult<SkyPass> {
         let layout = scene_layout(ctx, "sky layout", frame_layout, &[])?;
-        let pipeline = |name, target| {
+        let pipelines = PerTarget::new(display_format, |target| {
             scene_pipeline(
                 ctx,
                 &layout,
                 GraphicsDesc {
-                    name,
+                    name: &format!("sky ({})", target.label()),
                     stages: &[
                         (
                             vk::ShaderStageFlags::VERTEX,
@@ -56,23 +55,19 @@ impl SkyPass {
                 Depth::Background,
                 target,
             )
-        };
-        let hdr = pipeline("sky (hdr)", SceneTarget::Hdr)?;
-        let display = pipeline("sky (main view)", SceneTarget::Display(display_format))?;
-        Ok(SkyPass {
-            layout,
-            hdr,
-            display,
-        })
+        })?;
+        Ok(SkyPass { layout, pipelines })
     }
 
     /// Draws the sky where nothing else was drawn (last, inside a scene rendering scope).
     pub fn record(&self, rec: &Recorder, frame_set: vk::DescriptorSet, view: ViewIndex) {
-        let pipeline = match view {
-            ViewIndex::Main => &self.display,
-            ViewIndex::Reflection | ViewIndex::Refraction => &self.hdr,
-        };
-        bind_scene(rec, pipeline, &self.layout, &[frame_set], view);
+        bind_scene(
+            rec,
+            self.pipelines.for_view(view),
+            &self.layout,
+            &[frame_set],
+            view,
+        );
         rec.draw(3, 1);
     }
 }

@@ -9,7 +9,7 @@ use std::sync::Arc;
 
 use ash::vk;
 
-use super::{bind_scene, scene_layout, scene_pipeline, Depth, SceneTarget};
+use super::{bind_scene, scene_layout, scene_pipeline, Depth, PerTarget, SceneTarget};
 use crate::gpu::oneshot::upload;
 use crate::gpu::{
     Buffer, Context, DescriptorSetLayout, GpuResult, GraphicsDesc, MemoryLocation, Pipeline,
@@ -24,16 +24,14 @@ const OBJECT_SEGMENTS: u32 = 20;
 const OBJECTS: u32 = 4;
 
 pub struct TerrainPass {
-    /// Two triangles per grid quad over the (quads + 1)² lattice, row by row: each lattice
-    /// vertex is shaded once per batch instead of six times (lavapipe's vertex stage runs on
-    /// one CPU thread, so this matters in every view).
-    indices: Mesh,
-    /// The same over every other lattice point (reflection and refraction views).
-    coarse: Mesh,
+    /// Index buffers over the (quads + 1)² lattice, two triangles per cell, row by row: each
+    /// lattice vertex is shaded once per batch instead of six times (lavapipe's vertex stage
+    /// runs on one CPU thread, so this matters in every view). The main view's cells are one
+    /// lattice step wide, the HDR views' (reflection, refraction) two.
+    meshes: PerTarget<Mesh>,
     layout: PipelineLayout,
     /// Island and objects into HDR (reflection, refraction) and into the main target.
-    hdr: [Pipeline; 2],
-    display: [Pipeline; 2],
+    pipelines: PerTarget<[Pipeline; 2]>,
 }
 
 impl TerrainPass {
@@ -66,43 +64,40 @@ impl TerrainPass {
                 target,
             )
         };
-        let pair = |target, suffix| -> GpuResult<[Pipeline; 2]> {
+        let pipelines = PerTarget::new(display_format, |target| {
+            let label = target.label();
             Ok([
                 pipeline(
-                    &format!("terrain ({suffix})"),
+                    &format!("terrain ({label})"),
                     shaders::TERRAIN_TERRAIN_VERT,
                     target,
                 )?,
                 pipeline(
-                    &format!("objects ({suffix})"),
+                    &format!("objects ({label})"),
                     shaders::TERRAIN_OBJECTS_VERT,
                     target,
                 )?,
             ])
-        };
-        let hdr = pair(SceneTarget::Hdr, "hdr")?;
-        let display = pair(SceneTarget::Display(display_format), "main view")?;
-        let indices = Mesh::new(ctx, "terrain indices", &lattice_triangles(quads, 1))?;
-        let coarse = Mesh::new(
-            ctx,
-            "terrain indices (coarse)",
-            &lattice_triangles(quads, 2),
-        )?;
+        })?;
+        let meshes = PerTarget::new(display_format, |target| {
+            let step = match target {
+                SceneTarget::Hdr => 2,
+                SceneTarget::Display(_) => 1,
+            };
+            let name = format!("terrain indices ({})", target.label());
+            Mesh::new(ctx, &name, &lattice_triangles(quads, step))
+        })?;
         Ok(TerrainPass {
-            indices,
-            coarse,
+            meshes,
             layout,
-            hdr,
-            display,
+            pipelines,
         })
     }
 
     /// Draws the island and the objects inside a scene rendering scope.
     pub fn record(&self, rec: &Recorder, frame_set: vk::DescriptorSet, view: ViewIndex) {
-        let ([terrain, objects], mesh) = match view {
-            ViewIndex::Main => (&self.display, &self.indices),
-            ViewIndex::Reflection | ViewIndex::Refraction => (&self.hdr, &self.coarse),
-        };
+        let [terrain, objects] = self.pipelines.for_view(view);
+        let mesh = self.meshes.for_view(view);
         bind_scene(rec, terrain, &self.layout, &[frame_set], view);
         rec.bind_index_buffer(&mesh.buffer);
         rec.draw_indexed(mesh.count, 1);
