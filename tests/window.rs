@@ -14,8 +14,15 @@ use common::{clean_run, frames_rendered, read_png, scratch};
 static XVFB: Mutex<()> = Mutex::new(());
 
 /// Bash: after `"$VKOCEAN" ... & pid=$!`, sets $wid to the vkocean window, giving up as soon as
-/// vkocean exits (a crash must fail fast).
-const WAIT_FOR_WINDOW: &str = r#"wid=""
+/// vkocean exits (a crash must fail fast), and defines `drawn_at WxH`, which waits (up to 5 s)
+/// for the title (`vkocean - WxH - frame N - ...`) to show a frame drawn at that size.
+const WAIT_FOR_WINDOW: &str = r#"drawn_at() {
+            for _ in $(seq 50); do
+                case "$(xdotool getwindowname "$wid")" in *" $1 "*) return ;; esac
+                sleep 0.1
+            done
+        }
+        wid=""
         for _ in $(seq 300); do
             wid=$(xdotool search --onlyvisible --name '^vkocean( - |$)' 2>/dev/null | head -n1) || true
             [ -n "$wid" ] && break
@@ -24,13 +31,13 @@ const WAIT_FOR_WINDOW: &str = r#"wid=""
         done
         if [ -z "$wid" ]; then echo "no vkocean window appeared" >&2; wait "$pid"; exit 1; fi"#;
 
-/// Runs `script` (bash) under xvfb-run with $VKOCEAN set to the binary; 180 s cap (above the
-/// scripts' own waits: 30 s for the window, 60 s for 600 frames, 20 s for Esc).
+/// Runs `script` (bash) under xvfb-run with $VKOCEAN set to the binary; 240 s cap (above the
+/// scripts' own waits: 30 s for the window, 5 s per resize, 60 s for 600 frames, 20 s for Esc).
 fn under_xvfb(script: &str) -> std::process::Output {
     let _guard = XVFB.lock().unwrap_or_else(|p| p.into_inner());
     Command::new("timeout")
         .args([
-            "180",
+            "240",
             "xvfb-run",
             "-a",
             "-s",
@@ -54,16 +61,19 @@ fn window_resizes_twice_and_stays_validation_clean() {
         "$VKOCEAN" --validation --size 640x360 --fft-size 64 --cascades 2 --screenshot '{shot}' &
         pid=$!
         {wait}
+        drawn_at 640x360
         sleep 1.5
         xdotool windowsize "$wid" 800 500
+        drawn_at 800x500
         sleep 1.5
         xdotool windowsize "$wid" 480 300
+        drawn_at 480x300
         sleep 1.5
         # Without a window manager nothing focuses the window; key events need focus.
         xdotool windowfocus --sync "$wid" 2>/dev/null || true
         xdotool key --window "$wid" F12 2>/dev/null
         sleep 1
-        xdotool key --window "$wid" Escape 2>/dev/null
+        xdotool key --window "$wid" Escape 2>/dev/null || true
         # Esc must end the run; if it does not within 20 s, kill it (the test then fails).
         for _ in $(seq 200); do kill -0 "$pid" 2>/dev/null || break; sleep 0.1; done
         kill "$pid" 2>/dev/null && echo "vkocean did not exit on Esc" >&2
@@ -124,18 +134,22 @@ const RESIZES: [(u32, u32); 20] = [
 fn window_survives_twenty_resizes_minimize_and_six_hundred_frames() {
     let sizes: Vec<String> = RESIZES.iter().map(|(w, h)| format!("{w} {h}")).collect();
     // No --frames: a fast machine drew 600 frames before the script was done with the window
-    // (xdotool then failed on a closed window). The script ends the run with Esc once the
-    // window's title (`vkocean - frame N - ...`, updated twice a second) has passed 600.
+    // (xdotool then failed on a closed window). The window's title (`vkocean - WxH - frame N -
+    // ...`) shows the size of the last frame drawn. The script waits for a frame at the initial
+    // size before the first resize (with --validation the window can appear well before its
+    // first swapchain, which would then be made at the resized size), and after each resize
+    // for a frame at the new size (two resizes between two frames need one swapchain, not two).
+    // It ends the run with Esc once the title has passed 600 frames.
     let script = format!(
         r#"
         "$VKOCEAN" --validation --quality low --size 320x180 &
         pid=$!
         {wait}
-        sleep 0.5
+        drawn_at 320x180
         for size in {sizes}; do
             kill -0 "$pid" 2>/dev/null || {{ echo "vkocean exited during the resizes" >&2; break; }}
             xdotool windowsize "$wid" $size
-            sleep 0.25
+            drawn_at "${{size/ /x}}"
         done
         # Minimise and restore: without a window manager, unmapping is what hides the window.
         xdotool windowminimize "$wid" 2>/dev/null || true
@@ -145,15 +159,14 @@ fn window_survives_twenty_resizes_minimize_and_six_hundred_frames() {
         frame=0
         for _ in $(seq 600); do
             kill -0 "$pid" 2>/dev/null || {{ echo "vkocean exited before 600 frames" >&2; break; }}
-            title=$(xdotool getwindowname "$wid")
-            case "$title" in
-                "vkocean - frame "*) frame=${{title#vkocean - frame }}; frame=${{frame%% *}} ;;
-            esac
+            frame=$(xdotool getwindowname "$wid" | sed -n 's/.* - frame \([0-9]*\) - .*/\1/p')
+            frame=${{frame:-0}}
             [ "$frame" -ge 600 ] && break
             sleep 0.1
         done
         xdotool windowfocus --sync "$wid" 2>/dev/null || true
-        xdotool key --window "$wid" Escape 2>/dev/null
+        # The key-up may reach a window already closed by the key-down: xdotool then fails.
+        xdotool key --window "$wid" Escape 2>/dev/null || true
         for _ in $(seq 200); do kill -0 "$pid" 2>/dev/null || break; sleep 0.1; done
         kill "$pid" 2>/dev/null && echo "vkocean did not exit on Esc" >&2
         wait "$pid"

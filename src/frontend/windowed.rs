@@ -2,7 +2,8 @@
 //! The swapchain is recreated on resize and when it is out of date or suboptimal; a minimised
 //! window (zero extent) pauses rendering. Esc or the close button end the run, `--frames N`
 //! stops after N frames, F12 saves a screenshot (to `--screenshot` or `vkocean-<frame>.png`).
-//! The title shows progress, `vkocean - frame N - X ms/frame`, updated twice a second.
+//! The title shows the size drawn at and progress, `vkocean - WxH - frame N - X ms/frame`,
+//! updated twice a second and as soon as the size changes.
 //! The camera flies with W/A/S/D, Q/E, Shift and a left mouse drag (`fly.rs`).
 
 use std::path::PathBuf;
@@ -98,8 +99,8 @@ struct App {
     fly: FlyCamera,
     /// When the previous frame started (camera motion uses the wall-clock step).
     last_frame: Option<std::time::Instant>,
-    /// When the title was last updated, and the frame count then.
-    title_since: Option<(std::time::Instant, u64)>,
+    /// When the title was last updated, the frame count and the size it showed.
+    title_since: Option<(std::time::Instant, u64, vk::Extent2D)>,
 }
 
 /// How often the title's frame count and frame time are updated.
@@ -317,16 +318,16 @@ impl App {
         state.needs_recreate |= state.swapchain.present(&image)?;
         self.frames_done += 1;
         match self.title_since {
-            Some((since, frames)) if now - since >= TITLE_PERIOD => {
+            Some((since, frames, shown)) if now - since >= TITLE_PERIOD || shown != extent => {
                 let ms = (now - since).as_secs_f64() * 1e3 / (self.frames_done - frames) as f64;
                 state.window.set_title(&format!(
-                    "vkocean - frame {} - {ms:.1} ms/frame",
-                    self.frames_done
+                    "vkocean - {}x{} - frame {} - {ms:.1} ms/frame",
+                    extent.width, extent.height, self.frames_done
                 ));
-                self.title_since = Some((now, self.frames_done));
+                self.title_since = Some((now, self.frames_done, extent));
             }
             Some(_) => {}
-            None => self.title_since = Some((now, self.frames_done)),
+            None => self.title_since = Some((now, self.frames_done, extent)),
         }
         if self.settings.stats {
             state.session.print_stats()?;
