@@ -1,7 +1,7 @@
 //! `--profile PATH`: GPU timestamps per pass (compute passes first, then graphics) and per frame
-//! (`frame_gpu_ms`: the graphics submission; `compute_gpu_ms`: the compute submission), CPU frame
-//! times, as JSON:
-//! `{"device","driver","frames","warmup_frames","size":[w,h],"passes":[{"name","gpu_ms":{min,median,mean,p95,max},"samples"}],
+//! (`frame_gpu_ms`: the two graphics submissions, without the time between them; `compute_gpu_ms`:
+//! the compute submission), CPU frame times, as JSON:
+//! `{"device","driver","frames","warmup_frames","size":[w,h],"passes":[{"name","submission","gpu_ms":{min,median,mean,p95,max},"samples"}],
 //!   "frame_gpu_ms":{..},"compute_gpu_ms":{..},"gpu_total_ms":{..},"frame_cpu_ms":{..}}`
 //! (`gpu_total_ms`: compute + graphics per frame). The first `WARMUP_FRAMES` frames are excluded.
 
@@ -113,7 +113,7 @@ impl ProfileReport<'_> {
             .passes
             .iter()
             .chain(&self.gpu.passes)
-            .map(|(name, samples)| json!({"name": name, "gpu_ms": Stats::json(samples), "samples": samples.len()}))
+            .map(|(name, samples)| json!({"name": name, "submission": self.submission_of(name), "gpu_ms": Stats::json(samples), "samples": samples.len()}))
             .collect();
         let report = json!({
             "device": self.device.name,
@@ -141,6 +141,14 @@ impl ProfileReport<'_> {
         report
     }
 
+    /// The submission a pass ran in (compute, graphics 1, graphics 2).
+    fn submission_of(&self, name: &str) -> &'static str {
+        self.compute
+            .submission_of(name)
+            .or_else(|| self.gpu.submission_of(name))
+            .unwrap_or("?")
+    }
+
     /// One counter of the water draw's statistics, frame by frame.
     fn statistics_column(&self, counter: fn(&DrawStatistics) -> u64) -> Vec<f64> {
         self.gpu
@@ -156,8 +164,10 @@ impl ProfileReport<'_> {
         for (name, samples) in self.compute.passes.iter().chain(&self.gpu.passes) {
             if let Some(s) = Stats::of(samples) {
                 out += &format!(
-                    "  {name:<16} median {:7.3} ms  p95 {:7.3} ms\n",
-                    s.median, s.p95
+                    "  {name:<16} median {:7.3} ms  p95 {:7.3} ms  ({})\n",
+                    s.median,
+                    s.p95,
+                    self.submission_of(name)
                 );
             }
         }

@@ -10,15 +10,22 @@ struct View {
 
 layout(set = 0, binding = 0, std140) uniform FrameUniforms {
     View views[3];       // 0: camera, 1: reflection (mirrored about the water), 2: refraction
-    vec4 time;           // x: simulation time (s); y: water level (m); z: debug view; w: Fresnel model
+    vec4 time;           // x: simulation time mod the repeat period (s); y: water level (m); z: debug view; w: Fresnel model
     vec4 sun_dir;        // xyz: unit vector toward the sun; w: sun radiance scale
     vec4 viewport;       // xy: main target size (px); zw: 1 / size
     vec4 patch_m;        // side of each ocean cascade's patch (m), cascades 0..3
-    vec4 ocean;          // x: number of cascades; y: 1 for a bounded window (Gerstner); zw: origin (m)
+    vec4 ocean;          // x: number of cascades; y: 1 for a bounded window (Gerstner); zw: unused
     vec4 lod;            // x: focal length (px); y: target edge (px); z: max displacement (m); w: solid background
     vec4 terrain;        // xy: island centre (m); z: sea floor depth (m); w: island radius (m)
     vec4 objects[4];     // (x, z, radius, top height) of the objects in the water; 0 height = none
     vec4 background;     // xyz: the solid test background (lod.w = 1)
+    // Camera-relative water (WaterFrame in src/render/camera.rs): the water's vertices are
+    // measured from a centre near the camera; what depends on absolute position is reduced on
+    // the CPU in f64, so precision holds however far from the origin and however late.
+    vec4 water;          // xy: camera xz relative to the water grid centre (m); z: near plane (m)
+    vec4 cascade_uv[2];  // ocean image coordinates of the grid centre: cascade c in [c/2].xy / .zw
+    vec4 dudv_origin;    // DU/DV tile coordinates of the grid centre (mod 1): xy sample 1, zw sample 2
+    vec4 dudv;           // x: tiles per metre; y: sample 2's scale; z: scroll phase (turns)
 } frame;
 
 // Which view a draw renders (ViewIndex in src/render/camera.rs).
@@ -41,12 +48,13 @@ layout(set = 0, binding = 2) uniform sampler2DArray ocean_normals;
 // The sky cubemap (rendered when the sun changes, or loaded with --skybox).
 layout(set = 0, binding = 3) uniform samplerCube sky_cube;
 
-// Where cascade c's images hold world point xz: (xz - origin) / patch, repeating for the FFT
-// cascades. `weight` fades a cascade out with distance before its waves alias, and a bounded
-// (Gerstner) window toward its edges.
-vec3 ocean_uv(vec2 world_xz, int c, float dist, out float weight) {
+// The ocean image coordinates of cascade c at a point `xz` metres from the water grid's
+// centre (repeating for the FFT cascades). `weight` fades a cascade out with distance before its
+// waves alias, and a bounded (Gerstner) window toward its edges.
+vec3 ocean_uv(vec2 xz, int c, float dist, out float weight) {
     float patch_m = frame.patch_m[c];
-    vec2 uv = (world_xz - frame.ocean.zw) / patch_m;
+    vec4 centres = frame.cascade_uv[c / 2];
+    vec2 uv = ((c & 1) == 0 ? centres.xy : centres.zw) + xz / patch_m;
     vec2 q = abs(uv - 0.5);
     // Branch-free (see ocean_displacement_at in common/water.glsl for why).
     weight = mix(clamp(2.0 - dist / (patch_m * 4.0), 0.0, 1.0),

@@ -1,31 +1,56 @@
 // The tessellated ocean surface (shaders/surface/water.*): a grid of PATCHES² quad patches
-// centred on the camera (snapped to SNAP_M so the patches do not slide over the waves), their
-// corners spread by a cubic warp from a few metres under the camera to FAR_M at the horizon.
-// Each patch is an axis-aligned rectangle and shares its edges exactly with its neighbours.
+// centred on the camera (snapped to WATER_SNAP_M in src/render/camera.rs, so the patches do not
+// slide over the waves), their corners spread by a cubic warp from a few metres under the camera
+// to FAR_M at the horizon. Each patch is an axis-aligned rectangle and shares its edges exactly
+// with its neighbours. Positions ("xz") are relative to the grid's centre (camera-relative
+// rendering: frame.water).
 const uint PATCHES = 32u;          // per side (WaterPass::PATCHES in src/render/passes/water.rs)
 const float INNER_M = 48.0;        // linear part of the warp
 const float FAR_M = 20000.0;       // half-side of the grid
-const float SNAP_M = 8.0;          // about the innermost patch's side
 
 float warp(float u) { return sign(u) * (INNER_M * abs(u) + (FAR_M - INNER_M) * abs(u) * abs(u) * abs(u)); }
 
 // x*(1-t) + y*t, exact at t = 0 and t = 1 (shared patch edges evaluate to identical points).
 vec2 lerp2(vec2 x, vec2 y, float t) { return x * (1.0 - t) + y * t; }
 
+// Camera position relative to the grid centre: xz from frame.water, y the camera's height.
+vec3 water_eye() { return vec3(frame.water.x, frame.views[0].eye.y, frame.water.y); }
+
 // Cascades in the ocean images: specialized by WaterPass (src/render/passes/water.rs).
 layout(constant_id = 0) const int CASCADES = 3;
 
-// Sum of every cascade's displacement at an undisplaced world point.
+// Set by WaterPass where the device cannot filter RGBA32F images linearly: the ocean sampler is
+// then NEAREST and ocean_texture interpolates the four texels around uv itself (repeat wrapping
+// comes from the sampler). Same result as the hardware's bilinear filter, to float rounding.
+layout(constant_id = 1) const bool OCEAN_MANUAL_FILTER = false;
+
+vec4 ocean_texture(sampler2DArray images, vec3 uv) {
+    if (!OCEAN_MANUAL_FILTER) {
+        return textureLod(images, uv, 0.0);
+    }
+    vec2 size = vec2(textureSize(images, 0).xy);
+    vec2 p = uv.xy * size - 0.5;
+    vec2 f = fract(p);
+    vec2 c = (floor(p) + 0.5) / size; // centre of the lower-left texel
+    vec2 d = 1.0 / size;
+    vec4 a = textureLod(images, vec3(c, uv.z), 0.0);
+    vec4 b = textureLod(images, vec3(c + vec2(d.x, 0.0), uv.z), 0.0);
+    vec4 e = textureLod(images, vec3(c + vec2(0.0, d.y), uv.z), 0.0);
+    vec4 g = textureLod(images, vec3(c + d, uv.z), 0.0);
+    return mix(mix(a, b, f.x), mix(e, g, f.x), f.y);
+}
+
+// Sum of every cascade's displacement at an undisplaced point (relative to the grid centre).
 // No branch here depends on a uniform: Mesa 22.3's lavapipe "inlines" uniforms that steer control
 // flow into a fresh evaluation-shader variant at every bind of the pipeline and never frees it
 // (about 350 kB and a shader compile per frame; README, "Measured on lavapipe"). Hence the
 // specialized loop bound and ocean_uv's branch-free weight.
-vec3 ocean_displacement_at(vec2 world_xz, float dist) {
+vec3 ocean_displacement_at(vec2 xz, float dist) {
     vec3 d = vec3(0.0);
     for (int c = 0; c < CASCADES; ++c) {
         float weight;
-        vec3 uv = ocean_uv(world_xz, c, dist, weight);
-        d += weight * textureLod(ocean_displacement, uv, 0.0).xyz;
+        vec3 uv = ocean_uv(xz, c, dist, weight);
+        d += weight * ocean_texture(ocean_displacement, uv).xyz;
     }
     return d;
 }

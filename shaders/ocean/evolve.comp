@@ -6,16 +6,21 @@
 //   ∂Dx/∂x = kx²/k h, ∂Dz/∂z = kz²/k h, ∂Dx/∂z = kx kz/k h,
 // packed two real fields per complex array: (Dx + i h), (Dz + i ∂h/∂x), (∂h/∂z + i ∂Dx/∂x),
 // (∂Dz/∂z + i ∂Dx/∂z). Element [m][n] of cascade c has k = (2π(n - N/2), 2π(m - N/2)) / L_c.
-// Inputs: h0 (K, N, N). Output: spectra (K * 4, N, N), the FFT's data buffer.
+// Time: ω is quantized to whole multiples m of ω0 = 2π/T (Tessendorf 2001 §3.2, T =
+// REPEAT_PERIOD_S in src/ocean/spectrum.rs), and t arrives as t mod T in ticks of T/2^32, both
+// computed on the CPU (m in f64 from the dispersion relation, ticks in f64 from the frame time).
+// The phase ω'·t/2π mod 1 = m·ticks/2^32 mod 1 is then exact in a wrapping 32-bit multiply, at any
+// simulation time: no f32 product ω·t that loses the phase after hours.
+// Inputs: h0 (K, N, N), omega_steps (K, N, N). Output: spectra (K * 4, N, N), the FFT's data buffer.
 #include "common/ocean.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;
 
 layout(std430, set = 0, binding = 0) readonly buffer H0 { vec2 h0[]; };
 layout(std430, set = 0, binding = 1) writeonly buffer Spectra { vec2 spectra[]; };
+layout(std430, set = 0, binding = 2) readonly buffer OmegaSteps { uint omega_steps[]; };
 layout(push_constant) uniform Params {
     vec4 patch_m;   // patch side of cascades 0..3 (m)
-    float time_s;
-    float depth_m;  // <= 0: deep water
+    uint ticks;     // t mod T in units of T / 2^32
     uint n;
 } params;
 
@@ -30,9 +35,9 @@ void main() {
     float dk = 2.0 * PI / params.patch_m[c];
     vec2 k = (vec2(id.xy) - vec2(n / 2u)) * dk;
     float k_len = length(k);
-    float omega = dispersion(k_len, params.depth_m);
-    // Phase kept in [-π, π) per element to spare float precision at large t.
-    float phase = mod(omega * params.time_s + PI, 2.0 * PI) - PI;
+    // Turns in [-1/2, 1/2): the wrapped product read as a signed 32-bit fraction.
+    float turns = float(int(omega_steps[base + id.y * n + id.x] * params.ticks)) * (1.0 / 4294967296.0);
+    float phase = 2.0 * PI * turns;
     vec2 e = vec2(cos(phase), sin(phase));
     vec2 a = h0[base + id.y * n + id.x];
     // -k sits at (N - n, N - m); the Nyquist row and column have no partner and hold zero.

@@ -16,7 +16,7 @@
 #include "common/display.glsl"
 
 layout(location = 0) in vec3 in_rel_pos;
-layout(location = 1) in vec2 in_world_xz;
+layout(location = 1) in vec2 in_xz;
 layout(location = 2) in vec3 in_displacement;
 layout(location = 0) out vec4 out_colour;
 
@@ -29,20 +29,17 @@ const vec3 WATER_COLOUR = vec3(0.004, 0.045, 0.075); // c_o: deep water, seen th
 const vec3 ABSORPTION = vec3(0.45, 0.09, 0.06);      // 1/m, red absorbed first
 const float N_WATER = 1.333;
 const float F0 = 0.02;               // ((n - 1) / (n + 1))^2
-const float DUDV_TILE_M = 24.0;      // world size of one DU/DV tile
 const float DUDV_STRENGTH = 0.012;   // screen-space offset at full strength
-const float DUDV_SPEED = 0.03;       // tiles per second (seed 001 eq. 5: t cycles in (0, 1))
 const float SLOPE_STRENGTH = 0.05;   // screen-space offset per unit slope
 const float SHININESS = 720.0;
-const float NEAR_M = 0.1;            // Camera::near_m (depth = near / view distance)
 
-vec4 ocean_normal_foam(vec2 world_xz, float dist) {
+vec4 ocean_normal_foam(vec2 xz, float dist) {
     vec2 slope = vec2(0.0);
     float foam = 0.0;
     for (int c = 0; c < CASCADES; ++c) {
         float weight;
-        vec3 uv = ocean_uv(world_xz, c, dist, weight);
-        vec4 s = textureLod(ocean_normals, uv, 0.0);
+        vec3 uv = ocean_uv(xz, c, dist, weight);
+        vec4 s = ocean_texture(ocean_normals, uv);
         slope += weight * s.xy;
         foam = max(foam, weight * s.w);
     }
@@ -75,7 +72,7 @@ float fresnel(float cos_theta) {
 void main() {
     float dist = length(in_rel_pos);
     vec3 v = -in_rel_pos / dist; // toward the camera
-    vec4 nf = ocean_normal_foam(in_world_xz, dist);
+    vec4 nf = ocean_normal_foam(in_xz, dist);
     vec3 n = nf.xyz;
     int view = debug_view();
     if (view == VIEW_DISPLACEMENT) {
@@ -96,11 +93,12 @@ void main() {
     }
     vec3 sun = frame.sun_dir.xyz;
 
-    // Distortion (seed 001 eq. 4-5): DU/DV sampled twice, scrolling in opposite directions.
-    float t = fract(frame.time.x * DUDV_SPEED);
-    vec2 tile = in_world_xz / DUDV_TILE_M;
-    vec2 dudv = textureLod(dudv_map, tile + vec2(t, 0.0), 0.0).rg * 2.0 - 1.0;
-    dudv += textureLod(dudv_map, tile * 0.73 + vec2(-t, t), 0.0).rg * 2.0 - 1.0;
+    // Distortion (seed 001 eq. 4-5): DU/DV sampled twice, scrolling in opposite directions
+    // (tile coordinates and phase reduced on the CPU: frame.dudv_origin, frame.dudv).
+    float t = frame.dudv.z;
+    vec2 tile = in_xz * frame.dudv.x;
+    vec2 dudv = textureLod(dudv_map, frame.dudv_origin.xy + tile + vec2(t, 0.0), 0.0).rg * 2.0 - 1.0;
+    dudv += textureLod(dudv_map, frame.dudv_origin.zw + tile * frame.dudv.y + vec2(-t, t), 0.0).rg * 2.0 - 1.0;
     float fade = clamp(1.0 - dist / 3000.0, 0.0, 1.0) / max(1.0, dist / 40.0);
     vec2 offset = (dudv * DUDV_STRENGTH + n.xz * SLOPE_STRENGTH) * fade;
     vec2 screen = gl_FragCoord.xy * frame.viewport.zw;
@@ -108,16 +106,17 @@ void main() {
     vec3 c_reflect = textureLod(reflection_colour, clamp(screen + offset, 0.001, 0.999), 0.0).rgb;
 
     // Water thickness along the ray: refraction depth behind the surface minus the surface's.
-    float water_view = NEAR_M / gl_FragCoord.z;
+    float near_m = frame.water.z; // Camera::near_m (depth = near / view distance)
+    float water_view = near_m / gl_FragCoord.z;
     vec2 refr_uv = clamp(screen + offset, 0.001, 0.999);
     float floor_ndc = textureLod(refraction_depth, refr_uv, 0.0).r;
-    if (NEAR_M / max(floor_ndc, 1e-30) < water_view) {
+    if (near_m / max(floor_ndc, 1e-30) < water_view) {
         // The offset reached something in front of the water: use the undistorted point.
         refr_uv = screen;
         floor_ndc = textureLod(refraction_depth, refr_uv, 0.0).r;
     }
     vec3 c_refract = textureLod(refraction_colour, refr_uv, 0.0).rgb;
-    float floor_view = floor_ndc > 0.0 ? NEAR_M / floor_ndc : 1e9;
+    float floor_view = floor_ndc > 0.0 ? near_m / floor_ndc : 1e9;
     float thickness = max(floor_view - water_view, 0.0) * dist / water_view;
     // Seed 001 eq. 7 fades the whole colour toward c_o with depth, which removes reflections
     // over deep water; the depth fade belongs to the refracted light only (Beer-Lambert).

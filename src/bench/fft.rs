@@ -23,7 +23,7 @@ use serde_json::json;
 use super::CpuTimes;
 use crate::frontend::Outcome;
 use crate::gpu::oneshot::upload;
-use crate::gpu::{Access, Buffer, Context, Frames, MemoryLocation, Profiler};
+use crate::gpu::{Access, Buffer, Context, Frames, MemoryLocation, Profiler, Submission};
 use crate::ocean::fft::{Direction, GpuFft, Kernel};
 use crate::output::PendingFile;
 use crate::profile::{Stats, WARMUP_FRAMES};
@@ -193,7 +193,7 @@ fn measure(
         }
         let frame = frames.begin()?;
         {
-            let rec = frame.recorder(ctx);
+            let rec = frame.recorder(ctx, Submission::Ocean);
             profiler.begin_frame(&rec, &frame)?;
             // The previous frame's transform read and wrote `data`.
             rec.barrier(

@@ -255,6 +255,11 @@ pub struct Cli {
     #[arg(long, hide = true)]
     pub inject_sync_hazard: bool,
 
+    /// Test only: render headless into an 8-bit UNORM output, as on a window surface without
+    /// an sRGB format (the shaders then encode sRGB themselves).
+    #[arg(long, hide = true)]
+    pub unorm_output: bool,
+
     #[command(subcommand)]
     pub command: Option<Command>,
 }
@@ -640,6 +645,7 @@ impl Cli {
                 PresentModeArg::Immediate => PresentMode::Immediate,
             },
             inject_sync_hazard: self.inject_sync_hazard,
+            unorm_output: self.unorm_output,
             stats: self.stats,
             log_resources: self.log_resources,
             dump: self.dump.clone(),

@@ -14,6 +14,9 @@ use crate::render::{FrameInputs, OutputTarget};
 
 /// Format of the offscreen target: 8-bit sRGB, the bytes a PNG stores.
 const OUTPUT_FORMAT: vk::Format = vk::Format::R8G8B8A8_SRGB;
+/// The same bytes in a UNORM format (`--unorm-output`, a test of the path windows without an
+/// sRGB surface format take: the shaders encode sRGB).
+const UNORM_OUTPUT_FORMAT: vk::Format = vk::Format::R8G8B8A8_UNORM;
 /// Files `--dump DIR` writes, in the order `Session::dump_contents` returns them.
 const DUMP_FILES: [&str; 4] = ["h0.npy", "displacement.npy", "normals.npy", "params.json"];
 /// Simulation time step per frame (s).
@@ -37,14 +40,19 @@ pub fn run(s: &RunSettings) -> anyhow::Result<Outcome> {
 
     let ctx = Context::headless(s.validation, s.gpu)?;
     let counters = ctx.counters();
-    let offscreen = Offscreen::new(&ctx, s.size)?;
+    let format = if s.unorm_output {
+        UNORM_OUTPUT_FORMAT
+    } else {
+        OUTPUT_FORMAT
+    };
+    let offscreen = Offscreen::with_format(&ctx, s.size, format)?;
     let (extent, output) = (offscreen.extent, offscreen.output());
     let readback = if screenshot.is_some() {
         Some(readback_buffer(&ctx, extent)?)
     } else {
         None
     };
-    let mut session = Session::new(&ctx, OUTPUT_FORMAT, extent, s)?;
+    let mut session = Session::new(&ctx, format, extent, s)?;
 
     let mut last_progress = Instant::now();
     let mut last_value = 0;
@@ -116,6 +124,7 @@ pub fn run(s: &RunSettings) -> anyhow::Result<Outcome> {
 pub struct Offscreen {
     pub image: Image,
     pub extent: vk::Extent2D,
+    pub format: vk::Format,
 }
 
 impl Offscreen {
@@ -123,6 +132,15 @@ impl Offscreen {
     pub const FORMAT: vk::Format = OUTPUT_FORMAT;
 
     pub fn new(ctx: &std::sync::Arc<Context>, size: (u32, u32)) -> anyhow::Result<Offscreen> {
+        Offscreen::with_format(ctx, size, OUTPUT_FORMAT)
+    }
+
+    /// A target in another 8-bit RGBA format (`UNORM_OUTPUT_FORMAT`).
+    fn with_format(
+        ctx: &std::sync::Arc<Context>,
+        size: (u32, u32),
+        format: vk::Format,
+    ) -> anyhow::Result<Offscreen> {
         check_size(ctx, size)?;
         let extent = vk::Extent2D {
             width: size.0,
@@ -133,7 +151,7 @@ impl Offscreen {
             &ImageDesc {
                 name: "headless output",
                 extent,
-                format: OUTPUT_FORMAT,
+                format,
                 usage: vk::ImageUsageFlags::TRANSFER_DST | vk::ImageUsageFlags::TRANSFER_SRC,
                 layers: 1,
                 array_view: false,
@@ -141,7 +159,11 @@ impl Offscreen {
                 cube: false,
             },
         )?;
-        Ok(Offscreen { image, extent })
+        Ok(Offscreen {
+            image,
+            extent,
+            format,
+        })
     }
 
     /// The target as the renderer's output.
@@ -149,7 +171,7 @@ impl Offscreen {
         OutputTarget {
             image: self.image.raw,
             extent: self.extent,
-            format: OUTPUT_FORMAT,
+            format: self.format,
             // The previous frame copied (or blitted) into the target and may have copied from it.
             prior: OutputTarget::FINAL_ACCESS.or(Access::COPY_READ),
         }
@@ -160,7 +182,7 @@ impl Offscreen {
 /// [`FIXED_DT_S`]).
 pub fn frame_inputs(s: &RunSettings, i: u64) -> FrameInputs {
     FrameInputs {
-        time_s: (s.start_time_s + i as f64 * s.dt_s.unwrap_or(FIXED_DT_S as f64)) as f32,
+        time_s: s.start_time_s + i as f64 * s.dt_s.unwrap_or(FIXED_DT_S as f64),
         ..FrameInputs::default()
     }
 }

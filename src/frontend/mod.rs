@@ -25,6 +25,8 @@ pub struct RunSettings {
     pub present_mode: PresentMode,
     /// Test-only: record a deliberate synchronization hazard in the first frame.
     pub inject_sync_hazard: bool,
+    /// Test-only: headless output in R8G8B8A8_UNORM (shader-encoded sRGB) instead of _SRGB.
+    pub unorm_output: bool,
     /// Sea state and simulation grid.
     pub ocean: crate::ocean::OceanSettings,
     /// `--stats`: one JSON line of height statistics per frame on stdout.

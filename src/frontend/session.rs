@@ -7,10 +7,10 @@ use std::time::Instant;
 use ash::vk;
 
 use super::RunSettings;
-use crate::gpu::oneshot::download;
 use crate::gpu::selftest::SyncHazard;
 use crate::gpu::{
-    Buffer, Context, Frames, GpuResult, GpuTimings, MemoryLocation, Profiler, Recorder,
+    Buffer, Context, Frames, GpuResult, GpuTimings, MemoryLocation, Profiler, Recorder, Submission,
+    GRAPHICS_OCEAN, GRAPHICS_SCENE,
 };
 use crate::ocean::simulation::Simulation;
 use crate::ocean::stats::{npy, stats_line};
@@ -37,7 +37,7 @@ pub struct Session {
     last_frame_start: Option<Instant>,
     pub started: Instant,
     /// The last submitted frame: (slot, timeline value, simulation time).
-    last: Option<(usize, u64, f32)>,
+    last: Option<(usize, u64, f64)>,
 }
 
 impl Session {
@@ -114,36 +114,53 @@ impl Session {
         }
         self.last_frame_start = Some(now);
 
-        let frame = self.frames.begin()?;
+        // The frame as the README's diagram draws it: graphics submission 1 (passes that need no
+        // simulation output), then the compute submission (it waits for the frame that last
+        // sampled this slot), then graphics submission 2, which waits for this frame's compute
+        // results at the stages that sample them and signals the frame timeline. With a compute
+        // queue of its own the simulation runs while submission 1 draws.
+        let mut frame = self.frames.begin()?;
         let value = frame.signal_value();
-        // Compute first (it waits for the frame that last sampled this slot), then graphics,
-        // which waits for this frame's compute results where it samples them.
         let camera = self.renderer.camera.position;
-        self.simulation.submit(
-            frame.slot,
-            value,
-            inputs.time_s,
-            [camera.x as f64, camera.z as f64],
-            Some((&mut self.compute_profiler, &frame)),
-        )?;
+        self.simulation
+            .place_window([camera.x as f64, camera.z as f64]);
         let origin = self.simulation.origin_m();
         let inputs = &FrameInputs {
-            ocean_origin_m: [origin[0] as f32, origin[1] as f32],
+            ocean_origin_m: origin,
             ocean_window: self.simulation.is_window(),
             ..*inputs
         };
-        let mut waits = waits.to_vec();
-        waits.push(self.simulation.graphics_wait(value));
         {
-            let rec = frame.recorder(&self.ctx);
-            rec.begin_label(&format!("frame {}", frame.index));
+            let rec = frame.recorder(&self.ctx, Submission::Scene);
+            rec.begin_label(&format!("frame {} (graphics 1)", frame.index));
             self.profiler.begin_frame(&rec, &frame)?;
+            self.profiler.set_submission(GRAPHICS_SCENE);
             if let Some(hazard) = self.hazard.take() {
                 hazard.record(&rec);
                 // Dropped now; the deletion queue keeps it alive until this frame is done.
             }
             self.renderer
-                .record(&rec, &frame, &mut self.profiler, output, inputs);
+                .record_scene(&rec, &frame, &mut self.profiler, output, inputs);
+            self.profiler.pause(&rec);
+            rec.end_label();
+        }
+        self.frames.submit_scene(&mut frame)?;
+
+        self.simulation.submit(
+            frame.slot,
+            value,
+            inputs.time_s,
+            Some((&mut self.compute_profiler, &frame)),
+        )?;
+
+        let mut waits = waits.to_vec();
+        waits.push(self.simulation.graphics_wait(value));
+        {
+            let rec = frame.recorder(&self.ctx, Submission::Ocean);
+            rec.begin_label(&format!("frame {} (graphics 2)", frame.index));
+            self.profiler.resume(&rec, GRAPHICS_OCEAN);
+            self.renderer
+                .record_ocean(&rec, &frame, &mut self.profiler, output);
             finish(&rec);
             self.profiler.end_frame(&rec);
             rec.end_label();
@@ -185,7 +202,7 @@ impl Session {
         };
         // Graphics sampled the images: wait for it before the readback changes their layout.
         self.frames.wait_for(value)?;
-        let (displacement, _) = self.simulation.read_back(&self.ctx, slot, value)?;
+        let (displacement, _) = self.simulation.read_back(&self.ctx, slot)?;
         let patches: Vec<f64> = self.simulation.cascades.iter().map(|c| c.patch_m).collect();
         let index = self.frames.submitted() - 1;
         crate::outln!(
@@ -210,11 +227,8 @@ impl Session {
         self.frames.wait_for(value)?;
         let sim = &self.simulation;
         let (n, k) = (sim.settings.fft_size, sim.cascades.len());
-        let (displacement, normals) = sim.read_back(&self.ctx, slot, value)?;
-        let h0 = match sim.h0_buffer() {
-            Some(buffer) => Some(download(&self.ctx, buffer, k * n * n * 8)?),
-            None => None,
-        };
+        let (displacement, normals) = sim.read_back(&self.ctx, slot)?;
+        let h0 = sim.download_h0(&self.ctx)?;
         let s = &sim.settings;
         let mut params = serde_json::json!({
             "waves": if h0.is_some() { "fft" } else { "gerstner" },
@@ -231,6 +245,10 @@ impl Session {
             "k_bands_rad_m": sim.cascades.iter().map(|c| [c.k_min, if c.k_max.is_finite() { c.k_max } else { f64::MAX }]).collect::<Vec<_>>(),
             "choppiness": s.choppiness,
             "seed": s.seed,
+            // The surface repeats exactly with this period: every ω is a whole multiple of the
+            // quantum (spectrum::REPEAT_PERIOD_S).
+            "repeat_period_s": crate::ocean::spectrum::REPEAT_PERIOD_S,
+            "omega_quantum_rad_s": crate::ocean::spectrum::omega_quantum(),
             "foam": {
                 "threshold": crate::ocean::simulation::FOAM_THRESHOLD,
                 "decay_s": crate::ocean::simulation::FOAM_DECAY_S,

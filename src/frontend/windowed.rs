@@ -273,13 +273,9 @@ impl App {
         let inputs = FrameInputs {
             time_s: match self.settings.dt_s {
                 Some(dt) => {
-                    (self.settings.start_time_s + state.session.frames.submitted() as f64 * dt)
-                        as f32
+                    self.settings.start_time_s + state.session.frames.submitted() as f64 * dt
                 }
-                None => {
-                    (self.settings.start_time_s + state.session.started.elapsed().as_secs_f64())
-                        as f32
-                }
+                None => self.settings.start_time_s + state.session.started.elapsed().as_secs_f64(),
             },
             ..FrameInputs::default()
         };

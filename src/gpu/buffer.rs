@@ -20,8 +20,9 @@ pub struct Buffer {
 }
 
 impl Buffer {
-    /// Creates a named buffer. `location` picks the memory: `GpuOnly`, `CpuToGpu` (mapped, for
-    /// uploads and uniforms) or `GpuToCpu` (mapped, for readback).
+    /// Creates a named buffer used on one queue family: EXCLUSIVE (buffers never cross
+    /// families; see `oneshot::upload_on`). `location` picks the memory: `GpuOnly`,
+    /// `CpuToGpu` (mapped, for uploads and uniforms) or `GpuToCpu` (mapped, for readback).
     pub fn new(
         ctx: &Arc<Context>,
         name: &str,

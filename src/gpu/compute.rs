@@ -42,8 +42,9 @@ impl ComputeQueue {
             timeline,
         };
         for i in 0..FRAMES_IN_FLIGHT {
-            let slot = command_slot(ctx, ctx.compute.family, &format!("compute slot {i}"))?;
-            queue.slots.push(slot);
+            let (pool, [cmd]) =
+                command_slot(ctx, ctx.compute.family, &format!("compute slot {i}"))?;
+            queue.slots.push((pool, cmd));
         }
         Ok(queue)
     }
@@ -94,10 +95,12 @@ impl ComputeQueue {
             })
             .into_iter()
             .collect();
+        // Signalled once every command of the submission is done (not only its dispatches: the
+        // timestamp writes and anything recorded later count too).
         let signals = [vk::SemaphoreSubmitInfo::default()
             .semaphore(self.timeline)
             .value(value)
-            .stage_mask(vk::PipelineStageFlags2::COMPUTE_SHADER)];
+            .stage_mask(vk::PipelineStageFlags2::ALL_COMMANDS)];
         let cmds = [vk::CommandBufferSubmitInfo::default().command_buffer(cmd)];
         let submit = vk::SubmitInfo2::default()
             .wait_semaphore_infos(&waits)

@@ -23,6 +23,7 @@ pub const WAIT_TIMEOUT_S: u64 = 60;
 use super::instance::{create_instance, load_entry};
 use super::physical::{inspect, type_name, type_rank, Candidate};
 pub use super::physical::{list_devices, DeviceInfo, DeviceSummary};
+use super::queues::{QueuePlan, QueueUsers, Sharing};
 
 /// What the caller wants from the context.
 #[derive(Clone, Copy, Debug, Default)]
@@ -57,8 +58,11 @@ pub struct Context {
     pub info: DeviceInfo,
     /// Graphics queue; also presents in the windowed frontend.
     pub graphics: Queue,
-    /// Compute queue: a family of its own where the device has one, else the graphics queue.
+    /// Compute queue: a family of its own where the device has one, else a second queue of the
+    /// graphics family, else the graphics queue (`QueuePlan`).
     pub compute: Queue,
+    /// Which queues draw, present and compute, and how shared resources are shared.
+    pub plan: QueuePlan,
     /// The graphics timeline: frame f's graphics submission signals f + 1.
     pub frame_timeline: vk::Semaphore,
     allocator: ManuallyDrop<Mutex<Allocator>>,
@@ -166,19 +170,21 @@ impl Context {
         let device = create_device(&instance, &chosen, desc.window.is_some())?;
         partial.device = Some(device.clone());
 
-        // SAFETY: the families and index 0 were requested in `create_device`.
+        let plan = chosen.plan;
+        log::info!("queues: {}", plan.describe());
+        // SAFETY: `create_device` requested these families and queue counts (`queue_requests`).
         let graphics = Queue {
-            family: chosen.graphics_family,
-            raw: unsafe { device.get_device_queue(chosen.graphics_family, 0) },
+            family: plan.graphics.family,
+            raw: unsafe { device.get_device_queue(plan.graphics.family, plan.graphics.index) },
         };
-        let compute = if chosen.compute_family == chosen.graphics_family {
-            graphics
-        } else {
+        let compute = if plan.separate_queues() {
             // SAFETY: as above.
             Queue {
-                family: chosen.compute_family,
-                raw: unsafe { device.get_device_queue(chosen.compute_family, 0) },
+                family: plan.compute.family,
+                raw: unsafe { device.get_device_queue(plan.compute.family, plan.compute.index) },
             }
+        } else {
+            graphics
         };
 
         let allocator = Allocator::new(&AllocatorCreateDesc {
@@ -223,6 +229,7 @@ impl Context {
             info: chosen.info,
             graphics,
             compute,
+            plan,
             frame_timeline,
             allocator: ManuallyDrop::new(Mutex::new(allocator)),
             garbage: Mutex::new(Vec::new()),
@@ -240,10 +247,15 @@ impl Context {
         // Mesa 22.3's lavapipe with the Vulkan 1.3.239 loader (segfault seen here).
         ctx.name(ctx.frame_timeline, "frame timeline (graphics)");
         ctx.name(ctx.graphics.raw, "graphics queue");
-        if ctx.compute.family != ctx.graphics.family {
+        if ctx.plan.separate_queues() {
             ctx.name(ctx.compute.raw, "compute queue");
         }
         Ok(Arc::new(ctx))
+    }
+
+    /// How a resource used on `users` is shared between the queue families ([`QueuePlan::sharing`]).
+    pub fn sharing(&self, users: QueueUsers) -> Sharing {
+        self.plan.sharing(users)
     }
 
     /// Names a Vulkan object (see [`DebugNames::name`]).
@@ -365,17 +377,16 @@ fn create_device(
     chosen: &Candidate,
     swapchain: bool,
 ) -> GpuResult<ash::Device> {
-    let priorities = [1.0f32];
-    let mut queue_infos = vec![vk::DeviceQueueCreateInfo::default()
-        .queue_family_index(chosen.graphics_family)
-        .queue_priorities(&priorities)];
-    if chosen.compute_family != chosen.graphics_family {
-        queue_infos.push(
+    let priorities = [1.0f32; 2];
+    let requests = chosen.plan.queue_requests();
+    let queue_infos: Vec<_> = requests
+        .iter()
+        .map(|&(family, count)| {
             vk::DeviceQueueCreateInfo::default()
-                .queue_family_index(chosen.compute_family)
-                .queue_priorities(&priorities),
-        );
-    }
+                .queue_family_index(family)
+                .queue_priorities(&priorities[..count as usize])
+        })
+        .collect();
     let features = vk::PhysicalDeviceFeatures::default()
         .tessellation_shader(true)
         .shader_int64(chosen.info.shader_int64)

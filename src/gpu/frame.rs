@@ -1,8 +1,12 @@
 //! Frames in flight, paced by the context's graphics timeline semaphore (no fences).
 //!
-//! Frame f (counting from 0) records into slot f % 2 and its graphics submission signals the
-//! timeline with f + 1. Before slot s is reused for frame f, the CPU waits for the value f - 1,
-//! i.e. for frame f - 2, the previous user of the slot. The deletion queue is emptied there too.
+//! Frame f (counting from 0) records into slot f % 2. Its graphics work is two submissions to
+//! the graphics queue: the scene submission (passes that need no simulation output; it waits
+//! for nothing and signals nothing) and the ocean submission (it waits for the compute timeline
+//! and signals the graphics timeline with f + 1; a signal covers every command submitted
+//! earlier to the queue, so it covers the scene submission too). Before slot s is reused for
+//! frame f, the CPU waits for the value f - 1, i.e. for frame f - 2, the previous user of the
+//! slot. The deletion queue is emptied there too.
 
 use std::sync::Arc;
 
@@ -17,13 +21,13 @@ use super::garbage::Garbage;
 /// Number of frames the CPU may record ahead of the GPU.
 pub const FRAMES_IN_FLIGHT: usize = 2;
 
-/// Creates a transient command pool on `family` with one primary command buffer, both named
-/// after `label` (frame slots here, compute slots in `compute.rs`).
-pub(crate) fn command_slot(
+/// Creates a transient command pool on `family` with `N` primary command buffers, named after
+/// `label` (frame slots here, compute slots in `compute.rs`).
+pub(crate) fn command_slot<const N: usize>(
     ctx: &Context,
     family: u32,
     label: &str,
-) -> GpuResult<(vk::CommandPool, vk::CommandBuffer)> {
+) -> GpuResult<(vk::CommandPool, [vk::CommandBuffer; N])> {
     let info = vk::CommandPoolCreateInfo::default()
         .queue_family_index(family)
         .flags(vk::CommandPoolCreateFlags::TRANSIENT);
@@ -33,10 +37,11 @@ pub(crate) fn command_slot(
     let alloc = vk::CommandBufferAllocateInfo::default()
         .command_pool(pool)
         .level(vk::CommandBufferLevel::PRIMARY)
-        .command_buffer_count(1);
+        .command_buffer_count(N as u32);
     // SAFETY: the pool is live.
-    let cmd = match unsafe { ctx.device.allocate_command_buffers(&alloc) } {
-        Ok(c) => c[0],
+    let cmds: [vk::CommandBuffer; N] = match unsafe { ctx.device.allocate_command_buffers(&alloc) }
+    {
+        Ok(c) => c.try_into().expect("N command buffers"),
         Err(result) => {
             ctx.defer(Garbage::CommandPool(pool));
             return Err(GpuError::Vk {
@@ -46,14 +51,25 @@ pub(crate) fn command_slot(
         }
     };
     ctx.name(pool, &format!("{label} command pool"));
-    ctx.name(cmd, &format!("{label} commands"));
-    Ok((pool, cmd))
+    for (i, &cmd) in cmds.iter().enumerate() {
+        ctx.name(cmd, &format!("{label} commands {i}"));
+    }
+    Ok((pool, cmds))
 }
 
-/// A command pool and its one primary command buffer.
+/// Which of a frame's two graphics submissions a recorder writes into.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Submission {
+    /// Passes that read no simulation output; submitted first, waits for nothing.
+    Scene = 0,
+    /// Passes that sample the simulation images, and the output; waits for the compute timeline.
+    Ocean = 1,
+}
+
+/// A command pool and the frame's two primary command buffers (`Submission`).
 struct Slot {
     pool: vk::CommandPool,
-    cmd: vk::CommandBuffer,
+    cmds: [vk::CommandBuffer; 2],
 }
 
 /// The frame loop's command buffers and pacing.
@@ -73,9 +89,11 @@ pub struct Frame {
     pub index: u64,
     /// Frame-in-flight slot (`index % FRAMES_IN_FLIGHT`).
     pub slot: usize,
-    cmd: vk::CommandBuffer,
+    cmds: [vk::CommandBuffer; 2],
     /// Timeline value its submission signals.
     value: u64,
+    /// The scene submission went out (`Frames::submit_scene`).
+    scene_submitted: bool,
 }
 
 impl Frame {
@@ -84,10 +102,14 @@ impl Frame {
         self.value
     }
 
-    /// A recorder for this frame's command buffer. It borrows the frame, so it cannot outlive
-    /// the recording state (`Frames::submit` consumes the frame).
-    pub fn recorder<'a>(&'a self, ctx: &'a Context) -> Recorder<'a> {
-        Recorder::new(ctx, self.cmd)
+    /// A recorder for one of this frame's command buffers. It borrows the frame, so it cannot
+    /// outlive the recording state (`Frames::submit` consumes the frame).
+    pub fn recorder<'a>(&'a self, ctx: &'a Context, submission: Submission) -> Recorder<'a> {
+        debug_assert!(
+            !(submission == Submission::Scene && self.scene_submitted),
+            "the scene submission was already submitted"
+        );
+        Recorder::new(ctx, self.cmds[submission as usize])
     }
 }
 
@@ -101,8 +123,8 @@ impl Frames {
             next: 0,
         };
         for i in 0..FRAMES_IN_FLIGHT {
-            let (pool, cmd) = command_slot(ctx, ctx.graphics.family, &format!("frame slot {i}"))?;
-            frames.slots.push(Slot { pool, cmd });
+            let (pool, cmds) = command_slot(ctx, ctx.graphics.family, &format!("frame slot {i}"))?;
+            frames.slots.push(Slot { pool, cmds });
         }
         Ok(frames)
     }
@@ -139,35 +161,63 @@ impl Frames {
                 .vk("vkResetCommandPool")?;
             let begin = vk::CommandBufferBeginInfo::default()
                 .flags(vk::CommandBufferUsageFlags::ONE_TIME_SUBMIT);
-            self.ctx
-                .device
-                .begin_command_buffer(s.cmd, &begin)
-                .vk("vkBeginCommandBuffer")?;
+            for &cmd in &s.cmds {
+                self.ctx
+                    .device
+                    .begin_command_buffer(cmd, &begin)
+                    .vk("vkBeginCommandBuffer")?;
+            }
         }
         Ok(Frame {
             index,
             slot,
-            cmd: s.cmd,
+            cmds: s.cmds,
             value,
+            scene_submitted: false,
         })
     }
 
-    /// Ends recording and submits the frame to the graphics queue, waiting on `waits` and
-    /// signalling the frame timeline with `frame.signal_value()` plus `signals`.
+    /// Ends and submits the frame's scene command buffer to the graphics queue: no waits, no
+    /// signals (the ocean submission's signal covers it). Call once, before the compute
+    /// submission, so a separate compute queue runs the simulation while this draws.
+    pub fn submit_scene(&mut self, frame: &mut Frame) -> GpuResult<()> {
+        let cmd = frame.cmds[Submission::Scene as usize];
+        // SAFETY: `cmd` is in the recording state (begun in `begin`, not yet ended).
+        unsafe { self.ctx.device.end_command_buffer(cmd) }.vk("vkEndCommandBuffer")?;
+        let cmd_infos = [vk::CommandBufferSubmitInfo::default().command_buffer(cmd)];
+        let submit = vk::SubmitInfo2::default().command_buffer_infos(&cmd_infos);
+        // SAFETY: the command buffer is executable; only this thread submits.
+        unsafe {
+            self.ctx
+                .device
+                .queue_submit2(self.ctx.graphics.raw, &[submit], vk::Fence::null())
+        }
+        .vk("vkQueueSubmit2")?;
+        frame.scene_submitted = true;
+        Ok(())
+    }
+
+    /// Ends recording and submits the frame's ocean command buffer to the graphics queue (after
+    /// the scene one, if `submit_scene` was not called), waiting on `waits` and signalling the
+    /// frame timeline with `frame.signal_value()` plus `signals`.
     pub fn submit(
         &mut self,
-        frame: Frame,
+        mut frame: Frame,
         waits: &[vk::SemaphoreSubmitInfo],
         signals: &[vk::SemaphoreSubmitInfo],
     ) -> GpuResult<()> {
-        // SAFETY: `frame.cmd` is in the recording state (begun in `begin`).
-        unsafe { self.ctx.device.end_command_buffer(frame.cmd) }.vk("vkEndCommandBuffer")?;
+        if !frame.scene_submitted {
+            self.submit_scene(&mut frame)?;
+        }
+        let cmd = frame.cmds[Submission::Ocean as usize];
+        // SAFETY: `cmd` is in the recording state (begun in `begin`).
+        unsafe { self.ctx.device.end_command_buffer(cmd) }.vk("vkEndCommandBuffer")?;
         let mut all_signals = vec![vk::SemaphoreSubmitInfo::default()
             .semaphore(self.ctx.frame_timeline)
             .value(frame.signal_value())
             .stage_mask(vk::PipelineStageFlags2::ALL_COMMANDS)];
         all_signals.extend_from_slice(signals);
-        let cmd_infos = [vk::CommandBufferSubmitInfo::default().command_buffer(frame.cmd)];
+        let cmd_infos = [vk::CommandBufferSubmitInfo::default().command_buffer(cmd)];
         let submit = vk::SubmitInfo2::default()
             .wait_semaphore_infos(waits)
             .command_buffer_infos(&cmd_infos)

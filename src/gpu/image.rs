@@ -10,6 +10,7 @@ use gpu_allocator::MemoryLocation;
 use super::context::Context;
 use super::error::{GpuError, GpuResult, VkResultExt};
 use super::garbage::Garbage;
+use super::queues::QueueUsers;
 
 /// How to create an [`Image`].
 #[derive(Clone, Copy, Debug)]
@@ -23,7 +24,7 @@ pub struct ImageDesc<'a> {
     /// View all layers as a 2D array even when there is one (shaders declaring arrays).
     pub array_view: bool,
     /// Used by both the graphics and the compute queue: CONCURRENT sharing when their families
-    /// differ (correct by construction, no ownership transfers).
+    /// differ (correct by construction, no ownership transfers; `QueuePlan::sharing`).
     pub shared: bool,
     /// A cubemap: 6 layers (+x, -x, +y, -y, +z, -z), a cube view for sampling and one 2D view
     /// per face for rendering into it (`Image::layer_views`).
@@ -91,13 +92,14 @@ impl Image {
             .tiling(vk::ImageTiling::OPTIMAL)
             .usage(desc.usage)
             .initial_layout(vk::ImageLayout::UNDEFINED);
-        let families = [ctx.graphics.family, ctx.compute.family];
-        let info = if desc.shared && families[0] != families[1] {
-            info.sharing_mode(vk::SharingMode::CONCURRENT)
-                .queue_family_indices(&families)
+        let sharing = ctx.sharing(if desc.shared {
+            QueueUsers::Both
         } else {
-            info.sharing_mode(vk::SharingMode::EXCLUSIVE)
-        };
+            QueueUsers::Graphics
+        });
+        let info = info
+            .sharing_mode(sharing.mode)
+            .queue_family_indices(&sharing.families);
         // SAFETY: valid create info on a live device.
         let raw = unsafe { ctx.device.create_image(&info, None) }.vk("vkCreateImage")?;
         ctx.count_created(1);

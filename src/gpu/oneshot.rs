@@ -1,5 +1,9 @@
 //! One-shot command submission outside the frame loop (uploads, readbacks, tests, benchmarks):
-//! record, submit to the graphics queue, wait on a fence, done.
+//! record, submit to a queue (the graphics queue unless said otherwise), wait on a fence, done.
+//!
+//! A fence orders the host, not another queue's memory accesses: data a one-shot writes for the
+//! compute queue (h0) is therefore uploaded by a one-shot on the compute queue itself
+//! ([`upload_on`]), and read back there ([`download_on`]), so it never crosses families.
 
 use std::sync::Arc;
 
@@ -8,7 +12,7 @@ use gpu_allocator::MemoryLocation;
 
 use super::buffer::Buffer;
 use super::command::{Access, ImageBarrier, Recorder};
-use super::context::Context;
+use super::context::{Context, Queue};
 use super::error::{GpuError, GpuResult, VkResultExt};
 use super::image::Image;
 
@@ -28,8 +32,19 @@ pub fn run_once_waiting<R>(
     waits: &[vk::SemaphoreSubmitInfo],
     record: impl FnOnce(&Recorder) -> R,
 ) -> GpuResult<R> {
+    run_once_on(ctx, ctx.graphics, name, waits, record)
+}
+
+/// `run_once_waiting` on a given queue (`ctx.graphics` or `ctx.compute`).
+pub fn run_once_on<R>(
+    ctx: &Arc<Context>,
+    queue: Queue,
+    name: &str,
+    waits: &[vk::SemaphoreSubmitInfo],
+    record: impl FnOnce(&Recorder) -> R,
+) -> GpuResult<R> {
     let pool_info = vk::CommandPoolCreateInfo::default()
-        .queue_family_index(ctx.graphics.family)
+        .queue_family_index(queue.family)
         .flags(vk::CommandPoolCreateFlags::TRANSIENT);
     // SAFETY: valid create info on a live device; destroyed below after the wait.
     let pool =
@@ -69,8 +84,8 @@ pub fn run_once_waiting<R>(
             .wait_semaphore_infos(waits)
             .command_buffer_infos(&cmds);
         // SAFETY: the command buffer is executable; the fence is unsignalled.
-        let submitted = unsafe { ctx.device.queue_submit2(ctx.graphics.raw, &[submit], fence) }
-            .vk("vkQueueSubmit2");
+        let submitted =
+            unsafe { ctx.device.queue_submit2(queue.raw, &[submit], fence) }.vk("vkQueueSubmit2");
         // SAFETY: the fence was submitted (or the submit failed and it stays unsignalled, in which
         // case we do not wait on it).
         let waited = submitted.and_then(|()| {
@@ -104,6 +119,11 @@ pub fn run_once_waiting<R>(
 
 /// Copies `bytes` into the start of a device buffer (through a staging buffer) and waits.
 pub fn upload(ctx: &Arc<Context>, dst: &Buffer, bytes: &[u8]) -> GpuResult<()> {
+    upload_on(ctx, ctx.graphics, dst, bytes)
+}
+
+/// `upload` on the queue that will use the buffer (`ctx.compute` for the simulation's inputs).
+pub fn upload_on(ctx: &Arc<Context>, queue: Queue, dst: &Buffer, bytes: &[u8]) -> GpuResult<()> {
     let mut staging = Buffer::new(
         ctx,
         "upload staging",
@@ -112,7 +132,7 @@ pub fn upload(ctx: &Arc<Context>, dst: &Buffer, bytes: &[u8]) -> GpuResult<()> {
         MemoryLocation::CpuToGpu,
     )?;
     staging.write(bytes);
-    run_once(ctx, "upload", |rec| {
+    run_once_on(ctx, queue, "upload", &[], |rec| {
         rec.copy_buffer(&staging, dst, bytes.len() as u64);
         rec.barrier(
             &[],
@@ -162,6 +182,16 @@ pub fn upload_image(ctx: &Arc<Context>, image: &Image, bytes: &[u8]) -> GpuResul
 
 /// Reads the first `len` bytes of a device buffer (through a staging buffer).
 pub fn download(ctx: &Arc<Context>, src: &Buffer, len: usize) -> GpuResult<Vec<u8>> {
+    download_on(ctx, ctx.graphics, src, len)
+}
+
+/// `download` on the queue that used the buffer (`ctx.compute` for the simulation's).
+pub fn download_on(
+    ctx: &Arc<Context>,
+    queue: Queue,
+    src: &Buffer,
+    len: usize,
+) -> GpuResult<Vec<u8>> {
     let staging = Buffer::new(
         ctx,
         "download staging",
@@ -169,7 +199,7 @@ pub fn download(ctx: &Arc<Context>, src: &Buffer, len: usize) -> GpuResult<Vec<u
         vk::BufferUsageFlags::TRANSFER_DST,
         MemoryLocation::GpuToCpu,
     )?;
-    run_once(ctx, "download", |rec| {
+    run_once_on(ctx, queue, "download", &[], |rec| {
         rec.barrier(&[], &[(src.raw, Access::ALL_READ_WRITE, Access::COPY_READ)]);
         rec.copy_buffer(src, &staging, len as u64);
         rec.barrier(&[], &[(staging.raw, Access::COPY_WRITE, Access::HOST_READ)]);

@@ -9,6 +9,7 @@ use ash::vk;
 use super::debug::MessageCounters;
 use super::error::{GpuResult, VkResultExt};
 use super::instance::{create_instance, load_entry};
+use super::queues::QueuePlan;
 
 /// Facts about the chosen device that the rest of the program reports or respects.
 #[derive(Clone, Debug)]
@@ -92,8 +93,8 @@ pub(crate) fn type_rank(t: vk::PhysicalDeviceType) -> u32 {
 pub(crate) struct Candidate {
     pub(crate) physical: vk::PhysicalDevice,
     pub(crate) info: DeviceInfo,
-    pub(crate) graphics_family: u32,
-    pub(crate) compute_family: u32,
+    /// Which queues draw, present and compute.
+    pub(crate) plan: QueuePlan,
 }
 
 pub(crate) fn driver_string(instance: &ash::Instance, physical: vk::PhysicalDevice) -> String {
@@ -188,26 +189,17 @@ pub(crate) fn inspect(
                 .unwrap_or(false)
         }
     };
-    let graphics_family = families
-        .iter()
-        .enumerate()
-        .position(|(i, q)| q.queue_flags.contains(vk::QueueFlags::GRAPHICS) && presents(i as u32));
-    let Some(graphics_family) = graphics_family.map(|i| i as u32) else {
-        let what = if surface.is_some() {
-            "graphics queue that can present to the window"
-        } else {
-            "graphics queue"
-        };
-        return (parts, Err(format!("no {what}")));
+    let plan = match QueuePlan::choose(&families, presents) {
+        Ok(plan) => plan,
+        Err(why) if surface.is_none() => {
+            return (
+                parts,
+                Err(why.replace(" (that can present to the window)", "")),
+            )
+        }
+        Err(why) => return (parts, Err(why.to_string())),
     };
-    let compute_family = families
-        .iter()
-        .position(|q| {
-            q.queue_flags.contains(vk::QueueFlags::COMPUTE)
-                && !q.queue_flags.contains(vk::QueueFlags::GRAPHICS)
-        })
-        .map(|i| i as u32)
-        .unwrap_or(graphics_family);
+    let (graphics_family, compute_family) = (plan.graphics.family, plan.compute.family);
 
     let info = DeviceInfo {
         name,
@@ -229,8 +221,7 @@ pub(crate) fn inspect(
         Ok(Candidate {
             physical,
             info,
-            graphics_family,
-            compute_family,
+            plan,
         }),
     )
 }

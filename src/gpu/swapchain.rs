@@ -37,6 +37,25 @@ impl PresentMode {
     }
 }
 
+/// The surface format to render to: 8-bit sRGB (B8G8R8A8 or R8G8B8A8) in the sRGB colour space,
+/// whose attachment writes encode; else the same layouts in UNORM, where the shaders encode sRGB
+/// themselves (`DISPLAY_TARGET` in shaders/common/display.glsl); `None` when neither is offered.
+pub fn choose_surface_format(formats: &[vk::SurfaceFormatKHR]) -> Option<vk::SurfaceFormatKHR> {
+    [
+        vk::Format::B8G8R8A8_SRGB,
+        vk::Format::R8G8B8A8_SRGB,
+        vk::Format::B8G8R8A8_UNORM,
+        vk::Format::R8G8B8A8_UNORM,
+    ]
+    .iter()
+    .find_map(|f| {
+        formats
+            .iter()
+            .find(|s| s.format == *f && s.color_space == vk::ColorSpaceKHR::SRGB_NONLINEAR)
+    })
+    .copied()
+}
+
 /// An acquired swapchain image.
 #[derive(Clone, Copy, Debug)]
 pub struct AcquiredImage {
@@ -165,17 +184,15 @@ impl Swapchain {
             surface_fns.get_physical_device_surface_present_modes(self.ctx.physical, *surface)
         }
         .vk("vkGetPhysicalDeviceSurfacePresentModesKHR")?;
-        let format = [vk::Format::B8G8R8A8_SRGB, vk::Format::R8G8B8A8_SRGB]
-            .iter()
-            .find_map(|f| {
-                formats
-                    .iter()
-                    .find(|s| s.format == *f && s.color_space == vk::ColorSpaceKHR::SRGB_NONLINEAR)
-            })
-            .copied()
-            .ok_or_else(|| {
-                GpuError::Unsupported("the window surface offers no 8-bit sRGB format".into())
-            })?;
+        let format = choose_surface_format(&formats).ok_or_else(|| {
+            GpuError::Unsupported(
+                "the window surface offers no 8-bit RGBA/BGRA format in the sRGB colour space"
+                    .into(),
+            )
+        })?;
+        if self.generation == 0 && format.format != formats[0].format {
+            log::info!("surface formats offered: {formats:?}");
+        }
         let present_mode = if modes.contains(&mode.vk()) {
             mode.vk()
         } else {
@@ -227,7 +244,9 @@ impl Swapchain {
             .pre_transform(caps.current_transform)
             .composite_alpha(alpha)
             .present_mode(present_mode)
-            .clipped(true)
+            // Not clipped: F12 and --screenshot read the image back, and a clipped swapchain
+            // leaves covered pixels undefined.
+            .clipped(false)
             .old_swapchain(old);
         // SAFETY: valid create info; `old` (possibly null) is retired by this call.
         let raw = unsafe { self.fns.create_swapchain(&info, None) }.vk("vkCreateSwapchainKHR")?;
@@ -274,12 +293,15 @@ impl Swapchain {
     /// be recreated. The flag is true when the image is usable but suboptimal.
     pub fn acquire(&self, frames: &Frames) -> GpuResult<Option<(AcquiredImage, bool)>> {
         frames.wait_for_slot()?;
+        // A finite wait: a presentation engine that never hands an image back (a lost display)
+        // becomes an error instead of a hang.
+        let timeout_ns = super::context::WAIT_TIMEOUT_S * 1_000_000_000;
         let semaphore = self.acquire[frames.next_slot()];
         // SAFETY: the semaphore's previous wait (two frames ago) has completed (waited above)
         // and an out-of-date acquire leaves it unsignalled.
         match unsafe {
             self.fns
-                .acquire_next_image(self.raw, u64::MAX, semaphore, vk::Fence::null())
+                .acquire_next_image(self.raw, timeout_ns, semaphore, vk::Fence::null())
         } {
             Ok((index, suboptimal)) => {
                 let i = index as usize;
@@ -292,6 +314,9 @@ impl Swapchain {
                 Ok(Some((image, suboptimal)))
             }
             Err(vk::Result::ERROR_OUT_OF_DATE_KHR) => Ok(None),
+            Err(vk::Result::TIMEOUT | vk::Result::NOT_READY) => Err(GpuError::Timeout {
+                seconds: super::context::WAIT_TIMEOUT_S,
+            }),
             Err(result) => Err(GpuError::Vk {
                 call: "vkAcquireNextImageKHR",
                 result,
@@ -363,5 +388,44 @@ impl Drop for Swapchain {
                 self.ctx.count_destroyed(1);
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn offer(formats: &[vk::Format]) -> Vec<vk::SurfaceFormatKHR> {
+        formats
+            .iter()
+            .map(|&format| vk::SurfaceFormatKHR {
+                format,
+                color_space: vk::ColorSpaceKHR::SRGB_NONLINEAR,
+            })
+            .collect()
+    }
+
+    #[test]
+    fn surface_format_prefers_srgb_then_unorm() {
+        let pick = |f: &[vk::Format]| choose_surface_format(&offer(f)).map(|s| s.format);
+        // lavapipe / most desktop drivers.
+        let lavapipe = [vk::Format::B8G8R8A8_SRGB, vk::Format::B8G8R8A8_UNORM];
+        assert_eq!(pick(&lavapipe), Some(vk::Format::B8G8R8A8_SRGB));
+        // UNORM listed first: still the sRGB one.
+        let unorm_first = [vk::Format::B8G8R8A8_UNORM, vk::Format::R8G8B8A8_SRGB];
+        assert_eq!(pick(&unorm_first), Some(vk::Format::R8G8B8A8_SRGB));
+        // No 8-bit sRGB format (some compositors): UNORM, encoded by the shaders.
+        let no_srgb = [
+            vk::Format::A2B10G10R10_UNORM_PACK32,
+            vk::Format::R8G8B8A8_UNORM,
+        ];
+        assert_eq!(pick(&no_srgb), Some(vk::Format::R8G8B8A8_UNORM));
+        assert_eq!(pick(&[vk::Format::R16G16B16A16_SFLOAT]), None);
+        // The right format in another colour space does not count.
+        let hdr = [vk::SurfaceFormatKHR {
+            format: vk::Format::B8G8R8A8_SRGB,
+            color_space: vk::ColorSpaceKHR::EXTENDED_SRGB_LINEAR_EXT,
+        }];
+        assert_eq!(choose_surface_format(&hdr), None);
     }
 }

@@ -34,15 +34,37 @@ pub struct DrawStatistics {
     pub fragment_invocations: u64,
 }
 
+/// The compute queue's submission (the simulation).
+pub const COMPUTE: &str = "compute";
+/// The first graphics submission: passes that read no simulation output (sky cube,
+/// reflection, refraction, scene); on a device with a compute queue it overlaps the simulation.
+pub const GRAPHICS_SCENE: &str = "graphics 1";
+/// The second graphics submission, after the wait for the compute timeline: water, sky,
+/// textures view, output.
+pub const GRAPHICS_OCEAN: &str = "graphics 2";
+
+impl GpuTimings {
+    /// The submission pass `name` ran in (`COMPUTE`, `GRAPHICS_SCENE`, `GRAPHICS_OCEAN`).
+    pub fn submission_of(&self, name: &str) -> Option<&'static str> {
+        self.submissions
+            .iter()
+            .find(|(n, _)| *n == name)
+            .map(|(_, s)| *s)
+    }
+}
+
 /// Timestamps per frame: frame begin/end plus two per pass.
 const QUERIES_PER_FRAME: u32 = 128;
 
-/// What a slot recorded in its last frame: (pass name, begin query, end query).
+/// What a slot recorded in its last frame: (pass name, submission, begin query, end query).
 #[derive(Default)]
 struct SlotRecord {
     frame_index: Option<u64>,
-    passes: Vec<(&'static str, u32, u32)>,
+    passes: Vec<(&'static str, &'static str, u32, u32)>,
     used: u32,
+    /// Queries around the gap between two submissions of the frame (`pause` / `resume`): what
+    /// ran in between (the compute submission, on a device with one queue) is not the frame's.
+    gap: Option<(u32, u32)>,
     /// The pipeline-statistics query was written.
     statistics: bool,
 }
@@ -51,6 +73,8 @@ struct SlotRecord {
 #[derive(Clone, Debug, Default)]
 pub struct GpuTimings {
     pub passes: Vec<(&'static str, Vec<f64>)>,
+    /// The submission each pass was recorded in (`Profiler::set_submission`), by pass name.
+    pub submissions: Vec<(&'static str, &'static str)>,
     pub frames: Vec<f64>,
     /// The same samples frame by frame (`bench frames --csv`), in frame order.
     pub per_frame: Vec<FrameTimes>,
@@ -84,6 +108,8 @@ pub struct Profiler {
     open: Vec<(&'static str, u32)>,
     /// Frames with an index below this are warm-up and not recorded.
     warmup_frames: u64,
+    /// The submission passes are being recorded into (`set_submission`).
+    submission: &'static str,
     period_ns: f64,
     valid_mask: u64,
     timings: GpuTimings,
@@ -106,6 +132,7 @@ impl Profiler {
             "graphics",
         )
         .and_then(|mut profiler| {
+            profiler.submission = GRAPHICS_SCENE;
             if draw_statistics && ctx.info.pipeline_statistics_query {
                 for i in 0..FRAMES_IN_FLIGHT {
                     let info = vk::QueryPoolCreateInfo::default()
@@ -152,6 +179,7 @@ impl Profiler {
             current: 0,
             open: Vec::new(),
             warmup_frames,
+            submission: COMPUTE,
             period_ns: ctx.info.limits.timestamp_period as f64,
             valid_mask: if bits >= 64 {
                 u64::MAX
@@ -182,6 +210,13 @@ impl Profiler {
         self.warmup_frames = frames;
     }
 
+    /// Names the submission the following passes are recorded into ([`COMPUTE`],
+    /// [`GRAPHICS_SCENE`], [`GRAPHICS_OCEAN`]); `--profile` reports it per pass. One frame's
+    /// queries may span several submissions of one queue (they run in submission order).
+    pub fn set_submission(&mut self, submission: &'static str) {
+        self.submission = submission;
+    }
+
     /// Whether the device can time passes.
     pub fn enabled(&self) -> bool {
         !self.pools.is_empty()
@@ -196,6 +231,7 @@ impl Profiler {
         record.frame_index = Some(frame.index);
         record.passes.clear();
         record.used = 0;
+        record.gap = None;
         record.statistics = false;
         if let Some(&pool) = self.statistics_pools.get(frame.slot) {
             rec.reset_queries(pool, 1);
@@ -206,6 +242,29 @@ impl Profiler {
             record.used = 2; // query 1 is the frame end
         }
         Ok(())
+    }
+
+    /// Ends the frame's first submission: a timestamp where its GPU time pauses (see `resume`).
+    pub fn pause(&mut self, rec: &Recorder) {
+        let record = &mut self.records[self.current];
+        if let Some(&pool) = self.pools.get(self.current) {
+            if record.gap.is_none() && record.used + 2 <= QUERIES_PER_FRAME {
+                rec.write_timestamp(pool, record.used);
+                record.gap = Some((record.used, record.used + 1));
+                record.used += 2;
+            }
+        }
+    }
+
+    /// Starts the frame's next submission, `submission`, after `pause`: the time between the
+    /// two timestamps is left out of the frame's total.
+    pub fn resume(&mut self, rec: &Recorder, submission: &'static str) {
+        self.submission = submission;
+        if let (Some(&pool), Some((_, end))) =
+            (self.pools.get(self.current), self.records[self.current].gap)
+        {
+            rec.write_timestamp(pool, end);
+        }
     }
 
     /// Ends a frame with the frame-end timestamp (query 1).
@@ -243,7 +302,7 @@ impl Profiler {
             rec.write_timestamp(pool, begin + 1);
             self.records[self.current]
                 .passes
-                .push((name, begin, begin + 1));
+                .push((name, self.submission, begin, begin + 1));
         }
         rec.end_label();
     }
@@ -322,18 +381,22 @@ impl Profiler {
             let delta = ticks[b as usize].wrapping_sub(ticks[a as usize]) & self.valid_mask;
             delta as f64 * self.period_ns / 1.0e6
         };
-        self.timings.frames.push(ms(0, 1));
+        let total = ms(0, 1) - record.gap.map_or(0.0, |(a, b)| ms(a, b));
+        self.timings.frames.push(total);
         let mut frame = FrameTimes {
             index,
-            total_ms: ms(0, 1),
+            total_ms: total,
             passes: Vec::with_capacity(record.passes.len()),
         };
-        for &(name, a, b) in &record.passes {
+        for &(name, submission, a, b) in &record.passes {
             let value = ms(a, b);
             frame.passes.push((name, value));
             match self.timings.passes.iter_mut().find(|(n, _)| *n == name) {
                 Some((_, samples)) => samples.push(value),
-                None => self.timings.passes.push((name, vec![value])),
+                None => {
+                    self.timings.passes.push((name, vec![value]));
+                    self.timings.submissions.push((name, submission));
+                }
             }
         }
         self.timings.per_frame.push(frame);

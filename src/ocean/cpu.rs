@@ -20,7 +20,9 @@ use rustfft::num_complex::Complex64;
 use rustfft::FftPlanner;
 
 use super::params::OceanSettings;
-use super::spectrum::{dispersion, h0, wave_vector, Cascade};
+use std::f64::consts::PI;
+
+use super::spectrum::{h0, omega_steps, phase_turns, time_ticks, wave_vector, Cascade};
 
 /// Fields of one cascade at one time.
 #[derive(Clone, Debug)]
@@ -84,15 +86,15 @@ impl CpuOcean {
         let at = |m: usize, col: usize| {
             Complex64::new(h0[m * n + col][0] as f64, h0[m * n + col][1] as f64)
         };
+        let (ticks, depth) = (time_ticks(t), self.settings.sea.depth_m);
         let mut out = vec![Complex64::new(0.0, 0.0); n * n];
         for m in 0..n {
             for col in 0..n {
                 let k = wave_vector(col, m, n, patch);
-                let (omega, _) = dispersion(
-                    (k[0] * k[0] + k[1] * k[1]).sqrt(),
-                    self.settings.sea.depth_m,
-                );
-                let phase = Complex64::from_polar(1.0, omega * t);
+                // ω quantized to whole quanta and t reduced to ticks of the repeat period, as
+                // the evolve shader gets them (`spectrum::REPEAT_PERIOD_S`).
+                let steps = omega_steps((k[0] * k[0] + k[1] * k[1]).sqrt(), depth);
+                let phase = Complex64::from_polar(1.0, 2.0 * PI * phase_turns(steps, ticks));
                 // −k lives at ((N − n) mod N, (N − m) mod N); the Nyquist row/column has no partner
                 // and holds zero.
                 let minus = if m == 0 || col == 0 {

@@ -87,7 +87,7 @@ impl Kernel {
     }
 
     /// The register kernel, if the device can run it for N and this batch: N ≤ 512, 64-bit
-    /// integers (its stores), subgroup shuffles (two lanes per column above 256) and the batch
+    /// integers (its stores), RGBA32F uniform texel buffers (its loads), subgroup shuffles (two lanes per column above 256) and the batch
     /// within maxTexelBufferElements.
     pub fn registers(ctx: &Context, n: usize, batch: usize) -> Option<Kernel> {
         let lanes = n.div_ceil(REGISTER_MAX_M).max(1);
@@ -95,6 +95,10 @@ impl Kernel {
         let texels = batch * n * n / 2;
         let fits = n <= REGISTER_MAX_N
             && info.shader_int64
+            // It reads its input as RGBA32F uniform texel buffers (not guaranteed by the spec).
+            && ctx
+                .buffer_format_features(vk::Format::R32G32B32A32_SFLOAT)
+                .contains(vk::FormatFeatureFlags::UNIFORM_TEXEL_BUFFER)
             && texels <= info.limits.max_texel_buffer_elements as usize
             && (lanes == 1
                 || (info.compute_subgroup_shuffle && info.subgroup_size as usize >= lanes));

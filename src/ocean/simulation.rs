@@ -19,13 +19,13 @@ use ash::vk;
 use super::fft::{Direction, GpuFft};
 use super::gerstner::{Wave, G_SEED};
 use super::params::{OceanSettings, Waves};
-use super::spectrum::{h0, Cascade};
+use super::spectrum::{h0, omega_steps_grid, time_ticks, Cascade};
 use crate::gpu::compute::ComputeQueue;
 use crate::gpu::descriptors::{self, Write};
-use crate::gpu::oneshot::{run_once, run_once_waiting, upload};
+use crate::gpu::oneshot::{download_on, run_once_on, upload_on};
 use crate::gpu::{
-    Access, Buffer, Context, DescriptorPool, DescriptorSetLayout, Frame, GpuResult, Image,
-    ImageBarrier, ImageDesc, MemoryLocation, Pipeline, PipelineLayout, Profiler, Recorder,
+    Access, Buffer, Context, DescriptorPool, DescriptorSetLayout, FormatUse, Frame, GpuResult,
+    Image, ImageBarrier, ImageDesc, MemoryLocation, Pipeline, PipelineLayout, Profiler, Recorder,
     FRAMES_IN_FLIGHT,
 };
 use crate::shaders;
@@ -45,6 +45,44 @@ fn scope(
             rec.end_label();
         }
     }
+}
+
+/// Moves the simulation images into GENERAL, where they stay for good, and zeroes them (no foam
+/// before the first frame). Recorded at the start of the first compute submission, on the queue
+/// that writes them, so the graphics queue first sees them through the compute timeline.
+fn record_images_init(rec: &Recorder, images: &[&Image]) {
+    let barriers = |old_layout, src, dst| -> Vec<ImageBarrier> {
+        images
+            .iter()
+            .map(|img| ImageBarrier {
+                image: img.raw,
+                range: img.range(),
+                old_layout,
+                new_layout: vk::ImageLayout::GENERAL,
+                src,
+                dst,
+            })
+            .collect()
+    };
+    rec.barrier(
+        &barriers(
+            vk::ImageLayout::UNDEFINED,
+            Access::NONE,
+            Access::CLEAR_WRITE,
+        ),
+        &[],
+    );
+    for img in images {
+        rec.clear_image(img);
+    }
+    rec.barrier(
+        &barriers(
+            vk::ImageLayout::GENERAL,
+            Access::CLEAR_WRITE,
+            Access::COMPUTE_READ.or(Access::COMPUTE_WRITE),
+        ),
+        &[],
+    );
 }
 
 /// Patch sizes padded to four (for shaders).
@@ -67,15 +105,17 @@ pub const FOAM_THRESHOLD: f32 = 0.4;
 pub const FOAM_DECAY_S: f32 = 2.5;
 /// Foam added per frame per unit of (threshold − J).
 pub const FOAM_GAIN: f32 = 0.8;
-/// Format of the simulation images: fp32, as displacement and slopes need it.
+/// Format of the simulation images: fp32, as displacement and slopes need it. Linear filtering
+/// of it is optional in Vulkan: where the device lacks it, the water shaders filter by hand
+/// (`OCEAN_MANUAL_FILTER` in shaders/common/water.glsl).
 pub const IMAGE_FORMAT: vk::Format = vk::Format::R32G32B32A32_SFLOAT;
 
 #[repr(C)]
 #[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
 struct EvolveParams {
     patch_m: [f32; 4],
-    time_s: f32,
-    depth_m: f32,
+    /// `spectrum::time_ticks` of the frame's time.
+    ticks: u32,
     n: u32,
 }
 
@@ -131,6 +171,8 @@ enum Model {
     Fft {
         /// h0 of every cascade, (K, N, N) complex.
         h0: Buffer,
+        /// Every element's quantized frequency ω/ω0 (`spectrum::omega_steps`), (K, N, N) u32.
+        _omega_steps: Box<Buffer>,
         /// Boxed: it dwarfs the Gerstner variant.
         fft: Box<GpuFft>,
         evolve: Kernel,
@@ -182,7 +224,10 @@ pub struct Simulation {
     /// Per slot: (∂h/∂x, ∂h/∂z, J, foam), one layer per cascade.
     pub normals: Vec<Image>,
     queue: ComputeQueue,
-    last_time_s: Option<f32>,
+    /// The images were initialized (the first submission does it).
+    initialized: bool,
+    /// Simulation time of the previous submission (s; f64: a long run keeps its frame steps).
+    last_time_s: Option<f64>,
     /// Bound on how far the surface moves from its rest position (m): culling margin.
     pub max_displacement_m: f64,
 }
@@ -197,6 +242,15 @@ impl Simulation {
         );
         let cascades = settings.cascade_list();
         let layers = cascades.len() as u32;
+        ctx.require_formats(&[FormatUse {
+            format: IMAGE_FORMAT,
+            // Written by the kernels, sampled by the water, cleared, read back (--dump, --stats).
+            features: vk::FormatFeatureFlags::STORAGE_IMAGE
+                | vk::FormatFeatureFlags::SAMPLED_IMAGE
+                | vk::FormatFeatureFlags::TRANSFER_SRC
+                | vk::FormatFeatureFlags::TRANSFER_DST,
+            what: "the ocean simulation images",
+        }])?;
         let image = |name: String| {
             Image::new(
                 ctx,
@@ -224,39 +278,6 @@ impl Simulation {
             displacement.push(image(format!("ocean displacement slot {slot}"))?);
             normals.push(image(format!("ocean normals+foam slot {slot}"))?);
         }
-        // GENERAL for good, and zero (no foam before the first frame).
-        run_once(ctx, "ocean images init", |rec| {
-            let to_general: Vec<_> = displacement
-                .iter()
-                .chain(&normals)
-                .map(|img| ImageBarrier {
-                    image: img.raw,
-                    range: img.range(),
-                    old_layout: vk::ImageLayout::UNDEFINED,
-                    new_layout: vk::ImageLayout::GENERAL,
-                    src: Access::NONE,
-                    dst: Access::CLEAR_WRITE,
-                })
-                .collect();
-            rec.barrier(&to_general, &[]);
-            for img in displacement.iter().chain(&normals) {
-                rec.clear_image(img);
-            }
-            let done: Vec<_> = displacement
-                .iter()
-                .chain(&normals)
-                .map(|img| ImageBarrier {
-                    image: img.raw,
-                    range: img.range(),
-                    old_layout: vk::ImageLayout::GENERAL,
-                    new_layout: vk::ImageLayout::GENERAL,
-                    src: Access::CLEAR_WRITE,
-                    dst: Access::ALL_READ_WRITE,
-                })
-                .collect();
-            rec.barrier(&done, &[]);
-        })?;
-
         let storage = vk::DescriptorType::STORAGE_BUFFER;
         let storage_image = vk::DescriptorType::STORAGE_IMAGE;
         let slots = FRAMES_IN_FLIGHT as u32;
@@ -264,7 +285,7 @@ impl Simulation {
             ctx,
             "ocean descriptors",
             1 + slots,
-            &[(storage, 2 + slots), (storage_image, 3 * slots)],
+            &[(storage, 3 + slots), (storage_image, 3 * slots)],
         )?;
         // Per slot: write this slot's images, read the other slot's normals (foam).
         let image_writes = |slot: usize| {
@@ -302,6 +323,8 @@ impl Simulation {
                     .sum();
                 max_displacement_m = 4.0 * variance.sqrt() * (1.0 + settings.choppiness) + 0.5;
                 let h0_bytes: &[u8] = bytemuck::cast_slice(&h0_values);
+                // Uploaded, read and (--dump) downloaded on the compute queue only: it never
+                // crosses queue families.
                 let h0_buffer = Buffer::new(
                     ctx,
                     "h0 (all cascades)",
@@ -311,12 +334,29 @@ impl Simulation {
                         | vk::BufferUsageFlags::TRANSFER_SRC,
                     MemoryLocation::GpuOnly,
                 )?;
-                upload(ctx, &h0_buffer, h0_bytes)?;
+                upload_on(ctx, ctx.compute, &h0_buffer, h0_bytes)?;
+                let steps: Vec<u32> = cascades
+                    .iter()
+                    .flat_map(|c| omega_steps_grid(n, c.patch_m, settings.sea.depth_m))
+                    .collect();
+                let steps_buffer = Buffer::new(
+                    ctx,
+                    "omega steps (all cascades)",
+                    (steps.len() * 4) as u64,
+                    vk::BufferUsageFlags::STORAGE_BUFFER | vk::BufferUsageFlags::TRANSFER_DST,
+                    MemoryLocation::GpuOnly,
+                )?;
+                upload_on(
+                    ctx,
+                    ctx.compute,
+                    &steps_buffer,
+                    bytemuck::cast_slice(&steps),
+                )?;
                 let evolve = Kernel::new(
                     ctx,
                     "ocean evolve",
                     shaders::OCEAN_EVOLVE_COMP,
-                    &[storage, storage],
+                    &[storage, storage, storage],
                     std::mem::size_of::<EvolveParams>(),
                 )?;
                 let assemble = Kernel::new(
@@ -339,6 +379,10 @@ impl Simulation {
                             binding: 1,
                             buffer: fft.data.raw,
                         },
+                        Write::StorageBuffer {
+                            binding: 2,
+                            buffer: steps_buffer.raw,
+                        },
                     ],
                 );
                 let mut assemble_sets = Vec::new();
@@ -357,6 +401,7 @@ impl Simulation {
                 }
                 Model::Fft {
                     h0: h0_buffer,
+                    _omega_steps: Box::new(steps_buffer),
                     fft: Box::new(fft),
                     evolve,
                     assemble,
@@ -420,13 +465,27 @@ impl Simulation {
             displacement,
             normals,
             queue: ComputeQueue::new(ctx)?,
+            initialized: false,
             last_time_s: None,
         })
     }
 
-    /// World position of the images' texel (0, 0) for the last submitted frame.
+    /// World position of the images' texel (0, 0) for the frame being recorded (set by
+    /// [`Simulation::place_window`]).
     pub fn origin_m(&self) -> [f64; 2] {
         self.origin_m
+    }
+
+    /// Places the Gerstner window for the next submission around the camera (the periodic FFT
+    /// cascades need no placement): it follows the camera in whole grid steps, so texels stay on
+    /// a fixed world lattice (no swimming) and the camera sits at its centre. Called before the
+    /// frame's uniforms are written, which carry the origin.
+    pub fn place_window(&mut self, camera_xz: [f64; 2]) {
+        if self.is_window() {
+            let window = self.settings.patch_size_m;
+            let step = window / self.settings.fft_size as f64;
+            self.origin_m = camera_xz.map(|c| ((c - window / 2.0) / step).floor() * step);
+        }
     }
 
     /// True for a bounded window (Gerstner), false for periodic cascades (FFT).
@@ -439,20 +498,19 @@ impl Simulation {
         patch_sizes(&self.cascades)
     }
 
-    /// Submits frame `value`'s simulation at time `time_s` into `slot` on the compute queue.
-    /// `camera_xz` places the Gerstner window (ignored by the periodic FFT cascades); `timing`
-    /// times the passes with a compute-queue profiler (`Profiler::for_compute`) for `frame`.
+    /// Submits frame `value`'s simulation at time `time_s` into `slot` on the compute queue,
+    /// with the Gerstner window where [`Simulation::place_window`] last put it; `timing` times
+    /// the passes with a compute-queue profiler (`Profiler::for_compute`) for `frame`.
     pub fn submit(
         &mut self,
         slot: usize,
         value: u64,
-        time_s: f32,
-        camera_xz: [f64; 2],
+        time_s: f64,
         timing: Option<(&mut Profiler, &Frame)>,
     ) -> GpuResult<()> {
         let dt_s = self
             .last_time_s
-            .map(|t| (time_s - t).max(0.0))
+            .map(|t| (time_s - t).max(0.0) as f32)
             .unwrap_or(0.0);
         self.last_time_s = Some(time_s);
         // Frame f − 2 (value − 2) was the last to sample this slot.
@@ -461,6 +519,12 @@ impl Simulation {
         let n = self.settings.fft_size as u32;
         let groups = n.div_ceil(8);
         let layers = self.cascades.len() as u32;
+        let init: Vec<&Image> = if self.initialized {
+            Vec::new()
+        } else {
+            self.displacement.iter().chain(&self.normals).collect()
+        };
+        self.initialized = true;
         let previous = &self.normals[(slot + FRAMES_IN_FLIGHT - 1) % FRAMES_IN_FLIGHT];
         // The previous frame's normals (foam) → this frame's kernel.
         let foam_barrier = ImageBarrier {
@@ -482,8 +546,7 @@ impl Simulation {
             } => {
                 let evolve_params = EvolveParams {
                     patch_m: patch_sizes(&self.cascades),
-                    time_s,
-                    depth_m: self.settings.sea.depth_m.map(|d| d as f32).unwrap_or(0.0),
+                    ticks: time_ticks(time_s),
                     n,
                 };
                 let assemble_params = AssembleParams {
@@ -500,6 +563,9 @@ impl Simulation {
                     let mut timer = timing;
                     if let Some((profiler, frame)) = timer.as_mut() {
                         profiler.begin_frame(rec, frame)?;
+                    }
+                    if !init.is_empty() {
+                        record_images_init(rec, &init);
                     }
                     scope(&mut timer, rec, "ocean evolve", || {
                         // Evolve overwrites the FFT data the previous frame's FFT and assemble used.
@@ -541,12 +607,8 @@ impl Simulation {
                 kernel,
                 sets,
             } => {
-                // The window follows the camera in whole grid steps, so texels stay on a fixed
-                // world lattice (no swimming) and the camera sits at its centre.
                 let window = self.settings.patch_size_m;
-                let step = window / n as f64;
-                let origin = camera_xz.map(|c| ((c - window / 2.0) / step).floor() * step);
-                self.origin_m = origin;
+                let origin = self.origin_m;
                 let gpu_waves: Vec<GpuWave> = waves
                     .iter()
                     .map(|w| {
@@ -554,7 +616,7 @@ impl Simulation {
                         let omega = (G_SEED * k).sqrt();
                         // θ at the origin, reduced in f64 so the shader's float phase stays exact.
                         let theta0 =
-                            (w.kx * origin[0] + w.kz * origin[1] - omega * time_s as f64 - w.phase)
+                            (w.kx * origin[0] + w.kz * origin[1] - omega * time_s - w.phase)
                                 .rem_euclid(2.0 * std::f64::consts::PI);
                         GpuWave {
                             wave: [w.kx as f32, w.kz as f32, w.amplitude as f32, theta0 as f32],
@@ -580,6 +642,9 @@ impl Simulation {
                     let mut timer = timing;
                     if let Some((profiler, frame)) = timer.as_mut() {
                         profiler.begin_frame(rec, frame)?;
+                    }
+                    if !init.is_empty() {
+                        record_images_init(rec, &init);
                     }
                     scope(&mut timer, rec, "ocean gerstner", || {
                         rec.barrier(&[foam_barrier], &[]);
@@ -607,14 +672,10 @@ impl Simulation {
         )
     }
 
-    /// Reads both images of `slot` once the compute timeline reaches `value` (tests, dumps):
-    /// (displacement, normals), each cascade after cascade, `[m][n]` RGBA f32.
-    pub fn read_back(
-        &self,
-        ctx: &Arc<Context>,
-        slot: usize,
-        value: u64,
-    ) -> GpuResult<(Texels, Texels)> {
+    /// Reads both images of `slot` as the last compute submission left them (tests, dumps):
+    /// (displacement, normals), each cascade after cascade, `[m][n]` RGBA f32. No graphics frame
+    /// may still be sampling the slot (wait for it first).
+    pub fn read_back(&self, ctx: &Arc<Context>, slot: usize) -> GpuResult<(Texels, Texels)> {
         let images = [&self.displacement[slot], &self.normals[slot]];
         let n = self.settings.fft_size;
         let bytes = (self.cascades.len() * n * n * 16) as u64;
@@ -634,10 +695,14 @@ impl Simulation {
                 MemoryLocation::GpuToCpu,
             )?,
         ];
-        let wait = self
-            .queue
-            .graphics_wait(value, vk::PipelineStageFlags2::COPY);
-        run_once_waiting(ctx, "ocean readback", &[wait], |rec| {
+        // On the compute queue, after the submission that wrote the images: a pipeline barrier's
+        // first scope covers everything submitted earlier to the same queue, so the layout
+        // transition chains with the writes (a semaphore wait on another queue at COPY would
+        // not have chained with a barrier whose first scope is COMPUTE_SHADER). The images go
+        // back to GENERAL before later compute submissions (same queue again) and graphics
+        // frames (through the compute timeline, whose later signals cover this) touch them.
+        // The caller makes sure no graphics frame still samples the slot (it waited for it).
+        run_once_on(ctx, ctx.compute, "ocean readback", &[], |rec| {
             let transition = |src, dst, old, new| -> Vec<ImageBarrier> {
                 images
                     .iter()
@@ -667,7 +732,6 @@ impl Simulation {
             for (img, buffer) in images.iter().zip(&buffers) {
                 rec.copy_image_layers_to_buffer(img, src_optimal, buffer);
             }
-            // Back to GENERAL for the next frame's compute writes and graphics reads.
             rec.barrier(
                 &transition(
                     Access::COPY_READ,
@@ -675,10 +739,6 @@ impl Simulation {
                     src_optimal,
                     general,
                 ),
-                &[],
-            );
-            rec.barrier(
-                &[],
                 &[
                     (buffers[0].raw, Access::COPY_WRITE, Access::HOST_READ),
                     (buffers[1].raw, Access::COPY_WRITE, Access::HOST_READ),
@@ -691,11 +751,12 @@ impl Simulation {
         Ok((read(&buffers[0]), read(&buffers[1])))
     }
 
-    /// h0 as uploaded (FFT mode; for tests and dumps).
-    pub fn h0_buffer(&self) -> Option<&Buffer> {
+    /// h0 as uploaded, read back on the compute queue that owns it (FFT mode; for dumps):
+    /// (K, N, N) complex f32 bytes.
+    pub fn download_h0(&self, ctx: &Arc<Context>) -> GpuResult<Option<Vec<u8>>> {
         match &self.model {
-            Model::Fft { h0, .. } => Some(h0),
-            Model::Gerstner { .. } => None,
+            Model::Fft { h0, .. } => download_on(ctx, ctx.compute, h0, h0.size as usize).map(Some),
+            Model::Gerstner { .. } => Ok(None),
         }
     }
 

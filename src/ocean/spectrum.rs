@@ -315,6 +315,47 @@ pub fn cascades(patch_m: f64, count: usize) -> Vec<Cascade> {
         .collect()
 }
 
+/// The surface repeats exactly after this time (s): every frequency is rounded to a whole
+/// multiple of ω0 = 2π/T (Tessendorf 2001, §3.2, "looping in time": ω' = [ω/ω0]·ω0), so
+/// h(k, t) = h(k, t mod T). 2^16 s ≈ 18 h: the rounding moves ω by at most π/T = 4.8·10⁻⁵ rad/s,
+/// 0.02 % of the longest wave's frequency in a 1000 m patch.
+pub const REPEAT_PERIOD_S: f64 = 65536.0;
+
+/// ω0 = 2π/T, the frequency quantum (rad/s).
+pub fn omega_quantum() -> f64 {
+    2.0 * PI / REPEAT_PERIOD_S
+}
+
+/// The wave of wave number `k` at `depth_m` turns ω'·t = 2π·m·t/T: its frequency in quanta,
+/// m = round(ω(k)/ω0) (`dispersion`). The GPU reads these from a buffer computed here, so the CPU
+/// reference and the shaders use the same m.
+pub fn omega_steps(k: f64, depth_m: Option<f64>) -> u32 {
+    (dispersion(k, depth_m).0 / omega_quantum()).round() as u32
+}
+
+/// `omega_steps` of every element of one cascade's grid, row-major `[m][n]`.
+pub fn omega_steps_grid(size: usize, patch_m: f64, depth_m: Option<f64>) -> Vec<u32> {
+    (0..size * size)
+        .map(|i| {
+            let k = wave_vector(i % size, i / size, size, patch_m);
+            omega_steps((k[0] * k[0] + k[1] * k[1]).sqrt(), depth_m)
+        })
+        .collect()
+}
+
+/// Time as the shaders get it: t mod T in units of T/2^32 (15 µs), computed in f64 so any
+/// `--time` up to 10^6 s (and a window left running for days) keeps its precision.
+pub fn time_ticks(t_s: f64) -> u32 {
+    ((t_s / REPEAT_PERIOD_S).rem_euclid(1.0) * 4_294_967_296.0).round() as u64 as u32
+}
+
+/// The phase of a wave of `steps` quanta at `ticks`, in turns, in [−½, ½): ω'·t/2π mod 1 =
+/// steps·ticks / 2^32 mod 1, exact in 32-bit integer arithmetic (the evolve shader does the same
+/// with a `uint` multiply that wraps modulo 2^32).
+pub fn phase_turns(steps: u32, ticks: u32) -> f64 {
+    steps.wrapping_mul(ticks) as i32 as f64 / 4_294_967_296.0
+}
+
 /// Wave vector of element `[m][n]` of an N×N grid over a patch of side `patch_m`.
 pub fn wave_vector(n: usize, m: usize, size: usize, patch_m: f64) -> [f64; 2] {
     let dk = 2.0 * PI / patch_m;
@@ -358,6 +399,42 @@ pub fn h0(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn quantized_time_repeats_exactly_and_keeps_its_precision() {
+        // h(t) = h(t mod T): the same ticks, so the same phase, one period later.
+        for t in [0.0, 1.5, 1e3, 1e6] {
+            assert_eq!(time_ticks(t), time_ticks(t + REPEAT_PERIOD_S), "t = {t}");
+        }
+        // The phase of the finest wave of the default scene (k ≈ 38 rad/m, ω ≈ 19 rad/s) one
+        // frame apart at t = 10^6 s advances by ω·dt, as at t = 0 (an f32 time would step by
+        // 62.5 ms there).
+        let k = 38.0;
+        let steps = omega_steps(k, None);
+        let omega = steps as f64 * omega_quantum();
+        for t in [0.0, 1e6] {
+            let dt = 1.0 / 60.0;
+            let d = phase_turns(steps, time_ticks(t + dt)) - phase_turns(steps, time_ticks(t));
+            let d = (d + 0.5).rem_euclid(1.0) - 0.5;
+            let expected = omega * dt / (2.0 * PI);
+            // Each end's time is rounded to a tick (T / 2^32 = 15 µs): at most ω·tick/2π.
+            let tick_s = REPEAT_PERIOD_S / 4_294_967_296.0;
+            let bound = omega * tick_s / (2.0 * PI);
+            assert!(
+                (d - expected).abs() <= bound,
+                "t = {t}: phase step {d} turns, expected {expected} ± {bound}"
+            );
+        }
+        // The quantized frequency stays within half a quantum of the dispersion relation.
+        for k in [2.0 * PI / 1000.0, 0.1, 1.0, 38.0, 600.0] {
+            let exact = dispersion(k, None).0;
+            let q = omega_steps(k, None) as f64 * omega_quantum();
+            assert!(
+                (q - exact).abs() <= omega_quantum() / 2.0 + 1e-12,
+                "k = {k}"
+            );
+        }
+    }
 
     #[test]
     fn donelan_banner_integrates_to_one() {

@@ -23,7 +23,7 @@ pub fn height_stats(heights: impl Iterator<Item = f64>) -> Value {
 
 /// One `--stats` line: per cascade, and for the surface (all cascades summed) sampled on the
 /// largest cascade's grid, each cascade read at x mod L_c by bilinear interpolation.
-pub fn stats_line(frame: u64, t: f32, displacement: &Texels, n: usize, patch_m: &[f64]) -> String {
+pub fn stats_line(frame: u64, t: f64, displacement: &Texels, n: usize, patch_m: &[f64]) -> String {
     let plane = n * n;
     let cascades: Vec<Value> = (0..patch_m.len())
         .map(|c| {

@@ -168,8 +168,8 @@ pub fn frame_views(camera: &Camera, aspect: f32, hidden_below_m: Option<f32>) ->
 #[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct FrameUniforms {
     pub views: [ViewUniforms; 3],
-    /// x: simulation time (s); y: water level (m); z: debug view (`ViewMode` as f32); w: Fresnel
-    /// model (`FresnelModel` as f32).
+    /// x: simulation time mod `spectrum::REPEAT_PERIOD_S` (s); y: water level (m); z: debug view
+    /// (`ViewMode` as f32); w: Fresnel model (`FresnelModel` as f32).
     pub time: [f32; 4],
     /// xyz: unit vector toward the sun; w: sun radiance scale.
     pub sun_dir: [f32; 4],
@@ -177,7 +177,8 @@ pub struct FrameUniforms {
     pub viewport: [f32; 4],
     /// Patch side of each ocean cascade (m).
     pub patch_m: [f32; 4],
-    /// x: number of cascades; y: 1 for a bounded window (Gerstner); zw: origin of the images (m).
+    /// x: number of cascades; y: 1 for a bounded window (Gerstner); zw: unused (the images'
+    /// origin is in `cascade_uv`).
     pub ocean: [f32; 4],
     /// x: focal length (px); y: target tessellated edge (px); z: max displacement (m); w: 1 to
     /// paint the solid test background instead of the sky.
@@ -189,6 +190,62 @@ pub struct FrameUniforms {
     pub objects: [[f32; 4]; 4],
     /// xyz: solid background colour (`--view` tests); w: unused.
     pub background: [f32; 4],
+    /// xy: camera xz relative to the water grid's centre (m); z: the near plane (m,
+    /// `Camera::near_m`: depth = near / view distance); w: unused. (`WaterFrame`)
+    pub water: [f32; 4],
+    /// Ocean image coordinates of the water grid's centre: cascade c in element c / 2, xy for
+    /// even c, zw for odd c; reduced mod 1 for the repeating FFT cascades.
+    pub cascade_uv: [[f32; 4]; 2],
+    /// DU/DV tile coordinates of the water grid's centre, mod 1: xy for the first sample, zw
+    /// for the second.
+    pub dudv_origin: [f32; 4],
+    /// x: DU/DV tiles per metre; y: the second sample's scale; z: scroll phase (turns, mod 1);
+    /// w: unused.
+    pub dudv: [f32; 4],
+}
+
+/// Side of a DU/DV tile on the water (m).
+pub const DUDV_TILE_M: f64 = 24.0;
+/// The second DU/DV sample's scale relative to the first (seed 001 eq. 5 samples twice).
+pub const DUDV_SECOND_SCALE: f64 = 0.73;
+/// How fast the DU/DV samples scroll (tiles per second; seed 001 eq. 5: t cycles in (0, 1)).
+pub const DUDV_SPEED_TILES_S: f64 = 0.03;
+/// The water's patch grid is centred on the camera snapped to this step (m), so the patches
+/// do not slide over the waves (about the innermost patch's side; shaders/common/water.glsl).
+pub const WATER_SNAP_M: f64 = 8.0;
+
+/// Where the water's vertices are measured from: the camera's xz snapped to `WATER_SNAP_M`,
+/// computed in f64. The shaders work with positions relative to it (a few km at most), and
+/// everything that depends on absolute world position (the ocean images' and DU/DV map's
+/// coordinates, the scroll phase) is reduced here, so a camera 10^6 m from the origin or a
+/// simulation time of 10^6 s looks as it does at the origin at t = 0.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct WaterFrame {
+    /// World xz of the grid's centre (m).
+    pub centre: [f64; 2],
+}
+
+impl WaterFrame {
+    pub fn around(camera_xz: [f64; 2]) -> WaterFrame {
+        WaterFrame {
+            centre: camera_xz.map(|c| (c / WATER_SNAP_M).floor() * WATER_SNAP_M),
+        }
+    }
+
+    /// Image coordinates of the centre in a cascade of side `patch_m` whose texel (0, 0) is at
+    /// `origin`: reduced mod 1 for periodic cascades (`window` false), as they are for a window.
+    pub fn ocean_uv(&self, origin: [f64; 2], patch_m: f64, window: bool) -> [f32; 2] {
+        [0, 1].map(|i| {
+            let uv = (self.centre[i] - origin[i]) / patch_m;
+            (if window { uv } else { uv.rem_euclid(1.0) }) as f32
+        })
+    }
+
+    /// DU/DV tile coordinates of the centre at `scale` (mod 1).
+    pub fn dudv_uv(&self, scale: f64) -> [f32; 2] {
+        self.centre
+            .map(|c| (c * scale / DUDV_TILE_M).rem_euclid(1.0) as f32)
+    }
 }
 
 /// The scene's fixed features (island, objects), from the run settings.
@@ -231,7 +288,8 @@ impl SceneLayout {
 pub struct FrameParams<'a> {
     pub sun_dir: Vec3,
     pub sun_scale: f32,
-    pub time_s: f32,
+    /// Simulation time (s).
+    pub time_s: f64,
     /// Main target size (px).
     pub size: (u32, u32),
     /// Width / height of the output (the main target's rounded size may differ slightly).
@@ -248,6 +306,7 @@ pub struct FrameParams<'a> {
 impl FrameUniforms {
     pub fn new(camera: &Camera, p: &FrameParams) -> Self {
         let (w, h) = (p.size.0.max(1) as f32, p.size.1.max(1) as f32);
+        let water = WaterFrame::around([camera.position.x as f64, camera.position.z as f64]);
         let projection = camera.projection(p.aspect);
         // |P[1][1]| = 1 / tan(fov/2): the focal length in pixels is that times half the height.
         let focal_px = projection.y_axis.y.abs() * h * 0.5;
@@ -259,7 +318,7 @@ impl FrameUniforms {
                 (p.view_mode != ViewMode::Wireframe as u32).then_some(p.ocean.max_displacement_m),
             ),
             time: [
-                p.time_s,
+                p.time_s.rem_euclid(crate::ocean::spectrum::REPEAT_PERIOD_S) as f32,
                 WATER_LEVEL_M,
                 p.view_mode as f32,
                 p.fresnel as f32,
@@ -270,8 +329,8 @@ impl FrameUniforms {
             ocean: [
                 p.ocean.cascades as f32,
                 if p.inputs.ocean_window { 1.0 } else { 0.0 },
-                p.inputs.ocean_origin_m[0],
-                p.inputs.ocean_origin_m[1],
+                0.0,
+                0.0,
             ],
             lod: [
                 focal_px,
@@ -290,6 +349,33 @@ impl FrameUniforms {
                 let [r, g, b] = p.background.unwrap_or_default();
                 [r, g, b, 0.0]
             },
+            water: [
+                (camera.position.x as f64 - water.centre[0]) as f32,
+                (camera.position.z as f64 - water.centre[1]) as f32,
+                camera.near_m,
+                0.0,
+            ],
+            cascade_uv: [0, 1].map(|half| {
+                let uv = |c: usize| {
+                    water.ocean_uv(
+                        p.inputs.ocean_origin_m,
+                        p.ocean.patch_m[c] as f64,
+                        p.inputs.ocean_window,
+                    )
+                };
+                let (a, b) = (uv(2 * half), uv(2 * half + 1));
+                [a[0], a[1], b[0], b[1]]
+            }),
+            dudv_origin: {
+                let (a, b) = (water.dudv_uv(1.0), water.dudv_uv(DUDV_SECOND_SCALE));
+                [a[0], a[1], b[0], b[1]]
+            },
+            dudv: [
+                (1.0 / DUDV_TILE_M) as f32,
+                DUDV_SECOND_SCALE as f32,
+                (p.time_s * DUDV_SPEED_TILES_S).rem_euclid(1.0) as f32,
+                0.0,
+            ],
         }
     }
 }

@@ -31,14 +31,16 @@ use super::passes::water::WaterSamplers;
 use super::passes::{output, SkyCube, SkyPass, TerrainPass, WaterPass};
 use super::scene::{generate_dudv, load_dudv, DUDV_SIDE};
 use super::targets::{ColourDepth, Targets};
+use super::targets::{DEPTH_FORMAT, HDR_FORMAT};
 use super::{SceneSettings, ViewMode};
 use crate::gpu::descriptors::{self, Write};
 use crate::gpu::oneshot::upload_image;
 use crate::gpu::{
-    Access, Attachment, Buffer, Context, DescriptorPool, DescriptorSetLayout, Frame, GpuResult,
-    Image, ImageBarrier, ImageDesc, Load, MemoryLocation, Profiler, Recorder, Sampler,
+    Access, Attachment, Buffer, Context, DescriptorPool, DescriptorSetLayout, FormatUse, Frame,
+    GpuResult, Image, ImageBarrier, ImageDesc, Load, MemoryLocation, Profiler, Recorder, Sampler,
     FRAMES_IN_FLIGHT,
 };
+use crate::ocean::simulation::IMAGE_FORMAT;
 
 /// The refraction texture where nothing lies under the water: the deep water colour
 /// (`WATER_COLOUR` in water.frag), linear.
@@ -81,13 +83,47 @@ impl OutputTarget {
     }
 }
 
+/// Checks every format the renderer creates images in for what it does with them (one line
+/// naming the format and the use when the device lacks a feature; `gpu::formats`).
+fn check_formats(ctx: &Context, display: vk::Format, scaled: bool) -> GpuResult<()> {
+    use vk::FormatFeatureFlags as F;
+    let mut display_features = F::COLOR_ATTACHMENT | F::TRANSFER_SRC;
+    if scaled {
+        // Blitted up to the output (linearly where it filters; `output::record`).
+        display_features |= F::BLIT_SRC;
+    }
+    ctx.require_formats(&[
+        FormatUse {
+            format: HDR_FORMAT,
+            features: F::COLOR_ATTACHMENT | F::SAMPLED_IMAGE | F::SAMPLED_IMAGE_FILTER_LINEAR,
+            what: "the reflection, refraction and sky textures",
+        },
+        FormatUse {
+            format: DEPTH_FORMAT,
+            // Sampling D32 is required by Vulkan; rendering to it is required of D32 or X8_D24.
+            features: F::DEPTH_STENCIL_ATTACHMENT | F::SAMPLED_IMAGE,
+            what: "the depth buffers (the refraction depth is sampled by the water)",
+        },
+        FormatUse {
+            format: display,
+            features: display_features,
+            what: "the main view's target",
+        },
+        FormatUse {
+            format: vk::Format::R8G8B8A8_UNORM,
+            features: F::SAMPLED_IMAGE | F::SAMPLED_IMAGE_FILTER_LINEAR | F::TRANSFER_DST,
+            what: "the DU/DV map",
+        },
+    ])
+}
+
 /// Per-frame inputs.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct FrameInputs {
-    /// Simulation time in seconds.
-    pub time_s: f32,
+    /// Simulation time in seconds (f64: reduced on the CPU before it reaches a shader).
+    pub time_s: f64,
     /// World position of the ocean images' texel (0, 0) (0 for periodic cascades).
-    pub ocean_origin_m: [f32; 2],
+    pub ocean_origin_m: [f64; 2],
     /// The images cover one bounded window (Gerstner) rather than repeating tiles.
     pub ocean_window: bool,
 }
@@ -118,6 +154,8 @@ pub struct Renderer {
     sky: SkyPass,
     terrain: TerrainPass,
     water: WaterPass,
+    /// The main target's format filters linearly (a scaled output blit is bilinear).
+    blit_linear: bool,
 }
 
 impl Renderer {
@@ -130,6 +168,7 @@ impl Renderer {
         ocean: OceanBindings,
         settings: &SceneSettings,
     ) -> anyhow::Result<Renderer> {
+        check_formats(ctx, output_format, settings.render_scale < 1.0)?;
         let targets = Targets::new(
             ctx,
             extent,
@@ -161,7 +200,23 @@ impl Renderer {
         )?;
         let repeat = vk::SamplerAddressMode::REPEAT;
         let clamp = vk::SamplerAddressMode::CLAMP_TO_EDGE;
-        let ocean_sampler = Sampler::linear(ctx, "ocean sampler (repeat)", repeat)?;
+        // RGBA32F need not filter linearly (it does on desktop GPUs and lavapipe): without it,
+        // the ocean images are sampled at texel centres and the water shaders interpolate.
+        let ocean_linear = ctx.filters_linearly(IMAGE_FORMAT);
+        let ocean_sampler = if ocean_linear {
+            Sampler::linear(ctx, "ocean sampler (repeat)", repeat)?
+        } else {
+            log::info!(
+                "{:?} has no linear filtering: the water filters the ocean images by hand",
+                IMAGE_FORMAT
+            );
+            Sampler::new(
+                ctx,
+                "ocean sampler (nearest, repeat)",
+                vk::Filter::NEAREST,
+                repeat,
+            )?
+        };
         let sky_sampler = Sampler::linear(ctx, "sky cube sampler", clamp)?;
         let sky_cube = match &settings.skybox {
             Some(dir) => SkyCube::load(ctx, dir)?,
@@ -260,6 +315,7 @@ impl Renderer {
             dudv.view,
             &samplers,
             ocean.cascades,
+            !ocean_linear,
         )?;
         if settings.view == ViewMode::Wireframe && !water.has_wireframe() {
             anyhow::bail!(
@@ -288,6 +344,7 @@ impl Renderer {
             sky,
             terrain,
             water,
+            blit_linear: ctx.filters_linearly(output_format),
         })
     }
 
@@ -320,9 +377,11 @@ impl Renderer {
         Ok(())
     }
 
-    /// Records the frame into `rec`. `output` must have the size the renderer was made (or last
-    /// resized) for.
-    pub fn record(
+    /// Records the frame's first graphics submission into `rec`: the frame uniforms, then the
+    /// passes that read no simulation output (sky cube, reflection, refraction, scene), which on
+    /// a device with a compute queue run while the simulation does. `output` must have the size
+    /// the renderer was made (or last resized) for.
+    pub fn record_scene(
         &mut self,
         rec: &Recorder,
         frame: &Frame,
@@ -467,6 +526,22 @@ impl Renderer {
             self.terrain.record(rec, frame_set, ViewIndex::Main);
             rec.end_rendering();
         });
+    }
+
+    /// Records the frame's second graphics submission into `rec`, which waits for the compute
+    /// timeline: the water (it samples the simulation images of the frame's slot), the sky, the
+    /// texture debug view and the output.
+    pub fn record_ocean(
+        &mut self,
+        rec: &Recorder,
+        frame: &Frame,
+        profiler: &mut Profiler,
+        output: &OutputTarget,
+    ) {
+        let frame_set = self.frame_uniforms[frame.slot].1;
+        let t = &self.targets;
+        let s = &self.settings;
+        let extent = t.main.extent();
         // Between the main scopes: colour and depth written, then read and written again.
         let main_colour_rw = ImageBarrier {
             image: t.main.colour.raw,
@@ -547,7 +622,7 @@ impl Renderer {
             });
         }
         profiler.pass(rec, "output", || {
-            output::record(rec, &t.main.colour, output)
+            output::record(rec, &t.main.colour, output, self.blit_linear)
         });
     }
 }

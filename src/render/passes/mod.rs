@@ -71,7 +71,8 @@ pub enum Depth {
 pub enum SceneTarget {
     /// Linear radiance (`HDR_FORMAT`): the reflection and refraction textures.
     Hdr,
-    /// Tone-mapped colour in this 8-bit sRGB format: the main target (the output's format).
+    /// Tone-mapped colour in this 8-bit format: the main target (the output's format; sRGB, or
+    /// UNORM with the encoding done by the shaders).
     Display(vk::Format),
 }
 
@@ -80,6 +81,16 @@ impl SceneTarget {
         match self {
             SceneTarget::Hdr => HDR_FORMAT,
             SceneTarget::Display(format) => format,
+        }
+    }
+
+    /// `DISPLAY_TARGET` of shaders/common/display.glsl: 0 HDR, 1 display colour encoded by an
+    /// sRGB attachment, 2 display colour the shader encodes (a UNORM target).
+    pub fn display_mode(self) -> u32 {
+        match self {
+            SceneTarget::Hdr => 0,
+            SceneTarget::Display(format) if is_srgb(format) => 1,
+            SceneTarget::Display(_) => 2,
         }
     }
 
@@ -119,6 +130,14 @@ impl<T> PerTarget<T> {
     }
 }
 
+/// An 8-bit sRGB format (the attachment write encodes).
+pub fn is_srgb(format: vk::Format) -> bool {
+    matches!(
+        format,
+        vk::Format::R8G8B8A8_SRGB | vk::Format::B8G8R8A8_SRGB | vk::Format::A8B8G8R8_SRGB_PACK32
+    )
+}
+
 /// `constant_id` of `DISPLAY_TARGET` (shaders/common/display.glsl): scene shaders keep ids
 /// below it for their own constants.
 const DISPLAY_CONSTANT_ID: usize = 8;
@@ -142,7 +161,7 @@ pub fn scene_pipeline(
     assert!(desc.constants.len() <= DISPLAY_CONSTANT_ID);
     let mut constants = desc.constants.to_vec();
     constants.resize(DISPLAY_CONSTANT_ID, 0);
-    constants.push(matches!(target, SceneTarget::Display(_)) as u32);
+    constants.push(target.display_mode());
     Pipeline::graphics(
         ctx,
         layout,

@@ -17,8 +17,9 @@ use crate::render::OutputTarget;
 
 /// Records the copy or blit of `main` (the main colour, last written as a colour attachment)
 /// into `output`, which ends in [`OutputTarget::FINAL_LAYOUT`] after
-/// [`OutputTarget::FINAL_ACCESS`]. Outside any rendering scope.
-pub fn record(rec: &Recorder, main: &Image, output: &OutputTarget) {
+/// [`OutputTarget::FINAL_ACCESS`]. Outside any rendering scope. `linear`: the main target's
+/// format supports linear filtering (optional in Vulkan), so a scaling blit is bilinear.
+pub fn record(rec: &Recorder, main: &Image, output: &OutputTarget, linear: bool) {
     rec.barrier(
         &[
             ImageBarrier {
@@ -43,7 +44,7 @@ pub fn record(rec: &Recorder, main: &Image, output: &OutputTarget) {
     if main.extent == output.extent && main.format == output.format {
         rec.copy_image(main.raw, output.image, output.extent);
     } else {
-        let filter = if main.extent == output.extent {
+        let filter = if main.extent == output.extent || !linear {
             vk::Filter::NEAREST
         } else {
             vk::Filter::LINEAR

@@ -48,7 +48,9 @@ pub struct WaterPass {
 
 impl WaterPass {
     /// `cascades`: layers of the ocean images (a specialization constant: the loop bound of the
-    /// evaluation and fragment shaders). Draws into the main target (`targets.display_format`).
+    /// evaluation and fragment shaders); `manual_filter`: the ocean images are bound with a
+    /// nearest sampler and the shaders filter them bilinearly by hand (devices without linear
+    /// filtering of RGBA32F). Draws into the main target (`targets.display_format`).
     pub fn new(
         ctx: &Arc<Context>,
         frame_layout: &DescriptorSetLayout,
@@ -56,6 +58,7 @@ impl WaterPass {
         dudv: vk::ImageView,
         samplers: &WaterSamplers,
         cascades: u32,
+        manual_filter: bool,
     ) -> GpuResult<WaterPass> {
         let target = SceneTarget::Display(targets.display_format());
         let sampled = vk::DescriptorType::COMBINED_IMAGE_SAMPLER;
@@ -93,7 +96,7 @@ impl WaterPass {
                     topology: vk::PrimitiveTopology::PATCH_LIST,
                     patch_control_points: 4,
                     polygon_mode,
-                    constants: &[cascades],
+                    constants: &[cascades, manual_filter as u32],
                     ..Default::default()
                 },
                 Depth::TestWrite,
