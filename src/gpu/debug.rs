@@ -2,7 +2,8 @@
 //! names and command-buffer labels. INFO and VERBOSE messages are not requested (the loader sends
 //! ~90 INFO lines at start-up that say nothing about our use of the API).
 
-use std::ffi::{c_void, CStr, CString};
+use std::borrow::Cow;
+use std::ffi::{c_char, c_void, CStr, CString};
 use std::sync::atomic::{AtomicU32, Ordering};
 use std::sync::Arc;
 
@@ -69,6 +70,10 @@ pub(crate) fn messenger_info(
         .user_data(Arc::as_ptr(counters) as *mut c_void)
 }
 
+/// The messenger callback: counts the message and logs it as `vulkan: [id] message`, where `id`
+/// is `pMessageIdName` (a VUID, or e.g. `SYNC-HAZARD-READ-AFTER-WRITE`) when the layer gives one.
+/// Validation layers 1.4 put the id only there, 1.3.239 also inside `pMessage`: printing it
+/// ourselves gives every layer version the same searchable `[id]`.
 unsafe extern "system" fn on_message(
     severity: vk::DebugUtilsMessageSeverityFlagsEXT,
     _types: vk::DebugUtilsMessageTypeFlagsEXT,
@@ -76,16 +81,16 @@ unsafe extern "system" fn on_message(
     user: *mut c_void,
 ) -> vk::Bool32 {
     // SAFETY: `user` is the pointer of an `Arc<MessageCounters>` the Context keeps alive until
-    // after the instance (and with it this messenger) is destroyed; `data` and its message are
-    // valid for the duration of the callback per the Vulkan spec.
-    let (counters, message) = unsafe {
+    // after the instance (and with it this messenger) is destroyed; `data` and its strings are
+    // valid for the duration of the callback per the Vulkan spec (each string may be null).
+    let (counters, id, message) = unsafe {
         let counters = &*(user as *const MessageCounters);
-        let message = if data.is_null() || (*data).p_message.is_null() {
-            "(no message)".into()
+        let (id, message) = if data.is_null() {
+            (None, None)
         } else {
-            CStr::from_ptr((*data).p_message).to_string_lossy()
+            (c_str((*data).p_message_id_name), c_str((*data).p_message))
         };
-        (counters, message)
+        (counters, id, message)
     };
     let (counter, level) = if severity.contains(vk::DebugUtilsMessageSeverityFlagsEXT::ERROR) {
         (&counters.errors, log::Level::Error)
@@ -93,15 +98,29 @@ unsafe extern "system" fn on_message(
         (&counters.warnings, log::Level::Warn)
     };
     counter.fetch_add(1, Ordering::Relaxed);
+    let message = message.unwrap_or_else(|| "(no message)".into());
+    let id = match id.as_deref().map(str::trim) {
+        Some(id) if !id.is_empty() => format!("[{id}] "),
+        _ => String::new(),
+    };
     log::log!(
         if counters.loud {
             level
         } else {
             log::Level::Debug
         },
-        "vulkan: {message}"
+        "vulkan: {id}{message}"
     );
     vk::FALSE
+}
+
+/// The text of a nul-terminated string from the layer, or `None` for a null pointer.
+///
+/// # Safety
+/// `ptr` is null or points to a nul-terminated string valid for the returned lifetime.
+unsafe fn c_str<'a>(ptr: *const c_char) -> Option<Cow<'a, str>> {
+    // SAFETY: the caller guarantees a non-null `ptr` is a valid nul-terminated string.
+    (!ptr.is_null()).then(|| unsafe { CStr::from_ptr(ptr) }.to_string_lossy())
 }
 
 /// Object names and command-buffer labels (no-ops when VK_EXT_debug_utils is absent).
