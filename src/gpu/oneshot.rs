@@ -22,20 +22,10 @@ pub fn run_once<R>(
     name: &str,
     record: impl FnOnce(&Recorder) -> R,
 ) -> GpuResult<R> {
-    run_once_waiting(ctx, name, &[], record)
+    run_once_on(ctx, ctx.graphics, name, &[], record)
 }
 
-/// `run_once` whose submission first waits on the given semaphores (e.g. a compute timeline).
-pub fn run_once_waiting<R>(
-    ctx: &Arc<Context>,
-    name: &str,
-    waits: &[vk::SemaphoreSubmitInfo],
-    record: impl FnOnce(&Recorder) -> R,
-) -> GpuResult<R> {
-    run_once_on(ctx, ctx.graphics, name, waits, record)
-}
-
-/// `run_once_waiting` on a given queue (`ctx.graphics` or `ctx.compute`).
+/// `run_once` on a given queue (`ctx.graphics` or `ctx.compute`), first waiting on `waits`.
 pub fn run_once_on<R>(
     ctx: &Arc<Context>,
     queue: Queue,
