@@ -20,7 +20,7 @@ fn main() -> ExitCode {
         Ok(args) => args,
         Err(e) => return fail(&e.into()),
     };
-    let cli = match Cli::try_parse_from(args) {
+    let mut cli = match Cli::try_parse_from(args) {
         Ok(cli) => cli,
         Err(e) => {
             use clap::error::ErrorKind;
@@ -58,6 +58,12 @@ fn main() -> ExitCode {
             }
             Err(e) => fail(&e.into()),
         };
+    }
+
+    // Without --quality the level follows the device the run will use (bench fft has none).
+    let fft_bench = matches!(cli.command, Some(Command::Bench(BenchCommand::Fft(_))));
+    if cli.quality.is_none() && !fft_bench {
+        cli.cpu_device = context::chosen_device_is_cpu(cli.gpu);
     }
 
     let outcome = match &cli.command {

@@ -157,6 +157,7 @@ fn bench_frames_reports_passes_frames_and_settings() {
     assert_eq!(report["settings"]["validation"], true);
     // --quality low fills what was not given: its render scale, but not its terrain grid (64).
     assert_eq!(report["settings"]["quality"], "low");
+    assert_eq!(report["settings"]["quality_by"], "flag");
     assert_eq!(report["settings"]["render_scale"], 0.5);
     assert_eq!(report["settings"]["terrain_grid"], 32);
     let warmup = report["warmup_frames"].as_u64().unwrap();
@@ -226,6 +227,57 @@ fn bench_frames_reports_passes_frames_and_settings() {
             "passes exceed the frame: {csv}"
         );
     }
+}
+
+/// Without `--quality` the level follows the device the run uses: low on a CPU implementation
+/// (lavapipe, which `--list-gpus` calls "cpu"), high on a GPU; the report says so.
+#[test]
+fn the_quality_level_defaults_by_device_and_the_report_names_it() {
+    let dir = scratch("bench-quality");
+    let json_path = dir.join("frames.json");
+    let list = run(&["--list-gpus"]);
+    let devices = String::from_utf8_lossy(&list.stdout).into_owned();
+    let best = devices
+        .lines()
+        .filter(|l| !l.contains("[unusable"))
+        .max_by_key(|l| {
+            // discrete > integrated > virtual > cpu; the first of a rank wins.
+            let rank = ["(cpu,", "(virtual,", "(integrated,", "(discrete,"]
+                .iter()
+                .position(|t| l.contains(t))
+                .map_or(0, |r| r + 1);
+            (rank, std::cmp::Reverse(l.to_string()))
+        })
+        .expect("a usable device");
+    let expected = if best.contains("(cpu,") {
+        "low"
+    } else {
+        "high"
+    };
+    let out = run(&[
+        "bench",
+        "frames",
+        "--frames",
+        "1",
+        "--warmup",
+        "0",
+        "--size",
+        "64x36",
+        "--json",
+        json_path.to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    let report = json(&json_path);
+    assert_eq!(report["settings"]["quality"], expected, "on {best}");
+    assert_eq!(report["settings"]["quality_by"], "device");
+    let fft_size = if expected == "low" { 64 } else { 256 };
+    assert_eq!(report["settings"]["fft_size"], fft_size);
+    let table = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        table.contains(&format!("quality={expected} quality_by=device")),
+        "{table}"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
 }
 
 #[test]

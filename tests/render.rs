@@ -11,7 +11,9 @@ use vkocean::render::SceneLayout;
 const W: u32 = 320;
 const H: u32 = 180;
 
-/// Renders one headless frame at W x H with validation and returns its RGBA pixels.
+/// Renders one headless frame at W x H with validation and returns its RGBA pixels. At
+/// `--quality high` (the golden image's level; lavapipe's own default is low) unless `args`
+/// sets its parts.
 fn shot(name: &str, args: &[&str]) -> Vec<u8> {
     let dir = scratch(&format!("render-{name}"));
     let png = dir.join("s.png");
@@ -19,6 +21,8 @@ fn shot(name: &str, args: &[&str]) -> Vec<u8> {
     let mut all = vec![
         "--headless",
         "--validation",
+        "--quality",
+        "high",
         "--size",
         &size,
         "--screenshot",
@@ -297,6 +301,8 @@ fn tessellation_counts(edge_px: &str) -> DrawCounts {
     let out = run(&[
         "--headless",
         "--validation",
+        "--quality",
+        "high",
         "--size",
         "320x180",
         "--frames",

@@ -34,8 +34,6 @@ pub struct FramesBenchSettings {
     pub frames: u64,
     pub json: Option<PathBuf>,
     pub csv: Option<PathBuf>,
-    /// `--quality` as given (`None`: the defaults), for the report.
-    pub quality: Option<String>,
 }
 
 /// The timings of one measured run.
@@ -172,12 +170,13 @@ pub fn measure(
 }
 
 /// The settings that change what a frame costs, as (name, value) for reports.
-pub fn cost_settings(run: &RunSettings, quality: Option<&str>) -> Vec<(&'static str, Value)> {
+pub fn cost_settings(run: &RunSettings) -> Vec<(&'static str, Value)> {
     let o = &run.ocean;
     let sc = &run.scene;
     let mut out = vec![
         ("size", json!(format!("{}x{}", run.size.0, run.size.1))),
-        ("quality", json!(quality.unwrap_or("default"))),
+        ("quality", json!(run.quality.0)),
+        ("quality_by", json!(run.quality.1)),
     ];
     match &o.waves {
         Waves::Fft => {
@@ -215,7 +214,7 @@ pub fn frames(s: &FramesBenchSettings) -> anyhow::Result<Outcome> {
     let csv_file = PendingFile::create_if("--csv", s.csv.as_deref())?;
     let ctx = Context::headless(s.run.validation, s.run.gpu)?;
     let counters = ctx.counters();
-    let settings = cost_settings(&s.run, s.quality.as_deref());
+    let settings = cost_settings(&s.run);
     let settings_line: Vec<String> = settings
         .iter()
         .map(|(k, v)| format!("{k}={}", v.as_str().map_or(v.to_string(), str::to_string)))

@@ -82,10 +82,16 @@ pub struct Cli {
     #[arg(long, global = true, value_name = "FILE.toml")]
     pub config: Option<PathBuf>,
 
-    /// Cost level: low, medium or high (the default): FFT size, cascades, render scale, RTT
-    /// scale, tessellation edge and terrain grid (table in README); flags given explicitly win.
+    /// Cost level: low, medium or high: FFT size, cascades, render scale, RTT scale,
+    /// tessellation edge and terrain grid (table in README); flags given explicitly win.
+    /// [default: by device: low on a CPU implementation such as lavapipe, high on a GPU]
     #[arg(long, global = true, value_enum, value_name = "LEVEL")]
     pub quality: Option<QualityArg>,
+
+    /// Whether the device the run will use is a CPU implementation (`None`: not known), set by
+    /// `main` before `settings` when `--quality` is not given: it picks the default level.
+    #[arg(skip)]
+    pub cpu_device: Option<bool>,
 
     /// Sea state by the Beaufort scale: calm (force 2), breeze (4), moderate (6), storm (10):
     /// wind speed, fetch, choppiness and patch size (table in README); flags given explicitly win.
@@ -136,7 +142,7 @@ pub struct Cli {
           value_parser = |s: &str| parse_real(s, 0.0, 11_000.0, false), help_heading = "Ocean")]
     pub depth: Option<f64>,
 
-    /// FFT size N: a power of two from 64 to 1024. [default: 256; --quality sets it]
+    /// FFT size N: a power of two from 64 to 1024. [default: the quality level's: 64 low, 128 medium, 256 high]
     #[arg(long, global = true, value_name = "N", value_parser = parse_fft_size, help_heading = "Ocean")]
     pub fft_size: Option<usize>,
 
@@ -150,7 +156,7 @@ pub struct Cli {
           value_parser = |s: &str| parse_real(s, 0.0, 10.0, true), help_heading = "Ocean")]
     pub choppiness: Option<f64>,
 
-    /// Number of cascades, 1 to 4 (disjoint wave-number bands, non-commensurate patches). [default: 3; --quality sets it]
+    /// Number of cascades, 1 to 4 (disjoint wave-number bands, non-commensurate patches). [default: 3 at every quality level]
     #[arg(long, global = true, value_name = "K", allow_hyphen_values = true,
           value_parser = |s: &str| parse_whole(s, 1, 4).map(|n| n as usize), help_heading = "Ocean")]
     pub cascades: Option<usize>,
@@ -202,22 +208,22 @@ pub struct Cli {
     #[arg(long, global = true, value_enum, value_name = "MODEL", default_value_t = FresnelArg::Schlick, help_heading = "Scene")]
     pub fresnel: FresnelArg,
 
-    /// Size of the reflection and refraction textures relative to the output (window or image; 0.1 to 1). [default: 0.5; --quality sets it]
+    /// Size of the reflection and refraction textures relative to the output (window or image; 0.1 to 1). [default: 0.25 low, 0.35 medium, 0.5 high]
     #[arg(long, global = true, value_name = "S", allow_hyphen_values = true,
           value_parser = |s: &str| parse_real(s, 0.1, 1.0, true), help_heading = "Scene")]
     pub rtt_scale: Option<f64>,
 
-    /// Size of the scene (and water) target relative to the output (window or image; 0.25 to 1); a bilinear blit scales it up. [default: 1; --quality sets it]
+    /// Size of the scene (and water) target relative to the output (window or image; 0.25 to 1); a bilinear blit scales it up. [default: 0.5 low, 0.75 medium, 1 high]
     #[arg(long, global = true, value_name = "S", allow_hyphen_values = true,
           value_parser = |s: &str| parse_real(s, 0.25, 1.0, true), help_heading = "Scene")]
     pub render_scale: Option<f64>,
 
-    /// Quads per side of the island's terrain lattice (16 to 512). [default: 160; --quality sets it]
+    /// Quads per side of the island's terrain lattice (16 to 512). [default: 64 low, 96 medium, 160 high]
     #[arg(long, global = true, value_name = "N", allow_hyphen_values = true,
           value_parser = |s: &str| parse_whole(s, 16, 512).map(|n| n as u32), help_heading = "Scene")]
     pub terrain_grid: Option<u32>,
 
-    /// Target length of a tessellated ocean edge in scene-target pixels (2 to 256); smaller is finer. [default: 16; --quality sets it]
+    /// Target length of a tessellated ocean edge in scene-target pixels (2 to 256); smaller is finer. [default: 48 low, 24 medium, 16 high]
     #[arg(long, global = true, value_name = "PX", allow_hyphen_values = true,
           value_parser = |s: &str| parse_real(s, 2.0, 256.0, true), help_heading = "Scene")]
     pub tess_edge: Option<f64>,
@@ -342,7 +348,6 @@ impl BenchFramesArgs {
             frames: self.frames,
             json: self.json.clone(),
             csv: self.csv.clone(),
-            quality: cli.quality.map(|q| format!("{q:?}").to_lowercase()),
         })
     }
 }
@@ -476,7 +481,7 @@ impl Cli {
     }
 
     fn scene_settings(&self) -> Result<SceneSettings, UsageError> {
-        let quality = quality_level(self.quality.unwrap_or(QualityArg::High));
+        let quality = quality_level(self.quality_in_force());
         require_extension("--dudv", self.dudv.as_deref(), "png")?;
         if let Some(path) = self.dudv.as_deref().filter(|p| !p.is_file()) {
             return Err(UsageError(format!(
@@ -565,6 +570,22 @@ impl Cli {
         Ok(run)
     }
 
+    /// The quality level: `--quality`, else the device's default (`cpu_device`), else high.
+    pub fn quality_in_force(&self) -> QualityArg {
+        self.quality
+            .unwrap_or(QualityArg::device_default(self.cpu_device == Some(true)))
+    }
+
+    /// Who chose the quality level, for the window title and reports: "flag" (`--quality` or
+    /// the config file), "device" (the device's default) or "default" (device not known).
+    pub fn quality_chosen_by(&self) -> &'static str {
+        match (self.quality, self.cpu_device) {
+            (Some(_), _) => "flag",
+            (None, Some(_)) => "device",
+            (None, None) => "default",
+        }
+    }
+
     /// Cross-checks the options and resolves defaults.
     pub fn settings(&self) -> Result<RunSettings, UsageError> {
         require_extension("--screenshot", self.screenshot.as_deref(), "png")?;
@@ -624,10 +645,11 @@ impl Cli {
         };
         let scene = self.scene_settings()?;
         let camera = self.camera_setting()?;
-        let quality = quality_level(self.quality.unwrap_or(QualityArg::High));
+        let quality = quality_level(self.quality_in_force());
         // Without --preset: 10 m/s, 100 km, λ = 1, 400 m (between breeze and moderate).
         let sea = self.preset.map_or((10.0, 100.0, 1.0, 400.0), sea_preset);
         Ok(RunSettings {
+            quality: (self.quality_in_force().name(), self.quality_chosen_by()),
             scene,
             camera,
             start_time_s: self.time,

@@ -11,6 +11,26 @@ pub enum QualityArg {
     High,
 }
 
+impl QualityArg {
+    /// The level when `--quality` is not given: `low` on a CPU implementation (lavapipe draws
+    /// the default scene at about 2 FPS at `high` on 2 cores), `high` on a GPU.
+    pub fn device_default(cpu_device: bool) -> QualityArg {
+        if cpu_device {
+            QualityArg::Low
+        } else {
+            QualityArg::High
+        }
+    }
+
+    pub fn name(self) -> &'static str {
+        match self {
+            QualityArg::Low => "low",
+            QualityArg::Medium => "medium",
+            QualityArg::High => "high",
+        }
+    }
+}
+
 /// What a `--quality` level sets (each flag given explicitly wins).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Quality {

@@ -14,6 +14,8 @@ use crate::gpu::{MessageCounters, PresentMode};
 /// Everything a run needs, validated by the command line.
 #[derive(Clone, Debug)]
 pub struct RunSettings {
+    /// The `--quality` level in force and who chose it ("flag", "device" or "default"), for the window title and reports.
+    pub quality: (&'static str, &'static str),
     pub headless: bool,
     /// Stop after this many frames (`None`: until the window closes).
     pub frames: Option<u64>,

@@ -2,7 +2,8 @@
 //! The swapchain is recreated on resize and when it is out of date or suboptimal; a minimised
 //! window (zero extent) pauses rendering. Esc or the close button end the run, `--frames N`
 //! stops after N frames, F12 saves a screenshot (to `--screenshot` or `vkocean-<frame>.png`).
-//! The title shows the size drawn at and progress, `vkocean - WxH - frame N - X ms/frame`,
+//! The title shows the size drawn at, the quality level and progress,
+//! `vkocean - WxH - quality LEVEL[ (device default)] - frame N - X ms/frame`,
 //! updated twice a second and as soon as the size changes.
 //! The camera flies with W/A/S/D, Q/E, Shift and a left mouse drag (`fly.rs`).
 
@@ -317,8 +318,15 @@ impl App {
             Some((since, frames, shown)) if now - since >= TITLE_PERIOD || shown != extent => {
                 let ms = (now - since).as_secs_f64() * 1e3 / (self.frames_done - frames) as f64;
                 state.window.set_title(&format!(
-                    "vkocean - {}x{} - frame {} - {ms:.1} ms/frame",
-                    extent.width, extent.height, self.frames_done
+                    "vkocean - {}x{} - quality {}{} - frame {} - {ms:.1} ms/frame",
+                    extent.width,
+                    extent.height,
+                    self.settings.quality.0,
+                    match self.settings.quality.1 {
+                        "device" => " (device default)",
+                        _ => "",
+                    },
+                    self.frames_done
                 ));
                 self.title_since = Some((now, self.frames_done, extent));
             }

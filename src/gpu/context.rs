@@ -21,8 +21,8 @@ use super::garbage::Garbage;
 /// How long a GPU wait may take before the device is declared hung (s).
 pub const WAIT_TIMEOUT_S: u64 = 60;
 use super::instance::{create_instance, load_entry};
-use super::physical::{inspect, type_name, type_rank, Candidate};
-pub use super::physical::{list_devices, DeviceInfo, DeviceSummary};
+use super::physical::{best_usable, inspect, type_name, Candidate};
+pub use super::physical::{chosen_device_is_cpu, list_devices, DeviceInfo, DeviceSummary};
 use super::queues::{QueuePlan, QueueUsers, Sharing};
 
 /// What the caller wants from the context.
@@ -143,21 +143,21 @@ impl Context {
                 })?
             }
             None => {
+                let types: Vec<_> = inspected
+                    .iter()
+                    .map(|(_, usable)| usable.as_ref().ok().map(|c| c.info.device_type))
+                    .collect();
+                let best = best_usable(&types);
                 let mut reasons = Vec::new();
-                let mut best: Option<Candidate> = None;
+                let mut chosen = None;
                 for (i, (parts, usable)) in inspected.into_iter().enumerate() {
                     match usable {
-                        Ok(c) => {
-                            if best.as_ref().is_none_or(|b| {
-                                type_rank(c.info.device_type) > type_rank(b.info.device_type)
-                            }) {
-                                best = Some(c);
-                            }
-                        }
+                        Ok(c) if Some(i) == best => chosen = Some(c),
+                        Ok(_) => {}
                         Err(why) => reasons.push(format!("device {i} ({}): {why}", parts.name)),
                     }
                 }
-                best.ok_or_else(|| GpuError::NoSuitableDevice(reasons.join("; ")))?
+                chosen.ok_or_else(|| GpuError::NoSuitableDevice(reasons.join("; ")))?
             }
         };
         log::info!(

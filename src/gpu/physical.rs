@@ -89,6 +89,38 @@ pub(crate) fn type_rank(t: vk::PhysicalDeviceType) -> u32 {
     }
 }
 
+/// The device vkocean picks when `--gpu` is not given: the first usable one (`Some(type)`) of
+/// the highest rank. One rule for `Context::new` and the `--quality` default.
+pub(crate) fn best_usable(types: &[Option<vk::PhysicalDeviceType>]) -> Option<usize> {
+    let mut best: Option<(usize, u32)> = None;
+    for (i, t) in types.iter().enumerate() {
+        if let Some(t) = t {
+            if best.is_none_or(|(_, rank)| type_rank(*t) > rank) {
+                best = Some((i, type_rank(*t)));
+            }
+        }
+    }
+    best.map(|(i, _)| i)
+}
+
+/// Whether the device a run would use (`--gpu N`, or the best usable one) is a CPU
+/// implementation such as lavapipe; `None` when it cannot be told (no loader, no usable device,
+/// a bad index): the run's own device creation then reports why. Ignores presentation support,
+/// which only a window's surface can answer.
+pub fn chosen_device_is_cpu(gpu_index: Option<usize>) -> Option<bool> {
+    let devices = list_devices().ok()?;
+    let types: Vec<_> = devices
+        .iter()
+        .map(|d| d.unusable.is_none().then_some(d.device_type))
+        .collect();
+    let index = match gpu_index {
+        Some(i) => i,
+        None => best_usable(&types)?,
+    };
+    let device_type = (*types.get(index)?)?;
+    Some(device_type == vk::PhysicalDeviceType::CPU)
+}
+
 /// What one physical device offers, as far as vkocean cares.
 pub(crate) struct Candidate {
     pub(crate) physical: vk::PhysicalDevice,
@@ -260,4 +292,36 @@ pub fn list_devices() -> GpuResult<Vec<DeviceSummary>> {
     // SAFETY: no object created from this instance is alive.
     unsafe { instance.destroy_instance(None) };
     list.vk("vkEnumeratePhysicalDevices")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use vk::PhysicalDeviceType as T;
+
+    #[test]
+    fn the_best_usable_device_is_the_first_of_the_highest_rank() {
+        assert_eq!(best_usable(&[]), None);
+        assert_eq!(best_usable(&[None, None]), None);
+        assert_eq!(best_usable(&[Some(T::CPU)]), Some(0));
+        // lavapipe listed before a GPU: the GPU wins.
+        assert_eq!(
+            best_usable(&[Some(T::CPU), Some(T::INTEGRATED_GPU)]),
+            Some(1)
+        );
+        // An unusable discrete GPU does not count; two integrated ones: the first.
+        assert_eq!(
+            best_usable(&[
+                None,
+                Some(T::INTEGRATED_GPU),
+                Some(T::INTEGRATED_GPU),
+                Some(T::CPU)
+            ]),
+            Some(1)
+        );
+        assert_eq!(
+            best_usable(&[Some(T::VIRTUAL_GPU), Some(T::DISCRETE_GPU), Some(T::OTHER)]),
+            Some(1)
+        );
+    }
 }
