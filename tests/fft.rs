@@ -7,7 +7,7 @@ use std::sync::Arc;
 
 use rustfft::num_complex::Complex64;
 use vkocean::gpu::oneshot::{download, run_once, upload};
-use vkocean::gpu::{Access, Context};
+use vkocean::gpu::Context;
 use vkocean::ocean::cpu::inverse_2d;
 use vkocean::ocean::fft::{check_plan, threads_for, Direction, GpuFft, Kernel};
 
@@ -32,12 +32,8 @@ fn run_gpu(
     upload(ctx, &fft.data, bytemuck::cast_slice(input)).unwrap();
     run_once(ctx, "fft test", |rec| {
         for &d in directions {
-            fft.record(rec, d, Access::ALL_READ_WRITE);
+            fft.record(rec, d);
         }
-        rec.barrier(
-            &[],
-            &[(fft.data.raw, Access::COMPUTE_WRITE, Access::ALL_READ_WRITE)],
-        );
     })
     .unwrap();
     let bytes = download(ctx, &fft.data, fft.byte_len()).unwrap();

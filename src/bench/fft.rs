@@ -23,7 +23,7 @@ use serde_json::json;
 use super::CpuTimes;
 use crate::frontend::Outcome;
 use crate::gpu::oneshot::upload;
-use crate::gpu::{Access, Buffer, Context, Frames, MemoryLocation, Profiler, Submission};
+use crate::gpu::{Buffer, Context, Frames, MemoryLocation, Profiler, Submission, Use};
 use crate::ocean::fft::{Direction, GpuFft, Kernel};
 use crate::output::PendingFile;
 use crate::profile::{Stats, WARMUP_FRAMES};
@@ -195,19 +195,10 @@ fn measure(
         {
             let rec = frame.recorder(ctx, Submission::Ocean);
             profiler.begin_frame(&rec, &frame)?;
-            // The previous frame's transform read and wrote `data`.
-            rec.barrier(
-                &[],
-                &[(
-                    fft.data.raw,
-                    Access::COMPUTE_READ.or(Access::COMPUTE_WRITE),
-                    Access::COPY_WRITE,
-                )],
-            );
+            // After the previous frame's transform read and wrote `data`.
+            rec.uses(&[(&pristine, Use::CopySrc), (&fft.data, Use::CopyDst)]);
             rec.copy_buffer(&pristine, &fft.data, bytes.len() as u64);
-            profiler.pass(&rec, "fft", || {
-                fft.record(&rec, Direction::Inverse, Access::COPY_WRITE)
-            });
+            profiler.pass(&rec, "fft", || fft.record(&rec, Direction::Inverse));
             profiler.end_frame(&rec);
         }
         frames.submit(frame, &[], &[])?;

@@ -7,8 +7,8 @@ use std::time::{Duration, Instant};
 use ash::vk;
 
 use super::session::{check_size, readback_buffer, Session};
-use super::{Outcome, RunSettings};
-use crate::gpu::{Access, Context, Image, ImageDesc};
+use super::{record_readback, Outcome, RunSettings};
+use crate::gpu::{Context, Image, ImageDesc};
 use crate::output::{encode_png, PendingFile};
 use crate::render::{FrameInputs, OutputTarget};
 
@@ -61,7 +61,7 @@ pub fn run(s: &RunSettings) -> anyhow::Result<Outcome> {
         let inputs = frame_inputs(s, i);
         last_value = session.frame(&output, &inputs, &[], &[], |rec| {
             if let Some(buffer) = capture {
-                output.record_readback(rec, buffer);
+                record_readback(rec, &output, buffer);
             }
         })?;
         if s.stats {
@@ -166,14 +166,12 @@ impl Offscreen {
         })
     }
 
-    /// The target as the renderer's output.
-    pub fn output(&self) -> OutputTarget {
+    /// The target as the renderer's output (its state carries over from frame to frame).
+    pub fn output(&self) -> OutputTarget<'_> {
         OutputTarget {
-            image: self.image.raw,
+            image: &self.image,
             extent: self.extent,
             format: self.format,
-            // The previous frame copied (or blitted) into the target and may have copied from it.
-            prior: OutputTarget::FINAL_ACCESS.or(Access::COPY_READ),
         }
     }
 }

@@ -7,6 +7,7 @@
 //! updated twice a second and as soon as the size changes.
 //! The camera flies with W/A/S/D, Q/E, Shift and a left mouse drag (`fly.rs`).
 
+use std::cell::Cell;
 use std::path::PathBuf;
 use std::sync::Arc;
 
@@ -21,9 +22,11 @@ use winit::window::{Window, WindowId};
 
 use super::fly::{FlyCamera, Move};
 use super::session::{check_size, readback_buffer, Session};
-use super::{Outcome, RunSettings};
+use super::{record_readback, Outcome, RunSettings};
 use crate::gpu::image::full_range;
-use crate::gpu::{Access, Buffer, Context, ContextDesc, ImageBarrier, MessageCounters, Swapchain};
+use crate::gpu::{
+    Buffer, Context, ContextDesc, ExternalImage, MessageCounters, State, Swapchain, Use,
+};
 use crate::output::{encode_png, PendingFile};
 use crate::render::{FrameInputs, OutputTarget};
 
@@ -249,15 +252,18 @@ impl App {
             None
         };
 
+        // Free for writing once the acquire semaphore's wait (at ALL_TRANSFER) is done.
+        let swapchain_image = ExternalImage {
+            raw: image.image,
+            range: full_range(vk::ImageAspectFlags::COLOR, 1),
+            state: Cell::new(State::available_after(
+                vk::PipelineStageFlags2::ALL_TRANSFER,
+            )),
+        };
         let output = OutputTarget {
-            image: image.image,
+            image: &swapchain_image,
             extent,
             format: state.swapchain.format,
-            // Chained to the acquire semaphore wait at the same stage.
-            prior: Access {
-                stage: vk::PipelineStageFlags2::ALL_TRANSFER,
-                access: vk::AccessFlags2::NONE,
-            },
         };
         let waits = [vk::SemaphoreSubmitInfo::default()
             .semaphore(image.acquired)
@@ -280,37 +286,13 @@ impl App {
             },
             ..FrameInputs::default()
         };
-        let range = full_range(vk::ImageAspectFlags::COLOR, 1);
         let value = state
             .session
             .frame(&output, &inputs, &waits, &signals, |rec| {
-                let to_present = |old, src| ImageBarrier {
-                    image: image.image,
-                    range,
-                    old_layout: old,
-                    new_layout: vk::ImageLayout::PRESENT_SRC_KHR,
-                    src,
-                    dst: Access::NONE,
-                };
-                match readback {
-                    None => rec.barrier(
-                        &[to_present(
-                            OutputTarget::FINAL_LAYOUT,
-                            OutputTarget::FINAL_ACCESS,
-                        )],
-                        &[],
-                    ),
-                    Some(buffer) => {
-                        output.record_readback(rec, buffer);
-                        rec.barrier(
-                            &[to_present(
-                                vk::ImageLayout::TRANSFER_SRC_OPTIMAL,
-                                Access::COPY_READ,
-                            )],
-                            &[],
-                        );
-                    }
+                if let Some(buffer) = readback {
+                    record_readback(rec, &output, buffer);
                 }
+                rec.uses(&[(output.image, Use::Present)]);
             })?;
         state.needs_recreate |= state.swapchain.present(&image)?;
         self.frames_done += 1;

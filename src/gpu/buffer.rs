@@ -1,5 +1,6 @@
 //! `Buffer`: a `VkBuffer` with its memory, destroyed through the deletion queue.
 
+use std::cell::Cell;
 use std::sync::Arc;
 
 use ash::vk;
@@ -9,6 +10,7 @@ use gpu_allocator::MemoryLocation;
 use super::context::Context;
 use super::error::{GpuError, GpuResult, VkResultExt};
 use super::garbage::Garbage;
+use super::track::State;
 
 /// A buffer and its memory.
 pub struct Buffer {
@@ -17,6 +19,8 @@ pub struct Buffer {
     /// Always `Some` until `Drop` moves it into the deletion queue.
     allocation: Option<Allocation>,
     pub size: vk::DeviceSize,
+    /// What the last recorded use left (`track`).
+    pub(crate) state: Cell<State>,
 }
 
 impl Buffer {
@@ -68,6 +72,7 @@ impl Buffer {
             raw,
             allocation: Some(allocation),
             size,
+            state: Cell::new(State::NEW),
         };
         bound.vk("vkBindBufferMemory")?;
         ctx.name(raw, name);

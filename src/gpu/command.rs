@@ -99,9 +99,9 @@ impl Access {
     }
 }
 
-/// An image layout transition / dependency.
+/// An image layout transition / dependency (made by `track`).
 #[derive(Clone, Copy, Debug)]
-pub struct ImageBarrier {
+pub(super) struct ImageBarrier {
     pub image: vk::Image,
     pub range: vk::ImageSubresourceRange,
     pub old_layout: vk::ImageLayout,
@@ -160,8 +160,13 @@ impl<'a> Recorder<'a> {
         self.ctx.debug.end_label(self.cmd);
     }
 
-    /// Records one `vkCmdPipelineBarrier2` with the given image and buffer barriers.
-    pub fn barrier(&self, images: &[ImageBarrier], buffers: &[(vk::Buffer, Access, Access)]) {
+    /// Records one `vkCmdPipelineBarrier2` with the given image and buffer barriers. Only
+    /// `track` (and the deliberate hazard's test) call it: passes declare uses instead.
+    pub(super) fn barrier(
+        &self,
+        images: &[ImageBarrier],
+        buffers: &[(vk::Buffer, Access, Access)],
+    ) {
         let image_barriers: Vec<_> = images
             .iter()
             .map(|b| {

@@ -1,6 +1,7 @@
 //! `Image` (a `VkImage`, its memory and a default view) and `Sampler`, both destroyed through the
 //! deletion queue.
 
+use std::cell::Cell;
 use std::sync::Arc;
 
 use ash::vk;
@@ -11,6 +12,7 @@ use super::context::Context;
 use super::error::{GpuError, GpuResult, VkResultExt};
 use super::garbage::Garbage;
 use super::queues::QueueUsers;
+use super::track::State;
 
 /// How to create an [`Image`].
 #[derive(Clone, Copy, Debug)]
@@ -44,6 +46,8 @@ pub struct Image {
     pub extent: vk::Extent2D,
     pub layers: u32,
     pub aspect: vk::ImageAspectFlags,
+    /// What the last recorded use left (`track`), on the queue that uses the image.
+    pub(crate) state: Cell<State>,
 }
 
 /// A B8G8R8A8 format: bytes in blue, green, red, alpha order (swapchains often use one).
@@ -134,6 +138,7 @@ impl Image {
             extent: desc.extent,
             layers,
             aspect,
+            state: Cell::new(State::NEW),
         };
         let allocation = image.allocation.as_ref().expect("just set");
         // SAFETY: the allocation satisfies the image's requirements and is bound once.

@@ -21,10 +21,11 @@ pub mod queues;
 pub mod selftest;
 pub mod swapchain;
 pub mod timestamps;
+pub mod track;
 
 pub use ash::vk;
 pub use buffer::{Buffer, BufferView};
-pub use command::{Access, Attachment, ImageBarrier, Load, Recorder};
+pub use command::{Access, Attachment, Load, Recorder};
 pub use context::{Context, ContextDesc, DeviceInfo, DeviceSummary};
 pub use debug::MessageCounters;
 pub use descriptors::{DescriptorPool, DescriptorSetLayout};
@@ -39,3 +40,4 @@ pub use swapchain::{PresentMode, Swapchain};
 pub use timestamps::{
     DrawStatistics, FrameTimes, GpuTimings, Profiler, COMPUTE, GRAPHICS_OCEAN, GRAPHICS_SCENE,
 };
+pub use track::{ExternalImage, Handle, State, Target, Tracked, Use};

@@ -11,10 +11,11 @@ use ash::vk;
 use gpu_allocator::MemoryLocation;
 
 use super::buffer::Buffer;
-use super::command::{Access, ImageBarrier, Recorder};
+use super::command::Recorder;
 use super::context::{Context, Queue};
 use super::error::{GpuError, GpuResult, VkResultExt};
 use super::image::Image;
+use super::track::Use;
 
 /// Records commands with `record`, submits them and blocks until the GPU has finished.
 pub fn run_once<R>(
@@ -123,11 +124,10 @@ pub fn upload_on(ctx: &Arc<Context>, queue: Queue, dst: &Buffer, bytes: &[u8]) -
     )?;
     staging.write(bytes);
     run_once_on(ctx, queue, "upload", &[], |rec| {
+        // The buffer's state says it was copied to: its next user's barrier waits for that
+        // (on this queue, where a barrier's first scope covers this submission).
+        rec.uses(&[(&staging, Use::CopySrc), (dst, Use::CopyDst)]);
         rec.copy_buffer(&staging, dst, bytes.len() as u64);
-        rec.barrier(
-            &[],
-            &[(dst.raw, Access::COPY_WRITE, Access::ALL_READ_WRITE)],
-        );
     })
 }
 
@@ -143,30 +143,11 @@ pub fn upload_image(ctx: &Arc<Context>, image: &Image, bytes: &[u8]) -> GpuResul
     )?;
     staging.write(bytes);
     run_once(ctx, "image upload", |rec| {
-        rec.barrier(
-            &[ImageBarrier {
-                image: image.raw,
-                range: image.range(),
-                old_layout: vk::ImageLayout::UNDEFINED,
-                new_layout: vk::ImageLayout::TRANSFER_DST_OPTIMAL,
-                src: Access::NONE,
-                dst: Access::COPY_WRITE,
-            }],
-            &[],
-        );
+        rec.uses(&[(image, Use::CopyDst)]);
         rec.copy_buffer_to_image_layers(&staging, image);
-        rec.barrier(
-            &[ImageBarrier {
-                image: image.raw,
-                range: image.range(),
-                old_layout: vk::ImageLayout::TRANSFER_DST_OPTIMAL,
-                new_layout: vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL,
-                src: Access::COPY_WRITE,
-                // Sampled by fragment shaders (the water, the texture debug views).
-                dst: Access::FRAGMENT_SAMPLED,
-            }],
-            &[],
-        );
+        // Sampled by fragment shaders (the water, the texture debug views), in the layout
+        // `copy_buffer_to_image_layers` cannot leave it in.
+        rec.uses(&[(image, Use::FragmentSampled)]);
     })
 }
 
@@ -190,9 +171,9 @@ pub fn download_on(
         MemoryLocation::GpuToCpu,
     )?;
     run_once_on(ctx, queue, "download", &[], |rec| {
-        rec.barrier(&[], &[(src.raw, Access::ALL_READ_WRITE, Access::COPY_READ)]);
+        rec.uses(&[(src, Use::CopySrc), (&staging, Use::CopyDst)]);
         rec.copy_buffer(src, &staging, len as u64);
-        rec.barrier(&[], &[(staging.raw, Access::COPY_WRITE, Access::HOST_READ)]);
+        rec.uses(&[(&staging, Use::HostRead)]);
     })?;
     Ok(staging.mapped().expect("staging is host-visible")[..len].to_vec())
 }

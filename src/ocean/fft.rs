@@ -24,8 +24,8 @@ use ash::vk;
 
 use crate::gpu::descriptors::{self, Write};
 use crate::gpu::{
-    Access, Buffer, BufferView, Context, DescriptorPool, DescriptorSetLayout, MemoryLocation,
-    Pipeline, PipelineLayout, Recorder,
+    Buffer, BufferView, Context, DescriptorPool, DescriptorSetLayout, MemoryLocation, Pipeline,
+    PipelineLayout, Recorder, Use,
 };
 use crate::shaders;
 
@@ -348,41 +348,25 @@ impl GpuFft {
         self.batch * self.n * self.n * 8
     }
 
-    /// Records the 2D transform of `data` in place. `data_prior` is the last access to `data`
-    /// before this (its writer); afterwards `data` has been written by COMPUTE_WRITE and the
-    /// caller's barrier must make it visible to the reader.
-    pub fn record(&self, rec: &Recorder, direction: Direction, data_prior: Access) {
+    /// Records the 2D transform of `data` in place (its state says who wrote it last; `track`).
+    pub fn record(&self, rec: &Recorder, direction: Direction) {
         let sign = match direction {
             Direction::Inverse => 1.0,
             Direction::Forward => -1.0,
         };
         rec.bind_pipeline(&self.pipeline);
         rec.push_constants(&self.layout, &FftParams { direction: sign });
-        // data: its writer → our reads; scratch: the previous transform's reads → our writes.
-        rec.barrier(
-            &[],
-            &[
-                (self.data.raw, data_prior, Access::COMPUTE_READ),
-                (
-                    self.scratch.raw,
-                    Access::COMPUTE_READ,
-                    Access::COMPUTE_WRITE,
-                ),
-            ],
-        );
+        // Rows: data → scratch; columns: scratch → data.
+        rec.uses(&[
+            (&self.data, Use::ComputeRead),
+            (&self.scratch, Use::ComputeWrite),
+        ]);
         rec.bind_sets(&self.pipeline, &self.layout, &[self.sets[0]]);
         rec.dispatch(self.groups_x, self.batch as u32, 1);
-        rec.barrier(
-            &[],
-            &[
-                (
-                    self.scratch.raw,
-                    Access::COMPUTE_WRITE,
-                    Access::COMPUTE_READ,
-                ),
-                (self.data.raw, Access::COMPUTE_READ, Access::COMPUTE_WRITE),
-            ],
-        );
+        rec.uses(&[
+            (&self.scratch, Use::ComputeRead),
+            (&self.data, Use::ComputeWrite),
+        ]);
         rec.bind_sets(&self.pipeline, &self.layout, &[self.sets[1]]);
         rec.dispatch(self.groups_x, self.batch as u32, 1);
     }

@@ -26,8 +26,8 @@ use crate::gpu::compute::ComputeQueue;
 use crate::gpu::descriptors::{self, Write};
 use crate::gpu::oneshot::upload_on;
 use crate::gpu::{
-    Access, Buffer, Context, DescriptorPool, DescriptorSetLayout, FormatUse, Frame, GpuResult,
-    Image, ImageBarrier, ImageDesc, MemoryLocation, Pipeline, PipelineLayout, Profiler, Recorder,
+    Buffer, Context, DescriptorPool, DescriptorSetLayout, FormatUse, Frame, GpuResult, Image,
+    ImageDesc, MemoryLocation, Pipeline, PipelineLayout, Profiler, Recorder, Tracked, Use,
     FRAMES_IN_FLIGHT,
 };
 use crate::shaders;
@@ -53,38 +53,14 @@ fn scope(
 /// before the first frame). Recorded at the start of the first compute submission, on the queue
 /// that writes them, so the graphics queue first sees them through the compute timeline.
 fn record_images_init(rec: &Recorder, images: &[&Image]) {
-    let barriers = |old_layout, src, dst| -> Vec<ImageBarrier> {
-        images
-            .iter()
-            .map(|img| ImageBarrier {
-                image: img.raw,
-                range: img.range(),
-                old_layout,
-                new_layout: vk::ImageLayout::GENERAL,
-                src,
-                dst,
-            })
-            .collect()
-    };
-    rec.barrier(
-        &barriers(
-            vk::ImageLayout::UNDEFINED,
-            Access::NONE,
-            Access::CLEAR_WRITE,
-        ),
-        &[],
-    );
+    let clears: Vec<(&dyn Tracked, Use)> = images
+        .iter()
+        .map(|&img| (img as &dyn Tracked, Use::Clear))
+        .collect();
+    rec.uses(&clears);
     for img in images {
         rec.clear_image(img);
     }
-    rec.barrier(
-        &barriers(
-            vk::ImageLayout::GENERAL,
-            Access::CLEAR_WRITE,
-            Access::COMPUTE_READ.or(Access::COMPUTE_WRITE),
-        ),
-        &[],
-    );
 }
 
 /// Patch sizes padded to four (for shaders).
@@ -174,7 +150,7 @@ enum Model {
         /// h0 of every cascade, (K, N, N) complex.
         h0: Buffer,
         /// Every element's quantized frequency ω/ω0 (`spectrum::omega_steps`), (K, N, N) u32.
-        _omega_steps: Box<Buffer>,
+        omega_steps: Box<Buffer>,
         /// Boxed: it dwarfs the Gerstner variant.
         fft: Box<GpuFft>,
         evolve: Kernel,
@@ -403,7 +379,7 @@ impl Simulation {
                 }
                 Model::Fft {
                     h0: h0_buffer,
-                    _omega_steps: Box::new(steps_buffer),
+                    omega_steps: Box::new(steps_buffer),
                     fft: Box::new(fft),
                     evolve,
                     assemble,
@@ -527,24 +503,24 @@ impl Simulation {
             self.displacement.iter().chain(&self.normals).collect()
         };
         self.initialized = true;
+        // The kernel that writes the slot's images reads the previous frame's normals (foam
+        // decays and is advected from there). The graphics queue samples the images through the
+        // compute timeline and declares nothing (`gpu::track`).
         let previous = &self.normals[(slot + FRAMES_IN_FLIGHT - 1) % FRAMES_IN_FLIGHT];
-        // The previous frame's normals (foam) → this frame's kernel.
-        let foam_barrier = ImageBarrier {
-            image: previous.raw,
-            range: previous.range(),
-            old_layout: vk::ImageLayout::GENERAL,
-            new_layout: vk::ImageLayout::GENERAL,
-            src: Access::COMPUTE_WRITE,
-            dst: Access::COMPUTE_READ,
-        };
+        let images: [(&dyn Tracked, Use); 3] = [
+            (previous, Use::ComputeRead),
+            (&self.displacement[slot], Use::ComputeWrite),
+            (&self.normals[slot], Use::ComputeWrite),
+        ];
         match &mut self.model {
             Model::Fft {
+                h0,
+                omega_steps,
                 fft,
                 evolve,
                 assemble,
                 evolve_set,
                 assemble_sets,
-                ..
             } => {
                 let evolve_params = EvolveParams {
                     patch_m: patch_sizes(&self.cascades),
@@ -559,6 +535,7 @@ impl Simulation {
                     foam_gain: FOAM_GAIN,
                     n,
                 };
+                let (h0, omega_steps) = (&*h0, &**omega_steps);
                 let (fft, evolve, assemble) = (&*fft, &*evolve, &*assemble);
                 let (evolve_set, assemble_set) = (*evolve_set, assemble_sets[slot]);
                 self.queue.submit(slot, value, wait_graphics, |rec| {
@@ -570,28 +547,25 @@ impl Simulation {
                         record_images_init(rec, &init);
                     }
                     scope(&mut timer, rec, "ocean evolve", || {
-                        // Evolve overwrites the FFT data the previous frame's FFT and assemble used.
-                        rec.barrier(
-                            &[],
-                            &[(
-                                fft.data.raw,
-                                Access::COMPUTE_READ.or(Access::COMPUTE_WRITE),
-                                Access::COMPUTE_WRITE,
-                            )],
-                        );
+                        // h(k, t) from h0 into the FFT data (the previous frame's FFT and
+                        // assemble used it).
+                        rec.uses(&[
+                            (h0, Use::ComputeRead),
+                            (omega_steps, Use::ComputeRead),
+                            (&fft.data, Use::ComputeWrite),
+                        ]);
                         rec.bind_pipeline(&evolve.pipeline);
                         rec.bind_sets(&evolve.pipeline, &evolve.layout, &[evolve_set]);
                         rec.push_constants(&evolve.layout, &evolve_params);
                         rec.dispatch(groups, groups, layers);
                     });
                     scope(&mut timer, rec, "ocean fft", || {
-                        fft.record(rec, Direction::Inverse, Access::COMPUTE_WRITE)
+                        fft.record(rec, Direction::Inverse)
                     });
                     scope(&mut timer, rec, "ocean assemble", || {
-                        rec.barrier(
-                            &[foam_barrier],
-                            &[(fft.data.raw, Access::COMPUTE_WRITE, Access::COMPUTE_READ)],
-                        );
+                        let mut uses = images.to_vec();
+                        uses.push((&fft.data, Use::ComputeRead));
+                        rec.uses(&uses);
                         rec.bind_pipeline(&assemble.pipeline);
                         rec.bind_sets(&assemble.pipeline, &assemble.layout, &[assemble_set]);
                         rec.push_constants(&assemble.layout, &assemble_params);
@@ -649,7 +623,7 @@ impl Simulation {
                         record_images_init(rec, &init);
                     }
                     scope(&mut timer, rec, "ocean gerstner", || {
-                        rec.barrier(&[foam_barrier], &[]);
+                        rec.uses(&images);
                         rec.bind_pipeline(&kernel.pipeline);
                         rec.bind_sets(&kernel.pipeline, &kernel.layout, &[set]);
                         rec.push_constants(&kernel.layout, &params);

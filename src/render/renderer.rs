@@ -17,9 +17,8 @@
 //!              --render-scale < 1)
 //! ```
 //! The main view's shaders write display colour (tone-mapped; the sRGB format encodes), the
-//! reflection and refraction passes linear radiance. The output is left in
-//! [`OutputTarget::FINAL_LAYOUT`] after a transfer write ([`OutputTarget::FINAL_ACCESS`]); the
-//! frontend transitions it for present or readback.
+//! reflection and refraction passes linear radiance. Each pass declares the images it renders
+//! to and samples; `gpu::track` records the barriers between them.
 
 use std::sync::Arc;
 
@@ -36,8 +35,8 @@ use super::{SceneSettings, ViewMode};
 use crate::gpu::descriptors::{self, Write};
 use crate::gpu::oneshot::upload_image;
 use crate::gpu::{
-    Access, Attachment, Buffer, Context, DescriptorPool, DescriptorSetLayout, FormatUse, Frame,
-    GpuResult, Image, ImageBarrier, ImageDesc, Load, MemoryLocation, Profiler, Recorder, Sampler,
+    Buffer, Context, DescriptorPool, DescriptorSetLayout, FormatUse, Frame, GpuResult, Handle,
+    Image, ImageDesc, Load, MemoryLocation, Profiler, Recorder, Sampler, Target, Tracked,
     FRAMES_IN_FLIGHT,
 };
 use crate::ocean::simulation::IMAGE_FORMAT;
@@ -47,39 +46,21 @@ use crate::ocean::simulation::IMAGE_FORMAT;
 const DEEP_WATER: [f32; 4] = [0.004, 0.045, 0.075, 1.0];
 
 /// The image a frame ends in: written by a copy or blit (it needs TRANSFER_DST usage), never
-/// rendered to.
-#[derive(Clone, Copy, Debug)]
-pub struct OutputTarget {
-    pub image: vk::Image,
+/// rendered to. Its state (`gpu::track`) is where the frontend handed it over: a swapchain image
+/// after the acquire wait, the headless target after the previous frame.
+pub struct OutputTarget<'a> {
+    pub image: &'a dyn Tracked,
     pub extent: vk::Extent2D,
-    /// An 8-bit sRGB format.
+    /// An 8-bit sRGB format (or UNORM, with the shaders encoding).
     pub format: vk::Format,
-    /// The last access to the image before this frame (its contents are discarded).
-    pub prior: Access,
 }
 
-impl OutputTarget {
-    /// The output's layout when the frame's commands end.
-    pub const FINAL_LAYOUT: vk::ImageLayout = vk::ImageLayout::TRANSFER_DST_OPTIMAL;
-    /// The frame's last access to the output.
-    pub const FINAL_ACCESS: Access = Access::TRANSFER_WRITE;
-
-    /// Records, after the frame, a copy of the output into `buffer` for the host (screenshots):
-    /// the output ends in TRANSFER_SRC_OPTIMAL after a copy read.
-    pub fn record_readback(&self, rec: &Recorder, buffer: &Buffer) {
-        rec.barrier(
-            &[ImageBarrier {
-                image: self.image,
-                range: crate::gpu::image::full_range(vk::ImageAspectFlags::COLOR, 1),
-                old_layout: Self::FINAL_LAYOUT,
-                new_layout: vk::ImageLayout::TRANSFER_SRC_OPTIMAL,
-                src: Self::FINAL_ACCESS,
-                dst: Access::COPY_READ,
-            }],
-            &[],
-        );
-        rec.copy_image_to_buffer(self.image, self.extent, buffer);
-        rec.barrier(&[], &[(buffer.raw, Access::COPY_WRITE, Access::HOST_READ)]);
+impl OutputTarget<'_> {
+    pub fn raw(&self) -> vk::Image {
+        match self.image.handle() {
+            Handle::Image(raw, _) => raw,
+            Handle::Buffer(_) => vk::Image::null(),
+        }
     }
 }
 
@@ -421,61 +402,29 @@ impl Renderer {
         }
 
         let t = &self.targets;
-        // Every target is rewritten whole this frame; the previous frame wrote the colour and
-        // depth targets, sampled the texture targets and copied from the main one.
-        let mut to_attachments = Vec::new();
-        for (cd, read) in [
-            (&t.reflection, Access::FRAGMENT_SAMPLED),
-            (&t.refraction, Access::FRAGMENT_SAMPLED),
-            (&t.main, Access::TRANSFER_READ),
-        ] {
-            to_attachments.push(ImageBarrier {
-                image: cd.colour.raw,
-                range: cd.colour.range(),
-                old_layout: vk::ImageLayout::UNDEFINED,
-                new_layout: vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL,
-                src: read.or(Access::COLOUR_WRITE),
-                dst: Access::COLOUR_RW,
-            });
-            to_attachments.push(ImageBarrier {
-                image: cd.depth.raw,
-                range: cd.depth.range(),
-                old_layout: vk::ImageLayout::UNDEFINED,
-                new_layout: vk::ImageLayout::DEPTH_STENCIL_ATTACHMENT_OPTIMAL,
-                src: Access::DEPTH_RW.or(Access::FRAGMENT_SAMPLED),
-                dst: Access::DEPTH_RW,
-            });
-        }
-        rec.barrier(&to_attachments, &[]);
-
         let clear_depth = Load::Clear(vk::ClearValue {
             depth_stencil: vk::ClearDepthStencilValue {
                 depth: 0.0, // reversed-Z: the far plane
                 stencil: 0,
             },
         });
-        let begin = |cd: &ColourDepth, colour_load: Load| {
-            rec.begin_rendering(
-                cd.extent(),
-                &[Attachment {
-                    view: cd.colour.view,
-                    layout: vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL,
-                    load: colour_load,
-                }],
-                Some(Attachment {
-                    view: cd.depth.view,
-                    layout: vk::ImageLayout::DEPTH_STENCIL_ATTACHMENT_OPTIMAL,
-                    load: clear_depth,
-                }),
-            );
-        };
-
+        fn colour_depth(
+            cd: &ColourDepth,
+            colour: Load,
+            depth: Load,
+        ) -> ([Target<'_>; 1], Option<Target<'_>>) {
+            (
+                [Target::new(&cd.colour, colour)],
+                Some(Target::new(&cd.depth, depth)),
+            )
+        }
         profiler.pass(rec, "reflection", || {
             // The sky, last, writes every pixel the terrain left.
-            begin(&t.reflection, Load::DontCare);
-            self.terrain.record(rec, frame_set, ViewIndex::Reflection);
-            self.sky.record(rec, frame_set, ViewIndex::Reflection);
-            rec.end_rendering();
+            let (colour, depth) = colour_depth(&t.reflection, Load::DontCare, clear_depth);
+            rec.render(&colour, depth, &[], || {
+                self.terrain.record(rec, frame_set, ViewIndex::Reflection);
+                self.sky.record(rec, frame_set, ViewIndex::Reflection);
+            });
         });
         profiler.pass(rec, "refraction", || {
             let deep = Load::Clear(vk::ClearValue {
@@ -483,48 +432,19 @@ impl Renderer {
                     float32: DEEP_WATER,
                 },
             });
-            begin(&t.refraction, deep);
-            self.terrain.record(rec, frame_set, ViewIndex::Refraction);
-            rec.end_rendering();
+            let (colour, depth) = colour_depth(&t.refraction, deep, clear_depth);
+            rec.render(&colour, depth, &[], || {
+                self.terrain.record(rec, frame_set, ViewIndex::Refraction);
+            });
         });
-        let read = vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL;
-        rec.barrier(
-            &[
-                ImageBarrier {
-                    image: t.reflection.colour.raw,
-                    range: t.reflection.colour.range(),
-                    old_layout: vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL,
-                    new_layout: read,
-                    src: Access::COLOUR_RW,
-                    dst: Access::FRAGMENT_SAMPLED,
-                },
-                ImageBarrier {
-                    image: t.refraction.colour.raw,
-                    range: t.refraction.colour.range(),
-                    old_layout: vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL,
-                    new_layout: read,
-                    src: Access::COLOUR_RW,
-                    dst: Access::FRAGMENT_SAMPLED,
-                },
-                ImageBarrier {
-                    image: t.refraction.depth.raw,
-                    range: t.refraction.depth.range(),
-                    old_layout: vk::ImageLayout::DEPTH_STENCIL_ATTACHMENT_OPTIMAL,
-                    new_layout: read,
-                    src: Access::DEPTH_RW,
-                    dst: Access::FRAGMENT_SAMPLED,
-                },
-            ],
-            &[],
-        );
-
         // Scene, water and sky in three rendering scopes, so each pass's timestamps cover its
         // own rasterisation (a CPU driver may defer drawing to the end of a scope). The sky goes
         // last and fills only what terrain and water left, so no covered pixel is shaded twice.
         profiler.pass(rec, "scene", || {
-            begin(&t.main, Load::DontCare);
-            self.terrain.record(rec, frame_set, ViewIndex::Main);
-            rec.end_rendering();
+            let (colour, depth) = colour_depth(&t.main, Load::DontCare, clear_depth);
+            rec.render(&colour, depth, &[], || {
+                self.terrain.record(rec, frame_set, ViewIndex::Main);
+            });
         });
     }
 
@@ -541,84 +461,46 @@ impl Renderer {
         let frame_set = self.frame_uniforms[frame.slot].1;
         let t = &self.targets;
         let s = &self.settings;
-        let extent = t.main.extent();
-        // Between the main scopes: colour and depth written, then read and written again.
-        let main_colour_rw = ImageBarrier {
-            image: t.main.colour.raw,
-            range: t.main.colour.range(),
-            old_layout: vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL,
-            new_layout: vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL,
-            src: Access::COLOUR_RW,
-            dst: Access::COLOUR_RW,
-        };
-        let main_depth_rw = ImageBarrier {
-            image: t.main.depth.raw,
-            range: t.main.depth.range(),
-            old_layout: vk::ImageLayout::DEPTH_STENCIL_ATTACHMENT_OPTIMAL,
-            new_layout: vk::ImageLayout::DEPTH_STENCIL_ATTACHMENT_OPTIMAL,
-            src: Access::DEPTH_RW,
-            dst: Access::DEPTH_RW,
-        };
-        rec.barrier(&[main_colour_rw, main_depth_rw], &[]);
+        let keep = |image| Target::new(image, Load::Keep);
+        // The water samples the reflection and refraction (colour, and depth for the water's
+        // thickness); the simulation images come through the compute timeline's wait.
+        let textures = [
+            &t.reflection.colour,
+            &t.refraction.colour,
+            &t.refraction.depth,
+        ];
         profiler.begin_pass(rec, "water");
-        {
-            rec.begin_rendering(
-                extent,
-                &[Attachment {
-                    view: t.main.colour.view,
-                    layout: vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL,
-                    load: Load::Keep,
-                }],
-                Some(Attachment {
-                    view: t.main.depth.view,
-                    layout: vk::ImageLayout::DEPTH_STENCIL_ATTACHMENT_OPTIMAL,
-                    load: Load::Keep,
-                }),
-            );
-            // Patches, tessellation-evaluation invocations, triangles and fragments, for --profile.
-            profiler.statistics(rec, || {
-                self.water
-                    .record(rec, frame_set, s.view == ViewMode::Wireframe)
-            });
-            rec.end_rendering();
-        }
+        rec.render(
+            &[keep(&t.main.colour)],
+            Some(keep(&t.main.depth)),
+            &textures,
+            || {
+                // Patches, tessellation-evaluation invocations, triangles and fragments, for --profile.
+                profiler.statistics(rec, || {
+                    self.water
+                        .record(rec, frame_set, s.view == ViewMode::Wireframe)
+                });
+            },
+        );
         profiler.end_pass(rec);
-        rec.barrier(&[main_colour_rw, main_depth_rw], &[]);
         profiler.pass(rec, "sky", || {
-            let keep = |view| Attachment {
-                view,
-                layout: vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL,
-                load: Load::Keep,
-            };
-            rec.begin_rendering(
-                extent,
-                &[keep(t.main.colour.view)],
-                Some(Attachment {
-                    layout: vk::ImageLayout::DEPTH_STENCIL_ATTACHMENT_OPTIMAL,
-                    ..keep(t.main.depth.view)
-                }),
+            rec.render(
+                &[keep(&t.main.colour)],
+                Some(keep(&t.main.depth)),
+                &[],
+                || self.sky.record(rec, frame_set, ViewIndex::Main),
             );
-            self.sky.record(rec, frame_set, ViewIndex::Main);
-            rec.end_rendering();
         });
 
         if matches!(
             s.view,
             ViewMode::Reflection | ViewMode::Refraction | ViewMode::Dudv
         ) {
-            rec.barrier(&[main_colour_rw], &[]);
             profiler.pass(rec, "textures view", || {
-                rec.begin_rendering(
-                    extent,
-                    &[Attachment {
-                        view: t.main.colour.view,
-                        layout: vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL,
-                        load: Load::DontCare,
-                    }],
-                    None,
-                );
-                self.water.record_textures_view(rec, frame_set);
-                rec.end_rendering();
+                let over = [Target::new(&t.main.colour, Load::DontCare)];
+                rec.render(&over, None, &textures, || {
+                    self.water.record_textures_view(rec, frame_set)
+                });
             });
         }
         profiler.pass(rec, "output", || {

@@ -7,7 +7,7 @@ use ash::vk;
 
 use super::{Model, Simulation, Texels};
 use crate::gpu::oneshot::{download_on, run_once_on};
-use crate::gpu::{Access, Buffer, Context, GpuResult, ImageBarrier, MemoryLocation};
+use crate::gpu::{Buffer, Context, GpuResult, MemoryLocation, Tracked, Use};
 
 impl Simulation {
     /// Reads both images of `slot` as the last compute submission left them (tests, dumps):
@@ -41,47 +41,16 @@ impl Simulation {
         // frames (through the compute timeline, whose later signals cover this) touch them.
         // The caller makes sure no graphics frame still samples the slot (it waited for it).
         run_once_on(ctx, ctx.compute, "ocean readback", &[], |rec| {
-            let transition = |src, dst, old, new| -> Vec<ImageBarrier> {
-                images
-                    .iter()
-                    .map(|img| ImageBarrier {
-                        image: img.raw,
-                        range: img.range(),
-                        old_layout: old,
-                        new_layout: new,
-                        src,
-                        dst,
-                    })
-                    .collect()
+            let uses = |image_use, buffer_use| -> Vec<(&dyn Tracked, Use)> {
+                let images = images.iter().map(|&img| (img as &dyn Tracked, image_use));
+                let buffers = buffers.iter().map(|b| (b as &dyn Tracked, buffer_use));
+                images.chain(buffers).collect()
             };
-            let (general, src_optimal) = (
-                vk::ImageLayout::GENERAL,
-                vk::ImageLayout::TRANSFER_SRC_OPTIMAL,
-            );
-            rec.barrier(
-                &transition(
-                    Access::COMPUTE_WRITE,
-                    Access::COPY_READ,
-                    general,
-                    src_optimal,
-                ),
-                &[],
-            );
+            rec.uses(&uses(Use::CopySrc, Use::CopyDst));
             for (img, buffer) in images.iter().zip(&buffers) {
-                rec.copy_image_layers_to_buffer(img, src_optimal, buffer);
+                rec.copy_image_layers_to_buffer(img, vk::ImageLayout::TRANSFER_SRC_OPTIMAL, buffer);
             }
-            rec.barrier(
-                &transition(
-                    Access::COPY_READ,
-                    Access::ALL_READ_WRITE,
-                    src_optimal,
-                    general,
-                ),
-                &[
-                    (buffers[0].raw, Access::COPY_WRITE, Access::HOST_READ),
-                    (buffers[1].raw, Access::COPY_WRITE, Access::HOST_READ),
-                ],
-            );
+            rec.uses(&uses(Use::ComputeRead, Use::HostRead));
         })?;
         let read = |b: &Buffer| -> Texels {
             bytemuck::cast_slice(b.mapped().expect("readback is host-visible")).to_vec()

@@ -10,49 +10,24 @@
 
 use ash::vk;
 
-use crate::gpu::image::full_range;
-use crate::gpu::{Access, Image, ImageBarrier, Recorder};
+use crate::gpu::{Image, Recorder, Use};
 
 use crate::render::OutputTarget;
 
 /// Records the copy or blit of `main` (the main colour, last written as a colour attachment)
-/// into `output`, which ends in [`OutputTarget::FINAL_LAYOUT`] after
-/// [`OutputTarget::FINAL_ACCESS`]. Outside any rendering scope. `linear`: the main target's
-/// format supports linear filtering (optional in Vulkan), so a scaling blit is bilinear.
+/// into `output`. Outside any rendering scope. `linear`: the main target's format supports
+/// linear filtering (optional in Vulkan), so a scaling blit is bilinear.
 pub fn record(rec: &Recorder, main: &Image, output: &OutputTarget, linear: bool) {
-    rec.barrier(
-        &[
-            ImageBarrier {
-                image: main.raw,
-                range: main.range(),
-                old_layout: vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL,
-                new_layout: vk::ImageLayout::TRANSFER_SRC_OPTIMAL,
-                src: Access::COLOUR_WRITE,
-                dst: Access::TRANSFER_READ,
-            },
-            ImageBarrier {
-                image: output.image,
-                range: full_range(vk::ImageAspectFlags::COLOR, 1),
-                old_layout: vk::ImageLayout::UNDEFINED,
-                new_layout: OutputTarget::FINAL_LAYOUT,
-                src: output.prior,
-                dst: OutputTarget::FINAL_ACCESS,
-            },
-        ],
-        &[],
-    );
+    rec.uses(&[(main, Use::TransferSrc), (output.image, Use::TransferDst)]);
+    let raw = output.raw();
     if main.extent == output.extent && main.format == output.format {
-        rec.copy_image(main.raw, output.image, output.extent);
+        rec.copy_image(main.raw, raw, output.extent);
     } else {
         let filter = if main.extent == output.extent || !linear {
             vk::Filter::NEAREST
         } else {
             vk::Filter::LINEAR
         };
-        rec.blit_image(
-            (main.raw, main.extent),
-            (output.image, output.extent),
-            filter,
-        );
+        rec.blit_image((main.raw, main.extent), (raw, output.extent), filter);
     }
 }

@@ -11,8 +11,8 @@ use glam::Vec3;
 use super::{bind_scene, scene_layout, scene_pipeline, Depth, PerTarget};
 use crate::gpu::oneshot::upload_image;
 use crate::gpu::{
-    Access, Attachment, Context, DescriptorSetLayout, GpuResult, GraphicsDesc, Image, ImageBarrier,
-    ImageDesc, Load, Pipeline, PipelineLayout, Recorder,
+    Attachment, Context, DescriptorSetLayout, GpuResult, GraphicsDesc, Image, ImageDesc, Load,
+    Pipeline, PipelineLayout, Recorder, Use,
 };
 use crate::render::camera::ViewIndex;
 use crate::render::targets::HDR_FORMAT;
@@ -165,18 +165,8 @@ impl SkyCube {
         let Some((layout, pipeline)) = &self.render else {
             return;
         };
-        let range = self.image.range();
-        rec.barrier(
-            &[ImageBarrier {
-                image: self.image.raw,
-                range,
-                old_layout: vk::ImageLayout::UNDEFINED,
-                new_layout: vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL,
-                src: Access::FRAGMENT_SAMPLED,
-                dst: Access::COLOUR_WRITE,
-            }],
-            &[],
-        );
+        // All six faces at once; each face is then a rendering scope of its own.
+        rec.uses(&[(&self.image, Use::Colour { keep: false })]);
         for (face, view) in self.image.layer_views.iter().enumerate() {
             rec.begin_rendering(
                 self.image.extent,
@@ -198,17 +188,8 @@ impl SkyCube {
             rec.draw(3, 1);
             rec.end_rendering();
         }
-        rec.barrier(
-            &[ImageBarrier {
-                image: self.image.raw,
-                range,
-                old_layout: vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL,
-                new_layout: vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL,
-                src: Access::COLOUR_WRITE,
-                dst: Access::FRAGMENT_SAMPLED,
-            }],
-            &[],
-        );
+        // Every pass samples the cube through the frame's descriptor set.
+        rec.uses(&[(&self.image, Use::FragmentSampled)]);
         self.rendered_for = Some((sun_dir, sun_scale));
     }
 }

@@ -1,0 +1,489 @@
+//! Barriers by construction: a render graph reduced to its core. Every image and buffer carries
+//! the state its last use left it in ([`State`]: layout, the last write or layout transition,
+//! the reads since). A pass names how it uses each resource ([`Use`]) and [`Recorder::uses`]
+//! records exactly the barriers those uses need, all in one `vkCmdPipelineBarrier2`;
+//! [`Recorder::render`] does the same for a rendering scope's attachments and the textures its
+//! shaders sample, then opens the scope. No barrier is written by hand above this file.
+//!
+//! The rules (Vulkan spec, "Synchronization and Cache Control"):
+//! - a write, or a change of layout (itself a write), waits for the last write and every read
+//!   since (write-after-write, write-after-read);
+//! - a read waits for the last write, unless an earlier barrier already made that write visible
+//!   to this stage and access (read-after-read needs nothing);
+//! - a use that overwrites the whole resource (an attachment not loaded, a clear, a full
+//!   copy) discards the contents: the transition starts from UNDEFINED.
+//!
+//! A state is the state on one queue, where the first scope of a pipeline barrier covers every
+//! earlier submission. Images both queues use (the simulation images, CONCURRENT) are tracked
+//! on the compute queue that writes them; the graphics queue samples them in GENERAL through the
+//! compute timeline's wait and declares nothing. Modelled on kajiya's render graph
+//! (`kajiya-rg/src/graph.rs`: a pass is what it reads and what it writes), much smaller.
+
+use std::cell::Cell;
+
+use ash::vk;
+
+use super::buffer::Buffer;
+use super::command::{Access, Attachment, ImageBarrier, Load, Recorder};
+use super::image::Image;
+
+/// What a use does to a resource: the layout it needs (images), the stages and accesses it
+/// makes, and whether it writes or overwrites all of it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Use {
+    /// Colour attachment of a rendering scope; `keep`: loads the previous contents.
+    Colour { keep: bool },
+    /// Depth attachment (tested and written); `keep`: loads the previous contents.
+    Depth { keep: bool },
+    /// Sampled by fragment shaders (SHADER_READ_ONLY_OPTIMAL).
+    FragmentSampled,
+    /// Read by compute shaders (storage, texel buffer or sampled; GENERAL).
+    ComputeRead,
+    /// Written by compute shaders (GENERAL).
+    ComputeWrite,
+    /// Read and written by compute shaders (GENERAL).
+    ComputeReadWrite,
+    /// Cleared whole by `vkCmdClearColorImage` (GENERAL); the contents are discarded.
+    Clear,
+    /// Source of a copy (`vkCmdCopy*`).
+    CopySrc,
+    /// Destination of a copy that writes all of it; the contents are discarded.
+    CopyDst,
+    /// Source of a copy or blit (ALL_TRANSFER).
+    TransferSrc,
+    /// Destination of a copy or blit that writes all of it; the contents are discarded.
+    TransferDst,
+    /// Read by the host once the submission is done (buffers).
+    HostRead,
+    /// Handed to the presentation engine (the submission's semaphore signal orders it).
+    Present,
+}
+
+impl Use {
+    /// (layout, stages and accesses, writes, discards the previous contents).
+    fn info(self) -> (vk::ImageLayout, Access, bool, bool) {
+        use vk::ImageLayout as L;
+        match self {
+            Use::Colour { keep } => (
+                L::COLOR_ATTACHMENT_OPTIMAL,
+                if keep {
+                    Access::COLOUR_RW
+                } else {
+                    Access::COLOUR_WRITE
+                },
+                true,
+                !keep,
+            ),
+            Use::Depth { keep } => (
+                L::DEPTH_STENCIL_ATTACHMENT_OPTIMAL,
+                Access::DEPTH_RW,
+                true,
+                !keep,
+            ),
+            Use::FragmentSampled => (
+                L::SHADER_READ_ONLY_OPTIMAL,
+                Access::FRAGMENT_SAMPLED,
+                false,
+                false,
+            ),
+            Use::ComputeRead => (L::GENERAL, Access::COMPUTE_READ, false, false),
+            Use::ComputeWrite => (L::GENERAL, Access::COMPUTE_WRITE, true, false),
+            Use::ComputeReadWrite => (
+                L::GENERAL,
+                Access::COMPUTE_READ.or(Access::COMPUTE_WRITE),
+                true,
+                false,
+            ),
+            Use::Clear => (L::GENERAL, Access::CLEAR_WRITE, true, true),
+            Use::CopySrc => (L::TRANSFER_SRC_OPTIMAL, Access::COPY_READ, false, false),
+            Use::CopyDst => (L::TRANSFER_DST_OPTIMAL, Access::COPY_WRITE, true, true),
+            Use::TransferSrc => (L::TRANSFER_SRC_OPTIMAL, Access::TRANSFER_READ, false, false),
+            Use::TransferDst => (L::TRANSFER_DST_OPTIMAL, Access::TRANSFER_WRITE, true, true),
+            Use::HostRead => (L::UNDEFINED, Access::HOST_READ, false, false),
+            Use::Present => (L::PRESENT_SRC_KHR, Access::NONE, false, false),
+        }
+    }
+}
+
+/// What the last uses of a resource left behind, on the queue that uses it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct State {
+    /// The image's layout (UNDEFINED for buffers and new images).
+    pub layout: vk::ImageLayout,
+    /// The last write or layout transition: a read waits for it.
+    pub written: Access,
+    /// `written` and every read since: a write or a layout transition waits for them.
+    pub used: Access,
+    /// Stages and accesses that already see `written` (reads there need no barrier).
+    pub visible: Access,
+}
+
+impl State {
+    /// A resource no command has used yet.
+    pub const NEW: State = State {
+        layout: vk::ImageLayout::UNDEFINED,
+        written: Access::NONE,
+        used: Access::NONE,
+        visible: Access::NONE,
+    };
+
+    /// An image whose contents do not matter, free for use after `stage` (a swapchain image
+    /// after the acquire semaphore's wait at `stage`).
+    pub fn available_after(stage: vk::PipelineStageFlags2) -> State {
+        let after = Access {
+            stage,
+            access: vk::AccessFlags2::NONE,
+        };
+        State {
+            written: after,
+            used: after,
+            ..State::NEW
+        }
+    }
+}
+
+/// The barrier a transition needs: (old layout, new layout, src, dst).
+pub type Transition = (vk::ImageLayout, vk::ImageLayout, Access, Access);
+
+/// The barrier (if any) before `next` on a resource in `state`, and the state after `next`.
+/// `image`: layouts apply (buffers have none).
+pub fn transition(state: State, next: Use, image: bool) -> (Option<Transition>, State) {
+    let (layout, access, writes, discards) = next.info();
+    let layout = if image {
+        layout
+    } else {
+        vk::ImageLayout::UNDEFINED
+    };
+    let relayout = image && layout != state.layout;
+    if writes || relayout {
+        let old = if discards && image {
+            vk::ImageLayout::UNDEFINED
+        } else {
+            state.layout
+        };
+        let after = State {
+            layout,
+            written: access,
+            used: access,
+            visible: if writes { Access::NONE } else { access },
+        };
+        return (Some((old, layout, state.used, access)), after);
+    }
+    // Already visible, or never written by a command (host writes are visible to the device
+    // at submission).
+    if contains(state.visible, access) || state.written == Access::NONE {
+        let after = State {
+            used: state.used.or(access),
+            ..state
+        };
+        return (None, after);
+    }
+    let after = State {
+        used: state.used.or(access),
+        visible: state.visible.or(access),
+        ..state
+    };
+    (
+        Some((state.layout, state.layout, state.written, access)),
+        after,
+    )
+}
+
+fn contains(have: Access, want: Access) -> bool {
+    have.stage.contains(want.stage) && have.access.contains(want.access)
+}
+
+/// A resource with a tracked state.
+pub trait Tracked {
+    /// The image and its subresources, or the buffer.
+    fn handle(&self) -> Handle;
+    fn state(&self) -> &Cell<State>;
+}
+
+/// What a barrier names.
+#[derive(Clone, Copy, Debug)]
+pub enum Handle {
+    Image(vk::Image, vk::ImageSubresourceRange),
+    Buffer(vk::Buffer),
+}
+
+impl Tracked for Image {
+    fn handle(&self) -> Handle {
+        Handle::Image(self.raw, self.range())
+    }
+    fn state(&self) -> &Cell<State> {
+        &self.state
+    }
+}
+
+impl Tracked for Buffer {
+    fn handle(&self) -> Handle {
+        Handle::Buffer(self.raw)
+    }
+    fn state(&self) -> &Cell<State> {
+        &self.state
+    }
+}
+
+/// An image this program does not own (a swapchain image, the headless output), tracked for
+/// the length of one frame from the state it was handed over in.
+pub struct ExternalImage {
+    pub raw: vk::Image,
+    pub range: vk::ImageSubresourceRange,
+    pub state: Cell<State>,
+}
+
+impl Tracked for ExternalImage {
+    fn handle(&self) -> Handle {
+        Handle::Image(self.raw, self.range)
+    }
+    fn state(&self) -> &Cell<State> {
+        &self.state
+    }
+}
+
+/// An attachment of [`Recorder::render`]: an image (through its default view or another one,
+/// e.g. a cube face) and what the scope does with its previous contents.
+pub struct Target<'a> {
+    pub image: &'a Image,
+    pub view: vk::ImageView,
+    pub load: Load,
+}
+
+impl<'a> Target<'a> {
+    pub fn new(image: &'a Image, load: Load) -> Target<'a> {
+        Target {
+            image,
+            view: image.view,
+            load,
+        }
+    }
+}
+
+impl Recorder<'_> {
+    /// Records the barriers `uses` need (none when every use already sees what it needs) and
+    /// moves each resource to its state after the use.
+    pub fn uses(&self, uses: &[(&dyn Tracked, Use)]) {
+        let mut images = Vec::new();
+        let mut buffers = Vec::new();
+        for (resource, next) in uses {
+            let handle = resource.handle();
+            let (barrier, after) = transition(
+                resource.state().get(),
+                *next,
+                matches!(handle, Handle::Image(..)),
+            );
+            resource.state().set(after);
+            let Some((old_layout, new_layout, src, dst)) = barrier else {
+                continue;
+            };
+            match handle {
+                Handle::Image(image, range) => images.push(ImageBarrier {
+                    image,
+                    range,
+                    old_layout,
+                    new_layout,
+                    src,
+                    dst,
+                }),
+                Handle::Buffer(buffer) => buffers.push((buffer, src, dst)),
+            }
+        }
+        if !images.is_empty() || !buffers.is_empty() {
+            self.barrier(&images, &buffers);
+        }
+    }
+
+    /// A rendering scope over the colour attachments' extent: the barriers for the attachments
+    /// (loaded or not, by `Load`) and for `samples` (images its shaders sample), then
+    /// `vkCmdBeginRendering`, `body`, `vkCmdEndRendering`.
+    pub fn render(
+        &self,
+        colour: &[Target],
+        depth: Option<Target>,
+        samples: &[&Image],
+        body: impl FnOnce(),
+    ) {
+        let keep = |load: &Load| matches!(load, Load::Keep);
+        let mut uses: Vec<(&dyn Tracked, Use)> = Vec::new();
+        for t in colour {
+            uses.push((
+                t.image,
+                Use::Colour {
+                    keep: keep(&t.load),
+                },
+            ));
+        }
+        if let Some(t) = &depth {
+            uses.push((
+                t.image,
+                Use::Depth {
+                    keep: keep(&t.load),
+                },
+            ));
+        }
+        for image in samples {
+            uses.push((*image, Use::FragmentSampled));
+        }
+        self.uses(&uses);
+        let extent = colour
+            .first()
+            .or(depth.as_ref())
+            .map_or(vk::Extent2D::default(), |t| t.image.extent);
+        let attachment = |t: &Target, layout| Attachment {
+            view: t.view,
+            layout,
+            load: t.load,
+        };
+        let colour: Vec<_> = colour
+            .iter()
+            .map(|t| attachment(t, vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL))
+            .collect();
+        let depth =
+            depth.map(|t| attachment(&t, vk::ImageLayout::DEPTH_STENCIL_ATTACHMENT_OPTIMAL));
+        self.begin_rendering(extent, &colour, depth);
+        body();
+        self.end_rendering();
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use vk::ImageLayout as L;
+
+    fn run(uses: &[Use]) -> Vec<Option<Transition>> {
+        let mut state = State::NEW;
+        uses.iter()
+            .map(|u| {
+                let (barrier, after) = transition(state, *u, true);
+                state = after;
+                barrier
+            })
+            .collect()
+    }
+
+    #[test]
+    fn a_render_target_frame_needs_the_barriers_written_by_hand_before() {
+        let b = run(&[
+            Use::Colour { keep: false },
+            Use::FragmentSampled,
+            Use::FragmentSampled,
+            Use::Colour { keep: false },
+        ]);
+        // First use: from nothing.
+        assert_eq!(
+            b[0],
+            Some((
+                L::UNDEFINED,
+                L::COLOR_ATTACHMENT_OPTIMAL,
+                Access::NONE,
+                Access::COLOUR_WRITE
+            ))
+        );
+        // Written, then sampled: layout change after the write.
+        assert_eq!(
+            b[1],
+            Some((
+                L::COLOR_ATTACHMENT_OPTIMAL,
+                L::SHADER_READ_ONLY_OPTIMAL,
+                Access::COLOUR_WRITE,
+                Access::FRAGMENT_SAMPLED
+            ))
+        );
+        // Sampled again: already visible.
+        assert_eq!(b[2], None);
+        // Next frame: discarded and rewritten after the reads.
+        assert_eq!(
+            b[3],
+            Some((
+                L::UNDEFINED,
+                L::COLOR_ATTACHMENT_OPTIMAL,
+                Access::FRAGMENT_SAMPLED,
+                Access::COLOUR_WRITE
+            ))
+        );
+    }
+
+    #[test]
+    fn reads_in_a_new_stage_wait_for_the_write_and_a_later_write_for_every_read() {
+        let b = run(&[
+            Use::ComputeWrite,
+            Use::ComputeRead,
+            Use::CopySrc,
+            Use::CopySrc,
+            Use::ComputeWrite,
+        ]);
+        assert_eq!(
+            b[1],
+            Some((
+                L::GENERAL,
+                L::GENERAL,
+                Access::COMPUTE_WRITE,
+                Access::COMPUTE_READ
+            ))
+        );
+        // A new layout: a transition, after the write and the compute read.
+        let (old, new, src, dst) = b[2].expect("copy needs a transition");
+        assert_eq!((old, new), (L::GENERAL, L::TRANSFER_SRC_OPTIMAL));
+        assert!(contains(src, Access::COMPUTE_WRITE) && contains(src, Access::COMPUTE_READ));
+        assert_eq!(dst, Access::COPY_READ);
+        assert_eq!(b[3], None);
+        // Back to GENERAL for a write: after the copy's read.
+        assert_eq!(
+            b[4],
+            Some((
+                L::TRANSFER_SRC_OPTIMAL,
+                L::GENERAL,
+                Access::COPY_READ,
+                Access::COMPUTE_WRITE
+            ))
+        );
+    }
+
+    #[test]
+    fn buffers_have_no_layouts_and_read_after_read_is_free() {
+        let mut state = State::NEW;
+        let mut step = |u| {
+            let (barrier, after) = transition(state, u, false);
+            state = after;
+            barrier
+        };
+        assert_eq!(
+            step(Use::CopyDst),
+            Some((L::UNDEFINED, L::UNDEFINED, Access::NONE, Access::COPY_WRITE))
+        );
+        assert_eq!(
+            step(Use::ComputeRead),
+            Some((
+                L::UNDEFINED,
+                L::UNDEFINED,
+                Access::COPY_WRITE,
+                Access::COMPUTE_READ
+            ))
+        );
+        assert_eq!(step(Use::ComputeRead), None);
+        let (_, _, src, _) = step(Use::ComputeWrite).expect("write after read");
+        assert!(contains(src, Access::COMPUTE_READ));
+    }
+
+    #[test]
+    fn a_swapchain_image_is_written_after_the_acquire_and_presented_after_the_write() {
+        let mut state = State::available_after(vk::PipelineStageFlags2::ALL_TRANSFER);
+        let (b, after) = transition(state, Use::TransferDst, true);
+        let (old, new, src, _) = b.expect("first write");
+        assert_eq!((old, new), (L::UNDEFINED, L::TRANSFER_DST_OPTIMAL));
+        assert_eq!(src.stage, vk::PipelineStageFlags2::ALL_TRANSFER);
+        state = after;
+        let (b, _) = transition(state, Use::Present, true);
+        assert_eq!(
+            b,
+            Some((
+                L::TRANSFER_DST_OPTIMAL,
+                L::PRESENT_SRC_KHR,
+                Access::TRANSFER_WRITE,
+                Access::NONE
+            ))
+        );
+    }
+}
