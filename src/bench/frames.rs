@@ -22,6 +22,7 @@ use crate::gpu::{Context, GpuTimings};
 use crate::ocean::Waves;
 use crate::output::PendingFile;
 use crate::profile::{gpu_per_frame, gpu_total_ms, ProfileReport, Stats};
+use crate::render::Delivery;
 
 /// Settings of `bench frames`.
 #[derive(Clone, Debug)]
@@ -139,7 +140,7 @@ pub fn measure(
     };
     let mut index = 0;
     while index == 0 || started.elapsed().as_secs_f64() < warmup_s {
-        session.frame(&output, &frame_inputs(run, index), &[], &[], |_| {})?;
+        session.frame(&output, &frame_inputs(run, index), &Delivery::default())?;
         index += 1;
         progress(format!(
             "warm-up {:.1}/{warmup_s:.1} s, {index} frames",
@@ -149,7 +150,7 @@ pub fn measure(
     let warmup_frames = session.start_measuring();
     let measuring = Instant::now();
     for k in 0..frames {
-        session.frame(&output, &frame_inputs(run, index), &[], &[], |_| {})?;
+        session.frame(&output, &frame_inputs(run, index), &Delivery::default())?;
         index += 1;
         let secs = measuring.elapsed().as_secs_f64();
         progress(format!(

@@ -7,10 +7,10 @@ use std::time::{Duration, Instant};
 use ash::vk;
 
 use super::session::{check_size, readback_buffer, Session};
-use super::{record_readback, Outcome, RunSettings};
+use super::{Outcome, RunSettings};
 use crate::gpu::{Context, Image, ImageDesc};
 use crate::output::{encode_png, PendingFile};
-use crate::render::{FrameInputs, OutputTarget};
+use crate::render::{Delivery, FrameInputs, OutputTarget};
 
 /// Format of the offscreen target: 8-bit sRGB, the bytes a PNG stores.
 const OUTPUT_FORMAT: vk::Format = vk::Format::R8G8B8A8_SRGB;
@@ -59,11 +59,11 @@ pub fn run(s: &RunSettings) -> anyhow::Result<Outcome> {
     for i in 0..frames {
         let capture = readback.as_ref().filter(|_| i + 1 == frames);
         let inputs = frame_inputs(s, i);
-        last_value = session.frame(&output, &inputs, &[], &[], |rec| {
-            if let Some(buffer) = capture {
-                record_readback(rec, &output, buffer);
-            }
-        })?;
+        let delivery = Delivery {
+            readback: capture,
+            present: None,
+        };
+        last_value = session.frame(&output, &inputs, &delivery)?;
         if s.stats {
             session.print_stats()?;
         }

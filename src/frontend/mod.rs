@@ -9,8 +9,7 @@ pub mod windowed;
 use std::path::PathBuf;
 use std::sync::Arc;
 
-use crate::gpu::{Buffer, MessageCounters, PresentMode, Recorder, Use};
-use crate::render::OutputTarget;
+use crate::gpu::{MessageCounters, PresentMode};
 
 /// Everything a run needs, validated by the command line.
 #[derive(Clone, Debug)]
@@ -61,11 +60,4 @@ pub fn run(settings: &RunSettings) -> anyhow::Result<Outcome> {
     } else {
         windowed::run(settings)
     }
-}
-
-/// Records, after the frame, a copy of the output into `buffer` for the host (screenshots).
-pub(crate) fn record_readback(rec: &Recorder, output: &OutputTarget, buffer: &Buffer) {
-    rec.uses(&[(output.image, Use::CopySrc), (buffer, Use::CopyDst)]);
-    rec.copy_image_to_buffer(output.raw(), output.extent, buffer);
-    rec.uses(&[(buffer, Use::HostRead)]);
 }

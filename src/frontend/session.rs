@@ -8,15 +8,14 @@ use ash::vk;
 
 use super::RunSettings;
 use crate::gpu::selftest::SyncHazard;
-use crate::gpu::{
-    Buffer, Context, Frames, GpuResult, GpuTimings, MemoryLocation, Profiler, Recorder, Submission,
-    GRAPHICS_OCEAN, GRAPHICS_SCENE,
-};
+use crate::gpu::{Buffer, Context, Frames, GpuResult, GpuTimings, MemoryLocation, Profiler};
 use crate::ocean::simulation::Simulation;
 use crate::ocean::stats::{npy, stats_line};
 use crate::output::PendingFile;
 use crate::profile::{ProfileReport, WARMUP_FRAMES};
-use crate::render::{FrameInputs, OceanBindings, OutputTarget, Renderer};
+use crate::render::{
+    record_frame, Delivery, FrameInputs, FrameParts, OceanBindings, OutputTarget, Renderer,
+};
 
 pub struct Session {
     pub ctx: Arc<Context>,
@@ -94,15 +93,14 @@ impl Session {
         Ok(session)
     }
 
-    /// Records and submits one frame into `output`. `finish` records after the output pass
-    /// (the frontend's transition for present or copy). Returns the frame's timeline value.
+    /// Records and submits one frame into `output` (`render::record_frame`, the frame top to
+    /// bottom), delivered as `delivery` says; keeps the wall time between frame starts.
+    /// Returns the frame's timeline value.
     pub fn frame(
         &mut self,
         output: &OutputTarget,
         inputs: &FrameInputs,
-        waits: &[vk::SemaphoreSubmitInfo],
-        signals: &[vk::SemaphoreSubmitInfo],
-        finish: impl FnOnce(&Recorder),
+        delivery: &Delivery,
     ) -> GpuResult<u64> {
         let now = Instant::now();
         if let Some(last) = self.last_frame_start {
@@ -113,60 +111,16 @@ impl Session {
             }
         }
         self.last_frame_start = Some(now);
-
-        // The frame as the README's diagram draws it: graphics submission 1 (passes that need no
-        // simulation output), then the compute submission (it waits for the frame that last
-        // sampled this slot), then graphics submission 2, which waits for this frame's compute
-        // results at the stages that sample them and signals the frame timeline. With a compute
-        // queue of its own the simulation runs while submission 1 draws.
-        let mut frame = self.frames.begin()?;
-        let value = frame.signal_value();
-        let camera = self.renderer.camera.position;
-        self.simulation
-            .place_window([camera.x as f64, camera.z as f64]);
-        let origin = self.simulation.origin_m();
-        let inputs = &FrameInputs {
-            ocean_origin_m: origin,
-            ocean_window: self.simulation.is_window(),
-            ..*inputs
+        let slot = self.frames.next_slot();
+        let parts = FrameParts {
+            ctx: &self.ctx,
+            frames: &mut self.frames,
+            renderer: &mut self.renderer,
+            simulation: &mut self.simulation,
+            profiler: &mut self.profiler,
+            compute_profiler: &mut self.compute_profiler,
         };
-        {
-            let rec = frame.recorder(&self.ctx, Submission::Scene);
-            rec.begin_label(&format!("frame {} (graphics 1)", frame.index));
-            self.profiler.begin_frame(&rec, &frame)?;
-            self.profiler.set_submission(GRAPHICS_SCENE);
-            if let Some(hazard) = self.hazard.take() {
-                hazard.record(&rec);
-                // Dropped now; the deletion queue keeps it alive until this frame is done.
-            }
-            self.renderer
-                .record_scene(&rec, &frame, &mut self.profiler, output, inputs);
-            self.profiler.pause(&rec);
-            rec.end_label();
-        }
-        self.frames.submit_scene(&mut frame)?;
-
-        self.simulation.submit(
-            frame.slot,
-            value,
-            inputs.time_s,
-            Some((&mut self.compute_profiler, &frame)),
-        )?;
-
-        let mut waits = waits.to_vec();
-        waits.push(self.simulation.graphics_wait(value));
-        {
-            let rec = frame.recorder(&self.ctx, Submission::Ocean);
-            rec.begin_label(&format!("frame {} (graphics 2)", frame.index));
-            self.profiler.resume(&rec, GRAPHICS_OCEAN);
-            self.renderer
-                .record_ocean(&rec, &frame, &mut self.profiler, output);
-            finish(&rec);
-            self.profiler.end_frame(&rec);
-            rec.end_label();
-        }
-        let slot = frame.slot;
-        self.frames.submit(frame, &waits, signals)?;
+        let value = record_frame(parts, output, inputs, delivery, self.hazard.take())?;
         self.last = Some((slot, value, inputs.time_s));
         Ok(value)
     }

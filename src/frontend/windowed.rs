@@ -22,13 +22,11 @@ use winit::window::{Window, WindowId};
 
 use super::fly::{FlyCamera, Move};
 use super::session::{check_size, readback_buffer, Session};
-use super::{record_readback, Outcome, RunSettings};
+use super::{Outcome, RunSettings};
 use crate::gpu::image::full_range;
-use crate::gpu::{
-    Buffer, Context, ContextDesc, ExternalImage, MessageCounters, State, Swapchain, Use,
-};
+use crate::gpu::{Buffer, Context, ContextDesc, ExternalImage, MessageCounters, State, Swapchain};
 use crate::output::{encode_png, PendingFile};
-use crate::render::{FrameInputs, OutputTarget};
+use crate::render::{Delivery, FrameInputs, OutputTarget, SwapchainSync, ACQUIRE_WAIT_STAGE};
 
 pub fn run(s: &RunSettings) -> anyhow::Result<Outcome> {
     if std::env::var_os("DISPLAY").is_none() {
@@ -252,25 +250,17 @@ impl App {
             None
         };
 
-        // Free for writing once the acquire semaphore's wait (at ALL_TRANSFER) is done.
+        // Free for writing once the acquire semaphore's wait is done.
         let swapchain_image = ExternalImage {
             raw: image.image,
             range: full_range(vk::ImageAspectFlags::COLOR, 1),
-            state: Cell::new(State::available_after(
-                vk::PipelineStageFlags2::ALL_TRANSFER,
-            )),
+            state: Cell::new(State::available_after(ACQUIRE_WAIT_STAGE)),
         };
         let output = OutputTarget {
             image: &swapchain_image,
             extent,
             format: state.swapchain.format,
         };
-        let waits = [vk::SemaphoreSubmitInfo::default()
-            .semaphore(image.acquired)
-            .stage_mask(vk::PipelineStageFlags2::ALL_TRANSFER)];
-        let signals = [vk::SemaphoreSubmitInfo::default()
-            .semaphore(image.ready)
-            .stage_mask(vk::PipelineStageFlags2::ALL_COMMANDS)];
         let now = std::time::Instant::now();
         let step = self
             .last_frame
@@ -286,14 +276,14 @@ impl App {
             },
             ..FrameInputs::default()
         };
-        let value = state
-            .session
-            .frame(&output, &inputs, &waits, &signals, |rec| {
-                if let Some(buffer) = readback {
-                    record_readback(rec, &output, buffer);
-                }
-                rec.uses(&[(output.image, Use::Present)]);
-            })?;
+        let delivery = Delivery {
+            readback,
+            present: Some(SwapchainSync {
+                acquired: image.acquired,
+                ready: image.ready,
+            }),
+        };
+        let value = state.session.frame(&output, &inputs, &delivery)?;
         state.needs_recreate |= state.swapchain.present(&image)?;
         self.frames_done += 1;
         match self.title_since {

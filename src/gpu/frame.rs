@@ -102,6 +102,13 @@ impl Frame {
         self.value
     }
 
+    /// The timeline value of the frame that used this slot before (frame f − 2), if any: the
+    /// compute submission waits for it before overwriting the slot's images.
+    pub fn previous_user(&self) -> Option<u64> {
+        let n = FRAMES_IN_FLIGHT as u64;
+        (self.value > n).then(|| self.value - n)
+    }
+
     /// A recorder for one of this frame's command buffers. It borrows the frame, so it cannot
     /// outlive the recording state (`Frames::submit` consumes the frame).
     pub fn recorder<'a>(&'a self, ctx: &'a Context, submission: Submission) -> Recorder<'a> {

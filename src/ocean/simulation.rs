@@ -477,12 +477,15 @@ impl Simulation {
     }
 
     /// Submits frame `value`'s simulation at time `time_s` into `slot` on the compute queue,
-    /// with the Gerstner window where [`Simulation::place_window`] last put it; `timing` times
-    /// the passes with a compute-queue profiler (`Profiler::for_compute`) for `frame`.
+    /// with the Gerstner window where [`Simulation::place_window`] last put it, after the
+    /// graphics timeline reached `wait_graphics` (the slot's previous user, `Frame::
+    /// previous_user`); `timing` times the passes with a compute-queue profiler
+    /// (`Profiler::for_compute`) for `frame`.
     pub fn submit(
         &mut self,
         slot: usize,
         value: u64,
+        wait_graphics: Option<u64>,
         time_s: f64,
         timing: Option<(&mut Profiler, &Frame)>,
     ) -> GpuResult<()> {
@@ -491,9 +494,6 @@ impl Simulation {
             .map(|t| (time_s - t).max(0.0) as f32)
             .unwrap_or(0.0);
         self.last_time_s = Some(time_s);
-        // Frame f − 2 (value − 2) was the last to sample this slot.
-        let wait_graphics =
-            (value > FRAMES_IN_FLIGHT as u64).then(|| value - FRAMES_IN_FLIGHT as u64);
         let n = self.settings.fft_size as u32;
         let groups = n.div_ceil(8);
         let layers = self.cascades.len() as u32;

@@ -1,7 +1,8 @@
-//! The renderer: records one frame, pass by pass (see `renderer.rs`). No `unsafe` here: passes
+//! The renderer: records one frame, pass by pass (`frame.rs`), with what `renderer.rs` holds. No `unsafe` here: passes
 //! record through `gpu::Recorder`.
 
 pub mod camera;
+pub mod frame;
 pub mod passes;
 pub mod renderer;
 pub mod scene;
@@ -12,6 +13,7 @@ use std::path::PathBuf;
 use glam::Vec3;
 
 pub use camera::{Camera, FrameUniforms, OceanBindings, SceneLayout};
+pub use frame::{record_frame, Delivery, FrameParts, SwapchainSync, ACQUIRE_WAIT_STAGE};
 pub use renderer::{FrameInputs, OutputTarget, Renderer};
 
 /// `--view`: the final picture, or one intermediate full screen.

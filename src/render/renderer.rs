@@ -1,49 +1,28 @@
-//! `Renderer::record`: the frame, pass by pass, in order.
-//!
-//! ```text
-//!  frame uniforms (slot f % 2): three views (camera, mirrored camera, refraction), sun, ocean
-//!  sky cube    the analytic sky into the cubemap's 6 faces       (only when the sun changed)
-//!  reflection  sky + island (coarse) + objects, mirrored camera, clip below the water
-//!                                                              -> reflection HDR colour + depth
-//!  refraction  island (coarse) + objects below the water (clip above)
-//!                                                              -> refraction HDR colour + depth
-//!  scene       island + objects, clip below the waves' reach   -> main (display) colour + depth
-//!                                                                 (at --render-scale)
-//!  water       tessellated ocean patches: displaced by the simulation images of slot f % 2
-//!              (after the compute timeline wait), shaded with reflection, refraction, DU/DV
-//!  sky         the sky where nothing else was drawn
-//!  textures    --view reflection|refraction|dudv only: that texture over the main target
-//!  output      the main target copied into the output image (blit, bilinear, when
-//!              --render-scale < 1)
-//! ```
+//! `Renderer`: what the frame draws with. The render targets, the frame uniforms of each slot,
+//! the sky cube, the DU/DV map, samplers and the passes' pipelines; made for one output size
+//! (`resize` remakes the targets). The frame itself, pass by pass, is `frame::record_frame`.
 //! The main view's shaders write display colour (tone-mapped; the sRGB format encodes), the
-//! reflection and refraction passes linear radiance. Each pass declares the images it renders
-//! to and samples; `gpu::track` records the barriers between them.
+//! reflection and refraction passes linear radiance.
 
 use std::sync::Arc;
 
 use ash::vk;
 use glam::Vec3;
 
-use super::camera::{Camera, FrameParams, FrameUniforms, OceanBindings, ViewIndex};
+use super::camera::{Camera, FrameParams, FrameUniforms, OceanBindings};
 use super::passes::water::WaterSamplers;
-use super::passes::{output, SkyCube, SkyPass, TerrainPass, WaterPass};
+use super::passes::{SkyCube, SkyPass, TerrainPass, WaterPass};
 use super::scene::{generate_dudv, load_dudv, DUDV_SIDE};
-use super::targets::{ColourDepth, Targets};
+use super::targets::Targets;
 use super::targets::{DEPTH_FORMAT, HDR_FORMAT};
 use super::{SceneSettings, ViewMode};
 use crate::gpu::descriptors::{self, Write};
 use crate::gpu::oneshot::upload_image;
 use crate::gpu::{
-    Buffer, Context, DescriptorPool, DescriptorSetLayout, FormatUse, Frame, GpuResult, Handle,
-    Image, ImageDesc, Load, MemoryLocation, Profiler, Recorder, Sampler, Target, Tracked,
-    FRAMES_IN_FLIGHT,
+    Buffer, Context, DescriptorPool, DescriptorSetLayout, FormatUse, GpuResult, Handle, Image,
+    ImageDesc, MemoryLocation, Sampler, Tracked, FRAMES_IN_FLIGHT,
 };
 use crate::ocean::simulation::IMAGE_FORMAT;
-
-/// The refraction texture where nothing lies under the water: the deep water colour
-/// (`WATER_COLOUR` in water.frag), linear.
-const DEEP_WATER: [f32; 4] = [0.004, 0.045, 0.075, 1.0];
 
 /// The image a frame ends in: written by a copy or blit (it needs TRANSFER_DST usage), never
 /// rendered to. Its state (`gpu::track`) is where the frontend handed it over: a swapchain image
@@ -117,7 +96,7 @@ pub struct Renderer {
     /// Radiance of the sun disc relative to the sky.
     pub sun_scale: f32,
     pub settings: SceneSettings,
-    targets: Targets,
+    pub(super) targets: Targets,
     /// Layout of the frame-uniform sets; kept alive with them.
     _frame_set_layout: DescriptorSetLayout,
     _pool: DescriptorPool,
@@ -126,17 +105,17 @@ pub struct Renderer {
     /// The simulation images the frame sets bind, and the cascade layout.
     ocean: OceanBindings,
     _ocean_sampler: Sampler,
-    sky_cube: SkyCube,
+    pub(super) sky_cube: SkyCube,
     _sky_sampler: Sampler,
     dudv: Image,
     clamp_sampler: Sampler,
     depth_sampler: Sampler,
     repeat_sampler: Sampler,
-    sky: SkyPass,
-    terrain: TerrainPass,
-    water: WaterPass,
+    pub(super) sky: SkyPass,
+    pub(super) terrain: TerrainPass,
+    pub(super) water: WaterPass,
     /// The main target's format filters linearly (a scaled output blit is bilinear).
-    blit_linear: bool,
+    pub(super) blit_linear: bool,
 }
 
 impl Renderer {
@@ -358,19 +337,13 @@ impl Renderer {
         Ok(())
     }
 
-    /// Records the frame's first graphics submission into `rec`: the frame uniforms, then the
-    /// passes that read no simulation output (sky cube, reflection, refraction, scene), which on
-    /// a device with a compute queue run while the simulation does. `output` must have the size
-    /// the renderer was made (or last resized) for.
-    pub fn record_scene(
+    /// Writes slot `slot`'s frame uniforms for this frame; returns the slot's frame set.
+    pub(super) fn write_uniforms(
         &mut self,
-        rec: &Recorder,
-        frame: &Frame,
-        profiler: &mut Profiler,
+        slot: usize,
         output: &OutputTarget,
         inputs: &FrameInputs,
-    ) {
-        debug_assert_eq!(output.extent, self.targets.output_extent());
+    ) -> vk::DescriptorSet {
         // The main target's size (--render-scale of the output's).
         let extent = self.targets.main.extent();
         let s = &self.settings;
@@ -391,120 +364,13 @@ impl Renderer {
                 background: s.background,
             },
         );
-        let (buffer, frame_set) = &mut self.frame_uniforms[frame.slot];
+        let (buffer, frame_set) = &mut self.frame_uniforms[slot];
         buffer.write(bytemuck::bytes_of(&uniforms));
-        let frame_set = *frame_set;
-
-        if self.sky_cube.is_stale(self.sun_dir, self.sun_scale) {
-            let cube = &mut self.sky_cube;
-            let (sun, scale) = (self.sun_dir, self.sun_scale);
-            profiler.pass(rec, "sky cube", || cube.update(rec, sun, scale));
-        }
-
-        let t = &self.targets;
-        let clear_depth = Load::Clear(vk::ClearValue {
-            depth_stencil: vk::ClearDepthStencilValue {
-                depth: 0.0, // reversed-Z: the far plane
-                stencil: 0,
-            },
-        });
-        fn colour_depth(
-            cd: &ColourDepth,
-            colour: Load,
-            depth: Load,
-        ) -> ([Target<'_>; 1], Option<Target<'_>>) {
-            (
-                [Target::new(&cd.colour, colour)],
-                Some(Target::new(&cd.depth, depth)),
-            )
-        }
-        profiler.pass(rec, "reflection", || {
-            // The sky, last, writes every pixel the terrain left.
-            let (colour, depth) = colour_depth(&t.reflection, Load::DontCare, clear_depth);
-            rec.render(&colour, depth, &[], || {
-                self.terrain.record(rec, frame_set, ViewIndex::Reflection);
-                self.sky.record(rec, frame_set, ViewIndex::Reflection);
-            });
-        });
-        profiler.pass(rec, "refraction", || {
-            let deep = Load::Clear(vk::ClearValue {
-                color: vk::ClearColorValue {
-                    float32: DEEP_WATER,
-                },
-            });
-            let (colour, depth) = colour_depth(&t.refraction, deep, clear_depth);
-            rec.render(&colour, depth, &[], || {
-                self.terrain.record(rec, frame_set, ViewIndex::Refraction);
-            });
-        });
-        // Scene, water and sky in three rendering scopes, so each pass's timestamps cover its
-        // own rasterisation (a CPU driver may defer drawing to the end of a scope). The sky goes
-        // last and fills only what terrain and water left, so no covered pixel is shaded twice.
-        profiler.pass(rec, "scene", || {
-            let (colour, depth) = colour_depth(&t.main, Load::DontCare, clear_depth);
-            rec.render(&colour, depth, &[], || {
-                self.terrain.record(rec, frame_set, ViewIndex::Main);
-            });
-        });
+        *frame_set
     }
 
-    /// Records the frame's second graphics submission into `rec`, which waits for the compute
-    /// timeline: the water (it samples the simulation images of the frame's slot), the sky, the
-    /// texture debug view and the output.
-    pub fn record_ocean(
-        &mut self,
-        rec: &Recorder,
-        frame: &Frame,
-        profiler: &mut Profiler,
-        output: &OutputTarget,
-    ) {
-        let frame_set = self.frame_uniforms[frame.slot].1;
-        let t = &self.targets;
-        let s = &self.settings;
-        let keep = |image| Target::new(image, Load::Keep);
-        // The water samples the reflection and refraction (colour, and depth for the water's
-        // thickness); the simulation images come through the compute timeline's wait.
-        let textures = [
-            &t.reflection.colour,
-            &t.refraction.colour,
-            &t.refraction.depth,
-        ];
-        profiler.begin_pass(rec, "water");
-        rec.render(
-            &[keep(&t.main.colour)],
-            Some(keep(&t.main.depth)),
-            &textures,
-            || {
-                // Patches, tessellation-evaluation invocations, triangles and fragments, for --profile.
-                profiler.statistics(rec, || {
-                    self.water
-                        .record(rec, frame_set, s.view == ViewMode::Wireframe)
-                });
-            },
-        );
-        profiler.end_pass(rec);
-        profiler.pass(rec, "sky", || {
-            rec.render(
-                &[keep(&t.main.colour)],
-                Some(keep(&t.main.depth)),
-                &[],
-                || self.sky.record(rec, frame_set, ViewIndex::Main),
-            );
-        });
-
-        if matches!(
-            s.view,
-            ViewMode::Reflection | ViewMode::Refraction | ViewMode::Dudv
-        ) {
-            profiler.pass(rec, "textures view", || {
-                let over = [Target::new(&t.main.colour, Load::DontCare)];
-                rec.render(&over, None, &textures, || {
-                    self.water.record_textures_view(rec, frame_set)
-                });
-            });
-        }
-        profiler.pass(rec, "output", || {
-            output::record(rec, &t.main.colour, output, self.blit_linear)
-        });
+    /// Slot `slot`'s frame descriptor set (uniforms, ocean images, sky cube).
+    pub(super) fn frame_set(&self, slot: usize) -> vk::DescriptorSet {
+        self.frame_uniforms[slot].1
     }
 }

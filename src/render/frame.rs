@@ -1,0 +1,262 @@
+//! [`record_frame`]: one frame, top to bottom, as the README's diagram ("The frame") draws it.
+//!
+//! ```text
+//!  graphics 1  waits for nothing, signals nothing
+//!    uniforms    slot f % 2: three views (camera, mirrored camera, refraction), sun, ocean
+//!    sky cube    the analytic sky into the cubemap's 6 faces        (only when the sun moved)
+//!    reflection  island + objects + sky, mirrored camera, clipped below the water
+//!                                                        writes reflection colour + depth
+//!    refraction  island + objects below the water        writes refraction colour + depth
+//!    scene       island + objects (main camera)          writes main colour + depth
+//!  compute     waits for the graphics timeline at f − 1 (frame f − 2 last sampled slot f % 2),
+//!              signals the compute timeline with the frame's value
+//!    evolve, fft, assemble (or the Gerstner kernel)      writes the slot's simulation images
+//!  graphics 2  waits for the compute timeline at the frame's value (vertex, tessellation
+//!              evaluation and fragment stages), signals the frame timeline (and the
+//!              swapchain's `ready` semaphore); a window's image waits for `acquired`
+//!    water       tessellated patches; samples reflection, refraction (colour and depth) and,
+//!                through the compute wait, the simulation images   writes main colour + depth
+//!    sky         where nothing else was drawn                        writes main colour
+//!    textures    --view reflection|refraction|dudv: that texture     writes main colour
+//!    output      main colour copied (or blitted) into the output image
+//!    readback    screenshots: the output into a host buffer; present: to PRESENT_SRC
+//! ```
+//!
+//! Every pass names the images it renders to and samples; `gpu::track` records the barriers
+//! between them. With a compute queue of its own the simulation runs while graphics 1 draws
+//! (README, "Across queues").
+
+use ash::vk;
+
+use super::camera::ViewIndex;
+use super::renderer::{OutputTarget, Renderer};
+use super::targets::ColourDepth;
+use super::{FrameInputs, ViewMode};
+use crate::gpu::selftest::SyncHazard;
+use crate::gpu::{
+    Buffer, Context, Frames, GpuResult, Load, Profiler, Recorder, Submission, Target, Use,
+    GRAPHICS_OCEAN, GRAPHICS_SCENE,
+};
+use crate::ocean::simulation::Simulation;
+
+/// The linear refraction texture where nothing lies under the water: the deep water colour
+/// (`WATER_COLOUR` in water.frag).
+const DEEP_WATER: [f32; 4] = [0.004, 0.045, 0.075, 1.0];
+
+/// Reversed-Z: depth 0 is the far plane.
+const CLEAR_DEPTH: Load = Load::Clear(vk::ClearValue {
+    depth_stencil: vk::ClearDepthStencilValue {
+        depth: 0.0,
+        stencil: 0,
+    },
+});
+
+/// The stage at which graphics 2 waits for a swapchain image's acquire: the output pass's copy
+/// is the first write to it (the image's state starts `available_after` this stage).
+pub const ACQUIRE_WAIT_STAGE: vk::PipelineStageFlags2 = vk::PipelineStageFlags2::ALL_TRANSFER;
+
+/// Where the frame's output goes after the output pass.
+#[derive(Default)]
+pub struct Delivery<'a> {
+    /// Copy the output into this host-visible buffer (screenshots).
+    pub readback: Option<&'a Buffer>,
+    /// A swapchain image: present it after the frame.
+    pub present: Option<SwapchainSync>,
+}
+
+/// A swapchain image's semaphores.
+#[derive(Clone, Copy)]
+pub struct SwapchainSync {
+    /// Signalled by the acquire; graphics 2 waits for it before the output's first write.
+    pub acquired: vk::Semaphore,
+    /// Signalled by graphics 2; the presentation waits for it.
+    pub ready: vk::Semaphore,
+}
+
+/// What one frame records into: the frame loop, the renderer, the simulation and the
+/// profilers of the two queues.
+pub struct FrameParts<'a> {
+    pub ctx: &'a Context,
+    pub frames: &'a mut Frames,
+    pub renderer: &'a mut Renderer,
+    pub simulation: &'a mut Simulation,
+    pub profiler: &'a mut Profiler,
+    pub compute_profiler: &'a mut Profiler,
+}
+
+/// Records and submits frame `frames.next`: the three submissions of the diagram above.
+/// `hazard` (tests only) is recorded first. Returns the frame's timeline value.
+pub fn record_frame(
+    parts: FrameParts,
+    output: &OutputTarget,
+    inputs: &FrameInputs,
+    delivery: &Delivery,
+    hazard: Option<SyncHazard>,
+) -> GpuResult<u64> {
+    let FrameParts {
+        ctx,
+        frames,
+        renderer: r,
+        simulation,
+        profiler,
+        compute_profiler,
+    } = parts;
+    debug_assert_eq!(output.extent, r.extent());
+    let mut frame = frames.begin()?;
+    let value = frame.signal_value();
+    let camera = r.camera.position;
+    simulation.place_window([camera.x as f64, camera.z as f64]);
+    let inputs = &FrameInputs {
+        ocean_origin_m: simulation.origin_m(),
+        ocean_window: simulation.is_window(),
+        ..*inputs
+    };
+
+    // ── graphics 1: the passes that read no simulation output ──────────────────────────────
+    {
+        let rec = frame.recorder(ctx, Submission::Scene);
+        rec.begin_label(&format!("frame {} (graphics 1)", frame.index));
+        profiler.begin_frame(&rec, &frame)?;
+        profiler.set_submission(GRAPHICS_SCENE);
+        if let Some(hazard) = hazard {
+            hazard.record(&rec);
+            // Dropped now; the deletion queue keeps it alive until this frame is done.
+        }
+        let set = r.write_uniforms(frame.slot, output, inputs);
+        if r.sky_cube.is_stale(r.sun_dir, r.sun_scale) {
+            let (cube, sun, scale) = (&mut r.sky_cube, r.sun_dir, r.sun_scale);
+            profiler.pass(&rec, "sky cube", || cube.update(&rec, sun, scale));
+        }
+        let t = &r.targets;
+        profiler.pass(&rec, "reflection", || {
+            // The sky, last, writes every pixel the terrain left.
+            let (colour, depth) = colour_depth(&t.reflection, Load::DontCare);
+            rec.render(&colour, depth, &[], || {
+                r.terrain.record(&rec, set, ViewIndex::Reflection);
+                r.sky.record(&rec, set, ViewIndex::Reflection);
+            });
+        });
+        profiler.pass(&rec, "refraction", || {
+            let deep = Load::Clear(vk::ClearValue {
+                color: vk::ClearColorValue {
+                    float32: DEEP_WATER,
+                },
+            });
+            let (colour, depth) = colour_depth(&t.refraction, deep);
+            rec.render(&colour, depth, &[], || {
+                r.terrain.record(&rec, set, ViewIndex::Refraction);
+            });
+        });
+        // Scene, water and sky are three rendering scopes, so each pass's timestamps cover its
+        // own rasterisation (a CPU driver may defer drawing to the end of a scope). The sky goes
+        // last and fills only what terrain and water left: no covered pixel is shaded twice.
+        profiler.pass(&rec, "scene", || {
+            let (colour, depth) = colour_depth(&t.main, Load::DontCare);
+            rec.render(&colour, depth, &[], || {
+                r.terrain.record(&rec, set, ViewIndex::Main);
+            });
+        });
+        profiler.pause(&rec);
+        rec.end_label();
+    }
+    frames.submit_scene(&mut frame)?;
+
+    // ── compute: the simulation into slot f % 2 ─────────────────────────────────────────────
+    simulation.submit(
+        frame.slot,
+        value,
+        frame.previous_user(),
+        inputs.time_s,
+        Some((compute_profiler, &frame)),
+    )?;
+
+    // ── graphics 2: after the simulation ────────────────────────────────────────────────────
+    let mut waits = vec![simulation.graphics_wait(value)];
+    let mut signals = Vec::new();
+    if let Some(sync) = delivery.present {
+        waits.push(
+            vk::SemaphoreSubmitInfo::default()
+                .semaphore(sync.acquired)
+                .stage_mask(ACQUIRE_WAIT_STAGE),
+        );
+        signals.push(
+            vk::SemaphoreSubmitInfo::default()
+                .semaphore(sync.ready)
+                .stage_mask(vk::PipelineStageFlags2::ALL_COMMANDS),
+        );
+    }
+    {
+        let rec = frame.recorder(ctx, Submission::Ocean);
+        rec.begin_label(&format!("frame {} (graphics 2)", frame.index));
+        profiler.resume(&rec, GRAPHICS_OCEAN);
+        let set = r.frame_set(frame.slot);
+        let t = &r.targets;
+        let keep = |image| Target::new(image, Load::Keep);
+        // The simulation images are sampled too, through the compute wait (not tracked here).
+        let textures = [
+            &t.reflection.colour,
+            &t.refraction.colour,
+            &t.refraction.depth,
+        ];
+        let wireframe = r.settings.view == ViewMode::Wireframe;
+        profiler.begin_pass(&rec, "water");
+        rec.render(
+            &[keep(&t.main.colour)],
+            Some(keep(&t.main.depth)),
+            &textures,
+            || {
+                // Patches, tessellation-evaluation invocations, triangles and fragments.
+                profiler.statistics(&rec, || r.water.record(&rec, set, wireframe));
+            },
+        );
+        profiler.end_pass(&rec);
+        profiler.pass(&rec, "sky", || {
+            rec.render(
+                &[keep(&t.main.colour)],
+                Some(keep(&t.main.depth)),
+                &[],
+                || r.sky.record(&rec, set, ViewIndex::Main),
+            );
+        });
+        if matches!(
+            r.settings.view,
+            ViewMode::Reflection | ViewMode::Refraction | ViewMode::Dudv
+        ) {
+            profiler.pass(&rec, "textures view", || {
+                let over = [Target::new(&t.main.colour, Load::DontCare)];
+                rec.render(&over, None, &textures, || {
+                    r.water.record_textures_view(&rec, set)
+                });
+            });
+        }
+        profiler.pass(&rec, "output", || {
+            super::passes::output::record(&rec, &t.main.colour, output, r.blit_linear)
+        });
+        if let Some(buffer) = delivery.readback {
+            record_readback(&rec, output, buffer);
+        }
+        if delivery.present.is_some() {
+            rec.uses(&[(output.image, Use::Present)]);
+        }
+        profiler.end_frame(&rec);
+        rec.end_label();
+    }
+    frames.submit(frame, &waits, &signals)?;
+    Ok(value)
+}
+
+/// A colour target's attachments for a pass that draws it anew: the colour loaded as `colour`
+/// says, the depth cleared.
+fn colour_depth(cd: &ColourDepth, colour: Load) -> ([Target<'_>; 1], Option<Target<'_>>) {
+    (
+        [Target::new(&cd.colour, colour)],
+        Some(Target::new(&cd.depth, CLEAR_DEPTH)),
+    )
+}
+
+/// Records a copy of the output into `buffer` for the host (screenshots).
+fn record_readback(rec: &Recorder, output: &OutputTarget, buffer: &Buffer) {
+    rec.uses(&[(output.image, Use::CopySrc), (buffer, Use::CopyDst)]);
+    rec.copy_image_to_buffer(output.raw(), output.extent, buffer);
+    rec.uses(&[(buffer, Use::HostRead)]);
+}
