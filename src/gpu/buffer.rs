@@ -10,7 +10,7 @@ use gpu_allocator::MemoryLocation;
 use super::context::Context;
 use super::error::{GpuError, GpuResult, VkResultExt};
 use super::garbage::Garbage;
-use super::track::State;
+use super::track::{Handle, State, Tracked};
 
 /// A buffer and its memory.
 pub struct Buffer {
@@ -148,5 +148,14 @@ impl BufferView {
 impl Drop for BufferView {
     fn drop(&mut self) {
         self.ctx.defer(Garbage::BufferView(self.raw));
+    }
+}
+
+impl Tracked for Buffer {
+    fn handle(&self) -> Handle {
+        Handle::Buffer(self.raw)
+    }
+    fn state(&self) -> &Cell<State> {
+        &self.state
     }
 }

@@ -360,7 +360,8 @@ impl Context {
             ready.into_iter().map(|(_, g)| g).collect()
         };
         for g in ready {
-            g.destroy(self);
+            let n = g.destroy(&self.device, &mut self.allocator());
+            self.count_destroyed(n);
         }
         Ok(())
     }
@@ -463,7 +464,8 @@ impl Drop for Context {
             .drain(..)
             .collect();
         for (_, g) in garbage {
-            g.destroy(self);
+            let n = g.destroy(&self.device, &mut self.allocator());
+            self.count_destroyed(n);
         }
         // SAFETY: the device is idle and every object created from it has been destroyed (all
         // owners hold an Arc<Context>, so they are gone); destruction runs children first.

@@ -1,11 +1,10 @@
 //! The deferred-deletion queue's items. An owner's `Drop` turns its handles into a [`Garbage`]
-//! and hands it to [`Context::defer`]; the context destroys it after the GPU finished the frames
-//! that may still use it (see `Context::collect_garbage`).
+//! and hands it to `Context::defer`; the context destroys it after the GPU finished the frames
+//! that may still use it (see `Context::collect_garbage`). This file knows the device and the
+//! allocator only, not the context.
 
 use ash::vk;
-use gpu_allocator::vulkan::Allocation;
-
-use super::context::Context;
+use gpu_allocator::vulkan::{Allocation, Allocator};
 
 /// A Vulkan object waiting for the GPU to finish with it.
 pub(crate) enum Garbage {
@@ -27,19 +26,20 @@ pub(crate) enum Garbage {
 }
 
 impl Garbage {
-    pub(crate) fn destroy(self, ctx: &Context) {
-        ctx.count_destroyed(match &self {
+    /// Destroys the object (and frees its memory through `allocator`); returns how many
+    /// Vulkan objects that was (an image counts its views).
+    pub(crate) fn destroy(self, d: &ash::Device, allocator: &mut Allocator) -> u64 {
+        let count = match &self {
             Garbage::Image { views, .. } => 1 + views.len() as u64,
             _ => 1,
-        });
-        let d = &ctx.device;
-        // SAFETY: the object was created from `ctx.device`, its owner is gone, and the frame
+        };
+        // SAFETY: the object was created from `d`, its owner is gone, and the frame
         // timeline says the GPU finished every submission that could reference it.
         unsafe {
             match self {
                 Garbage::Buffer(buffer, allocation) => {
                     d.destroy_buffer(buffer, None);
-                    free(ctx, allocation);
+                    free(allocator, allocation);
                 }
                 Garbage::Image {
                     image,
@@ -50,7 +50,7 @@ impl Garbage {
                         d.destroy_image_view(view, None);
                     }
                     d.destroy_image(image, None);
-                    free(ctx, allocation);
+                    free(allocator, allocation);
                 }
                 Garbage::Sampler(s) => d.destroy_sampler(s, None),
                 Garbage::BufferView(v) => d.destroy_buffer_view(v, None),
@@ -63,11 +63,12 @@ impl Garbage {
                 Garbage::QueryPool(q) => d.destroy_query_pool(q, None),
             }
         }
+        count
     }
 }
 
-fn free(ctx: &Context, allocation: Allocation) {
-    if let Err(e) = ctx.allocator().free(allocation) {
+fn free(allocator: &mut Allocator, allocation: Allocation) {
+    if let Err(e) = allocator.free(allocation) {
         log::error!("freeing GPU memory: {e}");
     }
 }

@@ -12,7 +12,7 @@ use super::context::Context;
 use super::error::{GpuError, GpuResult, VkResultExt};
 use super::garbage::Garbage;
 use super::queues::QueueUsers;
-use super::track::State;
+use super::track::{Handle, State, Tracked};
 
 /// How to create an [`Image`].
 #[derive(Clone, Copy, Debug)]
@@ -275,5 +275,14 @@ impl Sampler {
 impl Drop for Sampler {
     fn drop(&mut self) {
         self.ctx.defer(Garbage::Sampler(self.raw));
+    }
+}
+
+impl Tracked for Image {
+    fn handle(&self) -> Handle {
+        Handle::Image(self.raw, self.range())
+    }
+    fn state(&self) -> &Cell<State> {
+        &self.state
     }
 }

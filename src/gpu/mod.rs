@@ -15,6 +15,7 @@ mod garbage;
 pub mod image;
 pub mod instance;
 pub mod oneshot;
+pub mod pass;
 pub mod physical;
 pub mod pipeline;
 pub mod queues;
@@ -34,10 +35,11 @@ pub use formats::FormatUse;
 pub use frame::{Frame, Frames, Submission, FRAMES_IN_FLIGHT};
 pub use gpu_allocator::MemoryLocation;
 pub use image::{Image, ImageDesc, Sampler};
+pub use pass::Target;
 pub use pipeline::{GraphicsDesc, Pipeline, PipelineLayout};
 pub use queues::{QueuePlan, QueueUsers};
 pub use swapchain::{PresentMode, Swapchain};
 pub use timestamps::{
     DrawStatistics, FrameTimes, GpuTimings, Profiler, COMPUTE, GRAPHICS_OCEAN, GRAPHICS_SCENE,
 };
-pub use track::{ExternalImage, Handle, State, Target, Tracked, Use};
+pub use track::{ExternalImage, Handle, State, Tracked, Use};

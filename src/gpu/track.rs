@@ -1,8 +1,8 @@
 //! Barriers by construction: a render graph reduced to its core. Every image and buffer carries
 //! the state its last use left it in ([`State`]: layout, the last write or layout transition,
 //! the reads since). A pass names how it uses each resource ([`Use`]) and [`Recorder::uses`]
-//! records exactly the barriers those uses need, all in one `vkCmdPipelineBarrier2`;
-//! [`Recorder::render`] does the same for a rendering scope's attachments and the textures its
+//! (`pass.rs`) records exactly the barriers those uses need, all in one
+//! `vkCmdPipelineBarrier2`; [`Recorder::render`] does the same for a rendering scope's attachments and the textures its
 //! shaders sample, then opens the scope. No barrier is written by hand above this file.
 //!
 //! The rules (Vulkan spec, "Synchronization and Cache Control"):
@@ -23,9 +23,97 @@ use std::cell::Cell;
 
 use ash::vk;
 
-use super::buffer::Buffer;
-use super::command::{Access, Attachment, ImageBarrier, Load, Recorder};
-use super::image::Image;
+/// One side of a dependency: pipeline stages and the memory accesses made there.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Access {
+    pub stage: vk::PipelineStageFlags2,
+    pub access: vk::AccessFlags2,
+}
+
+impl Access {
+    pub const NONE: Access = Access {
+        stage: vk::PipelineStageFlags2::NONE,
+        access: vk::AccessFlags2::NONE,
+    };
+    pub const COLOUR_WRITE: Access = Access {
+        stage: vk::PipelineStageFlags2::COLOR_ATTACHMENT_OUTPUT,
+        access: vk::AccessFlags2::COLOR_ATTACHMENT_WRITE,
+    };
+    pub const COLOUR_RW: Access = Access {
+        stage: vk::PipelineStageFlags2::COLOR_ATTACHMENT_OUTPUT,
+        access: vk::AccessFlags2::from_raw(
+            vk::AccessFlags2::COLOR_ATTACHMENT_WRITE.as_raw()
+                | vk::AccessFlags2::COLOR_ATTACHMENT_READ.as_raw(),
+        ),
+    };
+    pub const DEPTH_RW: Access = Access {
+        stage: vk::PipelineStageFlags2::from_raw(
+            vk::PipelineStageFlags2::EARLY_FRAGMENT_TESTS.as_raw()
+                | vk::PipelineStageFlags2::LATE_FRAGMENT_TESTS.as_raw(),
+        ),
+        access: vk::AccessFlags2::from_raw(
+            vk::AccessFlags2::DEPTH_STENCIL_ATTACHMENT_WRITE.as_raw()
+                | vk::AccessFlags2::DEPTH_STENCIL_ATTACHMENT_READ.as_raw(),
+        ),
+    };
+    pub const FRAGMENT_SAMPLED: Access = Access {
+        stage: vk::PipelineStageFlags2::FRAGMENT_SHADER,
+        access: vk::AccessFlags2::SHADER_SAMPLED_READ,
+    };
+    pub const COPY_READ: Access = Access {
+        stage: vk::PipelineStageFlags2::COPY,
+        access: vk::AccessFlags2::TRANSFER_READ,
+    };
+    pub const COPY_WRITE: Access = Access {
+        stage: vk::PipelineStageFlags2::COPY,
+        access: vk::AccessFlags2::TRANSFER_WRITE,
+    };
+    /// A transfer command's read or write: copies, blits (the BLIT stage) and resolves.
+    pub const TRANSFER_READ: Access = Access {
+        stage: vk::PipelineStageFlags2::ALL_TRANSFER,
+        access: vk::AccessFlags2::TRANSFER_READ,
+    };
+    pub const TRANSFER_WRITE: Access = Access {
+        stage: vk::PipelineStageFlags2::ALL_TRANSFER,
+        access: vk::AccessFlags2::TRANSFER_WRITE,
+    };
+    pub const HOST_READ: Access = Access {
+        stage: vk::PipelineStageFlags2::HOST,
+        access: vk::AccessFlags2::HOST_READ,
+    };
+    /// vkCmdClearColorImage's write (the CLEAR stage of synchronization2).
+    pub const CLEAR_WRITE: Access = Access {
+        stage: vk::PipelineStageFlags2::CLEAR,
+        access: vk::AccessFlags2::TRANSFER_WRITE,
+    };
+    /// Storage reads and texel fetches (uniform texel buffers, sampled images) in compute.
+    pub const COMPUTE_READ: Access = Access {
+        stage: vk::PipelineStageFlags2::COMPUTE_SHADER,
+        access: vk::AccessFlags2::from_raw(
+            vk::AccessFlags2::SHADER_STORAGE_READ.as_raw()
+                | vk::AccessFlags2::SHADER_SAMPLED_READ.as_raw(),
+        ),
+    };
+    pub const COMPUTE_WRITE: Access = Access {
+        stage: vk::PipelineStageFlags2::COMPUTE_SHADER,
+        access: vk::AccessFlags2::SHADER_STORAGE_WRITE,
+    };
+    /// Any access by any command (coarse; for one-shot uploads and readbacks).
+    pub const ALL_READ_WRITE: Access = Access {
+        stage: vk::PipelineStageFlags2::ALL_COMMANDS,
+        access: vk::AccessFlags2::from_raw(
+            vk::AccessFlags2::MEMORY_READ.as_raw() | vk::AccessFlags2::MEMORY_WRITE.as_raw(),
+        ),
+    };
+
+    /// Union of two scopes.
+    pub const fn or(self, other: Access) -> Access {
+        Access {
+            stage: vk::PipelineStageFlags2::from_raw(self.stage.as_raw() | other.stage.as_raw()),
+            access: vk::AccessFlags2::from_raw(self.access.as_raw() | other.access.as_raw()),
+        }
+    }
+}
 
 /// What a use does to a resource: the layout it needs (images), the stages and accesses it
 /// makes, and whether it writes or overwrites all of it.
@@ -207,24 +295,6 @@ pub enum Handle {
     Buffer(vk::Buffer),
 }
 
-impl Tracked for Image {
-    fn handle(&self) -> Handle {
-        Handle::Image(self.raw, self.range())
-    }
-    fn state(&self) -> &Cell<State> {
-        &self.state
-    }
-}
-
-impl Tracked for Buffer {
-    fn handle(&self) -> Handle {
-        Handle::Buffer(self.raw)
-    }
-    fn state(&self) -> &Cell<State> {
-        &self.state
-    }
-}
-
 /// An image this program does not own (a swapchain image, the headless output), tracked for
 /// the length of one frame from the state it was handed over in.
 pub struct ExternalImage {
@@ -239,111 +309,6 @@ impl Tracked for ExternalImage {
     }
     fn state(&self) -> &Cell<State> {
         &self.state
-    }
-}
-
-/// An attachment of [`Recorder::render`]: an image (through its default view or another one,
-/// e.g. a cube face) and what the scope does with its previous contents.
-pub struct Target<'a> {
-    pub image: &'a Image,
-    pub view: vk::ImageView,
-    pub load: Load,
-}
-
-impl<'a> Target<'a> {
-    pub fn new(image: &'a Image, load: Load) -> Target<'a> {
-        Target {
-            image,
-            view: image.view,
-            load,
-        }
-    }
-}
-
-impl Recorder<'_> {
-    /// Records the barriers `uses` need (none when every use already sees what it needs) and
-    /// moves each resource to its state after the use.
-    pub fn uses(&self, uses: &[(&dyn Tracked, Use)]) {
-        let mut images = Vec::new();
-        let mut buffers = Vec::new();
-        for (resource, next) in uses {
-            let handle = resource.handle();
-            let (barrier, after) = transition(
-                resource.state().get(),
-                *next,
-                matches!(handle, Handle::Image(..)),
-            );
-            resource.state().set(after);
-            let Some((old_layout, new_layout, src, dst)) = barrier else {
-                continue;
-            };
-            match handle {
-                Handle::Image(image, range) => images.push(ImageBarrier {
-                    image,
-                    range,
-                    old_layout,
-                    new_layout,
-                    src,
-                    dst,
-                }),
-                Handle::Buffer(buffer) => buffers.push((buffer, src, dst)),
-            }
-        }
-        if !images.is_empty() || !buffers.is_empty() {
-            self.barrier(&images, &buffers);
-        }
-    }
-
-    /// A rendering scope over the colour attachments' extent: the barriers for the attachments
-    /// (loaded or not, by `Load`) and for `samples` (images its shaders sample), then
-    /// `vkCmdBeginRendering`, `body`, `vkCmdEndRendering`.
-    pub fn render(
-        &self,
-        colour: &[Target],
-        depth: Option<Target>,
-        samples: &[&Image],
-        body: impl FnOnce(),
-    ) {
-        let keep = |load: &Load| matches!(load, Load::Keep);
-        let mut uses: Vec<(&dyn Tracked, Use)> = Vec::new();
-        for t in colour {
-            uses.push((
-                t.image,
-                Use::Colour {
-                    keep: keep(&t.load),
-                },
-            ));
-        }
-        if let Some(t) = &depth {
-            uses.push((
-                t.image,
-                Use::Depth {
-                    keep: keep(&t.load),
-                },
-            ));
-        }
-        for image in samples {
-            uses.push((*image, Use::FragmentSampled));
-        }
-        self.uses(&uses);
-        let extent = colour
-            .first()
-            .or(depth.as_ref())
-            .map_or(vk::Extent2D::default(), |t| t.image.extent);
-        let attachment = |t: &Target, layout| Attachment {
-            view: t.view,
-            layout,
-            load: t.load,
-        };
-        let colour: Vec<_> = colour
-            .iter()
-            .map(|t| attachment(t, vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL))
-            .collect();
-        let depth =
-            depth.map(|t| attachment(&t, vk::ImageLayout::DEPTH_STENCIL_ATTACHMENT_OPTIMAL));
-        self.begin_rendering(extent, &colour, depth);
-        body();
-        self.end_rendering();
     }
 }
 

@@ -28,9 +28,9 @@
 
 use ash::vk;
 
-use super::camera::ViewIndex;
 use super::renderer::{OutputTarget, Renderer};
 use super::targets::ColourDepth;
+use super::uniforms::ViewIndex;
 use super::{FrameInputs, ViewMode};
 use crate::gpu::selftest::SyncHazard;
 use crate::gpu::{

@@ -7,14 +7,16 @@ pub mod passes;
 pub mod renderer;
 pub mod scene;
 pub mod targets;
+pub mod uniforms;
 
 use std::path::PathBuf;
 
 use glam::Vec3;
 
-pub use camera::{Camera, FrameUniforms, OceanBindings, SceneLayout};
+pub use camera::Camera;
 pub use frame::{record_frame, Delivery, FrameParts, SwapchainSync, ACQUIRE_WAIT_STAGE};
-pub use renderer::{FrameInputs, OutputTarget, Renderer};
+pub use renderer::{OutputTarget, Renderer};
+pub use uniforms::{FrameInputs, FrameUniforms, OceanBindings, SceneLayout};
 
 /// `--view`: the final picture, or one intermediate full screen.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]

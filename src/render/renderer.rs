@@ -9,12 +9,13 @@ use std::sync::Arc;
 use ash::vk;
 use glam::Vec3;
 
-use super::camera::{Camera, FrameParams, FrameUniforms, OceanBindings};
+use super::camera::Camera;
 use super::passes::water::WaterSamplers;
 use super::passes::{SkyCube, SkyPass, TerrainPass, WaterPass};
 use super::scene::{generate_dudv, load_dudv, DUDV_SIDE};
 use super::targets::Targets;
 use super::targets::{DEPTH_FORMAT, HDR_FORMAT};
+use super::uniforms::{FrameInputs, FrameParams, FrameUniforms, OceanBindings};
 use super::{SceneSettings, ViewMode};
 use crate::gpu::descriptors::{self, Write};
 use crate::gpu::oneshot::upload_image;
@@ -75,17 +76,6 @@ fn check_formats(ctx: &Context, display: vk::Format, scaled: bool) -> GpuResult<
             what: "the DU/DV map",
         },
     ])
-}
-
-/// Per-frame inputs.
-#[derive(Clone, Copy, Debug, Default)]
-pub struct FrameInputs {
-    /// Simulation time in seconds (f64: reduced on the CPU before it reaches a shader).
-    pub time_s: f64,
-    /// World position of the ocean images' texel (0, 0) (0 for periodic cascades).
-    pub ocean_origin_m: [f64; 2],
-    /// The images cover one bounded window (Gerstner) rather than repeating tiles.
-    pub ocean_window: bool,
 }
 
 pub struct Renderer {

@@ -3,7 +3,7 @@
 
 use std::path::Path;
 
-use super::camera::SceneLayout;
+use super::uniforms::SceneLayout;
 
 /// Side of the generated DU/DV map (px).
 pub const DUDV_SIDE: u32 = 256;

@@ -23,8 +23,8 @@ pub use water::WaterPass;
 use crate::gpu::{
     Context, DescriptorSetLayout, GpuResult, GraphicsDesc, Pipeline, PipelineLayout, Recorder,
 };
-use crate::render::camera::ViewIndex;
 use crate::render::targets::{DEPTH_FORMAT, HDR_FORMAT};
+use crate::render::uniforms::ViewIndex;
 
 /// Push constants of the scene shaders (`Pass` in shaders/common/frame.glsl).
 #[repr(C)]

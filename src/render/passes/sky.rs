@@ -14,8 +14,8 @@ use crate::gpu::{
     Attachment, Context, DescriptorSetLayout, GpuResult, GraphicsDesc, Image, ImageDesc, Load,
     Pipeline, PipelineLayout, Recorder, Use,
 };
-use crate::render::camera::ViewIndex;
 use crate::render::targets::HDR_FORMAT;
+use crate::render::uniforms::ViewIndex;
 use crate::shaders;
 
 /// Side of each face of the rendered sky cubemap (px).

@@ -15,7 +15,7 @@ use crate::gpu::{
     Buffer, Context, DescriptorSetLayout, GpuResult, GraphicsDesc, MemoryLocation, Pipeline,
     PipelineLayout, Recorder,
 };
-use crate::render::camera::ViewIndex;
+use crate::render::uniforms::ViewIndex;
 use crate::shaders;
 
 /// Cylinder segments of an object (`SEGMENTS` in objects.vert), 9 vertices each.

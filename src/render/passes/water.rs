@@ -16,8 +16,8 @@ use crate::gpu::{
     Context, DescriptorPool, DescriptorSetLayout, GpuResult, GraphicsDesc, Pipeline,
     PipelineLayout, Recorder,
 };
-use crate::render::camera::ViewIndex;
 use crate::render::targets::Targets;
+use crate::render::uniforms::ViewIndex;
 use crate::shaders;
 
 /// Patches per side (`PATCHES` in shaders/common/water.glsl).

@@ -1,0 +1,377 @@
+//! The per-frame uniforms: what every scene shader reads of the frame (three views, sun,
+//! ocean cascades, the water's camera-relative frame, scene layout), derived from the camera
+//! and [`FrameInputs`] on the CPU in f64 where precision needs it.
+
+use glam::{Mat4, Vec3, Vec4};
+
+use super::camera::Camera;
+use super::ViewMode;
+
+/// Per-frame inputs.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct FrameInputs {
+    /// Simulation time in seconds (f64: reduced on the CPU before it reaches a shader).
+    pub time_s: f64,
+    /// World position of the ocean images' texel (0, 0) (0 for periodic cascades).
+    pub ocean_origin_m: [f64; 2],
+    /// The images cover one bounded window (Gerstner) rather than repeating tiles.
+    pub ocean_window: bool,
+}
+
+/// What the scene passes sample of the ocean simulation.
+#[derive(Clone, Debug)]
+pub struct OceanBindings {
+    /// Per frame slot: displacement and normal+foam image views (GENERAL layout).
+    pub displacement: Vec<ash::vk::ImageView>,
+    pub normals: Vec<ash::vk::ImageView>,
+    /// Patch side of each cascade (m), padded to four.
+    pub patch_m: [f32; 4],
+    pub cascades: u32,
+    /// Bound on the surface's displacement from its rest position (m): patch culling, and how
+    /// deep the main view can see under the water (`frame_views`).
+    pub max_displacement_m: f32,
+}
+
+/// The views a frame renders: the camera, its mirror image below the water plane (reflection)
+/// and the camera again clipped to what lies under the water (refraction). Indices into
+/// `FrameUniforms::views`, picked per draw with a push constant (`common/frame.glsl`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[repr(u32)]
+pub enum ViewIndex {
+    Main = 0,
+    Reflection = 1,
+    Refraction = 2,
+}
+
+/// Mean water level (m): the plane the reflection mirrors about and the clip planes cut at.
+pub const WATER_LEVEL_M: f32 = 0.0;
+/// The clip planes sit this far past the water plane (m), so waves crossing the plane do not
+/// open gaps at the shoreline (the textures are distorted by the waves anyway).
+pub const CLIP_OFFSET_M: f32 = 0.3;
+
+/// One view (std140, 160 bytes): see `View` in shaders/common/frame.glsl.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct ViewUniforms {
+    /// Position relative to `eye` -> clip space.
+    pub view_proj: [[f32; 4]; 4],
+    pub inv_view_proj: [[f32; 4]; 4],
+    /// xyz: world position positions are made relative to; w: unused.
+    pub eye: [f32; 4],
+    /// World-space plane (a, b, c, d): geometry with a·x + b·y + c·z + d < 0 is clipped.
+    pub clip_plane: [f32; 4],
+}
+
+impl ViewUniforms {
+    fn new(view_proj: Mat4, eye: Vec3, clip_plane: Vec4) -> Self {
+        ViewUniforms {
+            view_proj: view_proj.to_cols_array_2d(),
+            inv_view_proj: view_proj.inverse().to_cols_array_2d(),
+            eye: eye.extend(0.0).to_array(),
+            clip_plane: clip_plane.to_array(),
+        }
+    }
+}
+
+/// The three views of a frame (seed 001 §3.2, eq. 1–3).
+///
+/// The reflection camera is the camera mirrored about the water plane y = d: its position
+/// C_y ← C_y − 2(C_y − d) (eq. 3), and its view-projection is the main one times the mirror
+/// diag(1, −1, 1). Rendering with that matrix puts the reflection of what the main camera sees
+/// at screen point s at the same s, so the water samples both textures at its own screen
+/// position (the seed's pitch-inverted camera gives the same picture upside down). Clip
+/// distances (eq. 2, p · v_world) keep what lies above the water for the reflection and below
+/// it for the refraction.
+///
+/// `hidden_below_m`: when the water is drawn opaque (every view but the wireframe), the depth
+/// below the water plane beyond which the waves never reach. The main view then clips what lies
+/// deeper while the camera (and its near plane) is above the waves: from there every ray to such
+/// a point crosses the water surface, which shows what is under it from the refraction texture.
+/// Without that clip the sea floor around the island, most of the terrain grid, was set up,
+/// binned and rasterized every frame only to be drawn over by the water (4 ms a frame at
+/// --quality low on lavapipe).
+pub fn frame_views(camera: &Camera, aspect: f32, hidden_below_m: Option<f32>) -> [ViewUniforms; 3] {
+    let d = WATER_LEVEL_M;
+    let vp = camera.view_proj(aspect);
+    let mirror = Mat4::from_scale(Vec3::new(1.0, -1.0, 1.0));
+    let mut mirrored_eye = camera.position;
+    mirrored_eye.y -= 2.0 * (camera.position.y - d);
+    let main_clip = match hidden_below_m {
+        Some(reach) if camera.position.y > d + reach + camera.near_m => {
+            Vec4::new(0.0, 1.0, 0.0, -(d - reach))
+        }
+        _ => Vec4::new(0.0, 0.0, 0.0, 1.0), // keep everything
+    };
+    [
+        ViewUniforms::new(vp, camera.position, main_clip),
+        ViewUniforms::new(
+            vp * mirror,
+            mirrored_eye,
+            Vec4::new(0.0, 1.0, 0.0, -(d - CLIP_OFFSET_M)),
+        ),
+        ViewUniforms::new(
+            vp,
+            camera.position,
+            Vec4::new(0.0, -1.0, 0.0, d + CLIP_OFFSET_M),
+        ),
+    ]
+}
+
+/// Mirrors `shaders/common/frame.glsl` (std140: matrices and vec4s only, so no padding).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct FrameUniforms {
+    pub views: [ViewUniforms; 3],
+    /// x: simulation time mod `spectrum::REPEAT_PERIOD_S` (s); y: water level (m); z: debug view
+    /// (`ViewMode` as f32); w: Fresnel model (`FresnelModel` as f32).
+    pub time: [f32; 4],
+    /// xyz: unit vector toward the sun; w: sun radiance scale.
+    pub sun_dir: [f32; 4],
+    /// xy: main target size (px); zw: reciprocal.
+    pub viewport: [f32; 4],
+    /// Patch side of each ocean cascade (m).
+    pub patch_m: [f32; 4],
+    /// x: number of cascades; y: 1 for a bounded window (Gerstner); zw: unused (the images'
+    /// origin is in `cascade_uv`).
+    pub ocean: [f32; 4],
+    /// x: focal length (px); y: target tessellated edge (px); z: max displacement (m); w: 1 to
+    /// paint the solid test background instead of the sky.
+    pub lod: [f32; 4],
+    /// xy: island centre (m); z: sea floor depth (m); w: island radius (m).
+    pub terrain: [f32; 4],
+    /// Objects standing in the water: (x, z, radius, top height), height 0 = none. Object 0 is
+    /// the buoy.
+    pub objects: [[f32; 4]; 4],
+    /// xyz: solid background colour (`--view` tests); w: unused.
+    pub background: [f32; 4],
+    /// xy: camera xz relative to the water grid's centre (m); z: the near plane (m,
+    /// `Camera::near_m`: depth = near / view distance); w: unused. (`WaterFrame`)
+    pub water: [f32; 4],
+    /// Ocean image coordinates of the water grid's centre: cascade c in element c / 2, xy for
+    /// even c, zw for odd c; reduced mod 1 for the repeating FFT cascades.
+    pub cascade_uv: [[f32; 4]; 2],
+    /// DU/DV tile coordinates of the water grid's centre, mod 1: xy for the first sample, zw
+    /// for the second.
+    pub dudv_origin: [f32; 4],
+    /// x: DU/DV tiles per metre; y: the second sample's scale; z: scroll phase (turns, mod 1);
+    /// w: unused.
+    pub dudv: [f32; 4],
+}
+
+/// Side of a DU/DV tile on the water (m).
+pub const DUDV_TILE_M: f64 = 24.0;
+/// The second DU/DV sample's scale relative to the first (seed 001 eq. 5 samples twice).
+pub const DUDV_SECOND_SCALE: f64 = 0.73;
+/// How fast the DU/DV samples scroll (tiles per second; seed 001 eq. 5: t cycles in (0, 1)).
+pub const DUDV_SPEED_TILES_S: f64 = 0.03;
+/// The water's patch grid is centred on the camera snapped to this step (m), so the patches
+/// do not slide over the waves (about the innermost patch's side; shaders/common/water.glsl).
+pub const WATER_SNAP_M: f64 = 8.0;
+
+/// Where the water's vertices are measured from: the camera's xz snapped to `WATER_SNAP_M`,
+/// computed in f64. The shaders work with positions relative to it (a few km at most), and
+/// everything that depends on absolute world position (the ocean images' and DU/DV map's
+/// coordinates, the scroll phase) is reduced here, so a camera 10^6 m from the origin or a
+/// simulation time of 10^6 s looks as it does at the origin at t = 0.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct WaterFrame {
+    /// World xz of the grid's centre (m).
+    pub centre: [f64; 2],
+}
+
+impl WaterFrame {
+    pub fn around(camera_xz: [f64; 2]) -> WaterFrame {
+        WaterFrame {
+            centre: camera_xz.map(|c| (c / WATER_SNAP_M).floor() * WATER_SNAP_M),
+        }
+    }
+
+    /// Image coordinates of the centre in a cascade of side `patch_m` whose texel (0, 0) is at
+    /// `origin`: reduced mod 1 for periodic cascades (`window` false), as they are for a window.
+    pub fn ocean_uv(&self, origin: [f64; 2], patch_m: f64, window: bool) -> [f32; 2] {
+        [0, 1].map(|i| {
+            let uv = (self.centre[i] - origin[i]) / patch_m;
+            (if window { uv } else { uv.rem_euclid(1.0) }) as f32
+        })
+    }
+
+    /// DU/DV tile coordinates of the centre at `scale` (mod 1).
+    pub fn dudv_uv(&self, scale: f64) -> [f32; 2] {
+        self.centre
+            .map(|c| (c * scale / DUDV_TILE_M).rem_euclid(1.0) as f32)
+    }
+}
+
+/// The scene's fixed features (island, objects), from the run settings.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SceneLayout {
+    pub island_xz: [f32; 2],
+    pub island_radius_m: f32,
+    pub sea_floor_m: f32,
+    pub buoy_xz: [f32; 2],
+}
+
+impl Default for SceneLayout {
+    fn default() -> Self {
+        SceneLayout {
+            island_xz: [-420.0, -900.0],
+            island_radius_m: 300.0,
+            sea_floor_m: 18.0,
+            buoy_xz: [9.0, -55.0],
+        }
+    }
+}
+
+impl SceneLayout {
+    /// The objects of `FrameUniforms::objects`: the buoy, then three stone pillars off the
+    /// island's shore.
+    pub fn objects(&self) -> [[f32; 4]; 4] {
+        let [ix, iz] = self.island_xz;
+        let r = self.island_radius_m;
+        [
+            [self.buoy_xz[0], self.buoy_xz[1], 0.8, 3.5],
+            [ix + 0.95 * r, iz + 0.55 * r, 6.0, 28.0],
+            [ix + 1.05 * r, iz + 0.15 * r, 4.0, 20.0],
+            [ix + 0.70 * r, iz + 0.95 * r, 5.0, 34.0],
+        ]
+    }
+}
+
+/// Everything `FrameUniforms::new` needs besides the camera.
+#[derive(Clone, Copy, Debug)]
+pub struct FrameParams<'a> {
+    pub sun_dir: Vec3,
+    pub sun_scale: f32,
+    /// Simulation time (s).
+    pub time_s: f64,
+    /// Main target size (px).
+    pub size: (u32, u32),
+    /// Width / height of the output (the main target's rounded size may differ slightly).
+    pub aspect: f32,
+    pub ocean: &'a OceanBindings,
+    pub inputs: &'a FrameInputs,
+    pub view_mode: u32,
+    pub fresnel: u32,
+    pub tess_edge_px: f32,
+    pub scene: &'a SceneLayout,
+    pub background: Option<[f32; 3]>,
+}
+
+impl FrameUniforms {
+    pub fn new(camera: &Camera, p: &FrameParams) -> Self {
+        let (w, h) = (p.size.0.max(1) as f32, p.size.1.max(1) as f32);
+        let water = WaterFrame::around([camera.position.x as f64, camera.position.z as f64]);
+        let projection = camera.projection(p.aspect);
+        // |P[1][1]| = 1 / tan(fov/2): the focal length in pixels is that times half the height.
+        let focal_px = projection.y_axis.y.abs() * h * 0.5;
+        FrameUniforms {
+            views: frame_views(
+                camera,
+                p.aspect,
+                // The wireframe view draws the water as lines: what lies under it shows.
+                (p.view_mode != ViewMode::Wireframe as u32).then_some(p.ocean.max_displacement_m),
+            ),
+            time: [
+                p.time_s.rem_euclid(crate::ocean::spectrum::REPEAT_PERIOD_S) as f32,
+                WATER_LEVEL_M,
+                p.view_mode as f32,
+                p.fresnel as f32,
+            ],
+            sun_dir: p.sun_dir.normalize().extend(p.sun_scale).to_array(),
+            viewport: Vec4::new(w, h, 1.0 / w, 1.0 / h).to_array(),
+            patch_m: p.ocean.patch_m,
+            ocean: [
+                p.ocean.cascades as f32,
+                if p.inputs.ocean_window { 1.0 } else { 0.0 },
+                0.0,
+                0.0,
+            ],
+            lod: [
+                focal_px,
+                p.tess_edge_px,
+                p.ocean.max_displacement_m,
+                if p.background.is_some() { 1.0 } else { 0.0 },
+            ],
+            terrain: [
+                p.scene.island_xz[0],
+                p.scene.island_xz[1],
+                p.scene.sea_floor_m,
+                p.scene.island_radius_m,
+            ],
+            objects: p.scene.objects(),
+            background: {
+                let [r, g, b] = p.background.unwrap_or_default();
+                [r, g, b, 0.0]
+            },
+            water: [
+                (camera.position.x as f64 - water.centre[0]) as f32,
+                (camera.position.z as f64 - water.centre[1]) as f32,
+                camera.near_m,
+                0.0,
+            ],
+            cascade_uv: [0, 1].map(|half| {
+                let uv = |c: usize| {
+                    water.ocean_uv(
+                        p.inputs.ocean_origin_m,
+                        p.ocean.patch_m[c] as f64,
+                        p.inputs.ocean_window,
+                    )
+                };
+                let (a, b) = (uv(2 * half), uv(2 * half + 1));
+                [a[0], a[1], b[0], b[1]]
+            }),
+            dudv_origin: {
+                let (a, b) = (water.dudv_uv(1.0), water.dudv_uv(DUDV_SECOND_SCALE));
+                [a[0], a[1], b[0], b[1]]
+            },
+            dudv: [
+                (1.0 / DUDV_TILE_M) as f32,
+                DUDV_SECOND_SCALE as f32,
+                (p.time_s * DUDV_SPEED_TILES_S).rem_euclid(1.0) as f32,
+                0.0,
+            ],
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn reflection_view_shows_the_mirror_image_where_the_camera_sees_the_point() {
+        // A point above the water seen by the reflection view lands where the main view sees
+        // its mirror image below the water: the water samples both at its own screen position.
+        let cam = Camera::default();
+        let reach = 3.0;
+        let [main, refl, refr] = frame_views(&cam, 1.5, Some(reach));
+        let project = |v: &ViewUniforms, world: Vec3| {
+            let clip = Mat4::from_cols_array_2d(&v.view_proj)
+                * (world - Vec3::from_slice(&v.eye[..3])).extend(1.0);
+            clip.truncate() / clip.w
+        };
+        let above = Vec3::new(30.0, 25.0, -200.0);
+        let mirrored = Vec3::new(above.x, 2.0 * WATER_LEVEL_M - above.y, above.z);
+        let a = project(&refl, above);
+        let b = project(&main, mirrored);
+        assert!((a - b).length() < 1e-5, "{a} vs {b}");
+        // Clip planes: the reflection keeps what is above the water, the refraction what is below.
+        let plane = |v: &ViewUniforms, p: Vec3| Vec4::from_array(v.clip_plane).dot(p.extend(1.0));
+        assert!(plane(&refl, above) > 0.0 && plane(&refl, mirrored) < 0.0);
+        assert!(plane(&refr, above) < 0.0 && plane(&refr, mirrored) > 0.0);
+        // The main view keeps what the waves can uncover and drops what lies deeper.
+        let trough = Vec3::new(30.0, WATER_LEVEL_M - 0.9 * reach, -200.0);
+        assert!(plane(&main, above) > 0.0 && plane(&main, trough) > 0.0);
+        assert!(plane(&main, mirrored) < 0.0);
+        // A camera among the waves, and a view where the water does not hide (wireframe), keep
+        // everything.
+        let low = Camera {
+            position: Vec3::new(0.0, WATER_LEVEL_M + 0.5 * reach, 0.0),
+            ..Camera::default()
+        };
+        let [main, _, _] = frame_views(&low, 1.5, Some(reach));
+        assert!(plane(&main, mirrored) > 0.0);
+        let [main, _, _] = frame_views(&cam, 1.5, None);
+        assert!(plane(&main, mirrored) > 0.0);
+    }
+}
