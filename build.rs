@@ -9,12 +9,20 @@
 //! Stage files: `.comp .vert .tesc .tese .frag`. Shared includes: `.glsl` (under `shaders/common`),
 //! included as `#include "common/name.glsl"` (the include root is `shaders/`).
 //! A shader `shaders/sky/sky.frag` becomes the constant `shaders::SKY_SKY_FRAG`.
+//! `$OUT_DIR/shared.glsl` (the constants of src/shared.rs, which this file includes) is on the
+//! include path too: `#include "shared.glsl"`.
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::process::{exit, Command};
 
 const STAGES: &[&str] = &["comp", "vert", "tesc", "tese", "frag"];
+
+/// The constants Rust and GLSL share (`crate::shared`).
+#[allow(dead_code)] // build.rs writes them as GLSL; the crate uses them as Rust
+mod shared {
+    include!("src/shared.rs");
+}
 
 fn main() {
     let root =
@@ -28,6 +36,9 @@ fn main() {
 
     println!("cargo:rerun-if-env-changed=GLSLC");
     println!("cargo:rerun-if-changed={}", shader_dir.display());
+    println!("cargo:rerun-if-changed=src/shared.rs");
+    std::fs::write(out_dir.join("shared.glsl"), shared::glsl_declarations())
+        .expect("OUT_DIR is writable");
 
     let mut files = Vec::new();
     collect(&shader_dir, &mut files);
@@ -65,6 +76,8 @@ fn main() {
             .arg(if release { "-O" } else { "-g" })
             .arg("-I")
             .arg("shaders")
+            .arg("-I")
+            .arg(&out_dir)
             .arg(Path::new("shaders").join(rel))
             .arg("-o")
             .arg(&spv);

@@ -12,6 +12,8 @@ pub mod ocean;
 pub mod output;
 pub mod profile;
 pub mod render;
+/// Constants Rust and the shaders share (build.rs writes them as `shared.glsl`).
+pub mod shared;
 
 /// SPIR-V of every shader under `shaders/`, compiled by build.rs with glslc.
 pub mod shaders {

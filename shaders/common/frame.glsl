@@ -33,12 +33,9 @@ layout(push_constant) uniform Pass { uint view; } pass;
 
 #define VIEW frame.views[pass.view]
 
-// Debug views (`--view`, ViewMode in src/render/mod.rs) the scene shaders react to.
-const int VIEW_FINAL = 0;
-const int VIEW_DISPLACEMENT = 4;
-const int VIEW_NORMALS = 5;
-const int VIEW_FOAM = 6;
-const int VIEW_WIREFRAME = 7;
+// Debug views (`--view`, ViewMode in src/render/mod.rs) the scene shaders react to: VIEW_*
+// of src/shared.rs.
+#include "shared.glsl"
 int debug_view() { return int(frame.time.z + 0.5); }
 
 // The ocean simulation's images of this frame's slot, one layer per cascade (GENERAL layout,

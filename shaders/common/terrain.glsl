@@ -2,7 +2,7 @@
 // at `frame.terrain.xy`, with a Gaussian profile of radius `frame.terrain.w` roughened by a few
 // octaves of rotated sine ridges (deterministic, no textures). Mirrored on the CPU by
 // `terrain_height` in src/render/scene.rs (tests use it to place cameras).
-const float PEAK_M = 48.0;
+#include "shared.glsl" // PEAK_M (src/shared.rs)
 // Grid quads per side: specialized by TerrainPass (--terrain-grid, src/render/passes/terrain.rs).
 layout(constant_id = 0) const int TERRAIN_QUADS = 160;
 const float TERRAIN_EXTENT = 2.4;    // grid half-side in island radii

@@ -4,7 +4,7 @@
 // to FAR_M at the horizon. Each patch is an axis-aligned rectangle and shares its edges exactly
 // with its neighbours. Positions ("xz") are relative to the grid's centre (camera-relative
 // rendering: frame.water).
-const uint PATCHES = 32u;          // per side (WaterPass::PATCHES in src/render/passes/water.rs)
+#include "shared.glsl"             // PATCHES: per side (src/shared.rs)
 const float INNER_M = 48.0;        // linear part of the warp
 const float FAR_M = 20000.0;       // half-side of the grid
 

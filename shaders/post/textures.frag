@@ -13,9 +13,6 @@ layout(set = 1, binding = 0) uniform sampler2D reflection_colour;
 layout(set = 1, binding = 1) uniform sampler2D refraction_colour;
 layout(set = 1, binding = 3) uniform sampler2D dudv_map;
 
-const int VIEW_REFLECTION = 1;
-const int VIEW_REFRACTION = 2;
-
 void main() {
     int view = debug_view();
     if (view == VIEW_REFLECTION) {

@@ -25,8 +25,8 @@ layout(set = 1, binding = 1) uniform sampler2D refraction_colour;
 layout(set = 1, binding = 2) uniform sampler2D refraction_depth;
 layout(set = 1, binding = 3) uniform sampler2D dudv_map;
 
-const vec3 WATER_COLOUR = vec3(0.004, 0.045, 0.075); // c_o: deep water, seen through nothing
-const vec3 ABSORPTION = vec3(0.45, 0.09, 0.06);      // 1/m, red absorbed first
+// WATER_COLOUR (c_o: deep water, seen through nothing) and ABSORPTION_PER_M (red absorbed
+// first) come from src/shared.rs.
 const float N_WATER = 1.333;
 const float F0 = 0.02;               // ((n - 1) / (n + 1))^2
 const float DUDV_STRENGTH = 0.012;   // screen-space offset at full strength
@@ -120,7 +120,7 @@ void main() {
     float thickness = max(floor_view - water_view, 0.0) * dist / water_view;
     // Seed 001 eq. 7 fades the whole colour toward c_o with depth, which removes reflections
     // over deep water; the depth fade belongs to the refracted light only (Beer-Lambert).
-    vec3 transmitted = mix(WATER_COLOUR, c_refract, exp(-thickness * ABSORPTION));
+    vec3 transmitted = mix(WATER_COLOUR, c_refract, exp(-thickness * ABSORPTION_PER_M));
 
     float cos_theta = clamp(dot(n, v), 0.0, 1.0);
     float f = fresnel(cos_theta);

@@ -32,7 +32,7 @@ void main() {
     vec3 colour = albedo * (vec3(1.0, 0.92, 0.8) * lambert * 1.6 + ambient);
     // Below the water: light attenuated on its way down (Beer-Lambert, depth below the surface).
     float below = max(frame.time.y - in_world.y, 0.0);
-    colour *= exp(-below * vec3(0.35, 0.09, 0.06));
+    colour *= exp(-below * ABSORPTION_PER_M);
     float dist = length(in_rel_pos);
     vec3 horizon = sky_lookup(normalize(vec3(in_rel_pos.x, 0.0, in_rel_pos.z) + vec3(0.0, 0.02, 0.0)));
     float haze = 1.0 - exp(-dist / 9000.0);

@@ -39,9 +39,11 @@ use crate::gpu::{
 };
 use crate::ocean::simulation::Simulation;
 
-/// The linear refraction texture where nothing lies under the water: the deep water colour
-/// (`WATER_COLOUR` in water.frag).
-const DEEP_WATER: [f32; 4] = [0.004, 0.045, 0.075, 1.0];
+/// The linear refraction texture where nothing lies under the water: the deep water colour.
+const DEEP_WATER: [f32; 4] = {
+    let [r, g, b] = crate::shared::WATER_COLOUR;
+    [r, g, b, 1.0]
+};
 
 /// Reversed-Z: depth 0 is the far plane.
 const CLEAR_DEPTH: Load = Load::Clear(vk::ClearValue {

@@ -13,6 +13,8 @@ use std::path::PathBuf;
 
 use glam::Vec3;
 
+use crate::shared;
+
 pub use camera::Camera;
 pub use frame::{record_frame, Delivery, FrameParts, SwapchainSync, ACQUIRE_WAIT_STAGE};
 pub use renderer::{OutputTarget, Renderer};
@@ -23,21 +25,21 @@ pub use uniforms::{FrameInputs, FrameUniforms, OceanBindings, SceneLayout};
 #[repr(u32)]
 pub enum ViewMode {
     #[default]
-    Final = 0,
+    Final = shared::VIEW_FINAL as u32,
     /// The reflection texture.
-    Reflection = 1,
+    Reflection = shared::VIEW_REFLECTION as u32,
     /// The refraction texture.
-    Refraction = 2,
+    Refraction = shared::VIEW_REFRACTION as u32,
     /// The DU/DV map, tiled.
-    Dudv = 3,
+    Dudv = shared::VIEW_DUDV as u32,
     /// The ocean coloured by its displacement (x, y, z → r, b, g around grey).
-    Displacement = 4,
+    Displacement = shared::VIEW_DISPLACEMENT as u32,
     /// The ocean coloured by its normal.
-    Normals = 5,
+    Normals = shared::VIEW_NORMALS as u32,
     /// The ocean's foam coverage.
-    Foam = 6,
+    Foam = shared::VIEW_FOAM as u32,
     /// The tessellated ocean as lines over the scene.
-    Wireframe = 7,
+    Wireframe = shared::VIEW_WIREFRAME as u32,
 }
 
 /// `--fresnel`: how the water weighs reflection against refraction.

@@ -58,7 +58,7 @@ pub fn load_dudv(path: &Path) -> anyhow::Result<(u32, u32, Vec<u8>)> {
 /// Height of the island terrain at world (x, z) (m): `terrain_height` of
 /// shaders/common/terrain.glsl.
 pub fn terrain_height(layout: &SceneLayout, x: f32, z: f32) -> f32 {
-    const PEAK_M: f32 = 48.0;
+    use crate::shared::PEAK_M;
     let dx = (x - layout.island_xz[0]) / layout.island_radius_m;
     let dz = (z - layout.island_xz[1]) / layout.island_radius_m;
     let r2 = dx * dx + dz * dz;

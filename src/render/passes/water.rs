@@ -20,8 +20,8 @@ use crate::render::targets::Targets;
 use crate::render::uniforms::ViewIndex;
 use crate::shaders;
 
-/// Patches per side (`PATCHES` in shaders/common/water.glsl).
-pub const PATCHES: u32 = 32;
+/// Patches per side (shared with water.vert).
+pub use crate::shared::PATCHES;
 
 /// Samplers the water's textures use.
 pub struct WaterSamplers {
