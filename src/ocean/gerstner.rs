@@ -83,47 +83,7 @@ pub fn parse_waves(text: &str, toml: bool) -> Result<Vec<Wave>, String> {
     };
     let mut waves = Vec::new();
     if toml {
-        let mut current: Option<(usize, [Option<f64>; 5])> = None;
-        let finish =
-            |cur: Option<(usize, [Option<f64>; 5])>, waves: &mut Vec<Wave>| -> Result<(), String> {
-                if let Some((line, v)) = cur {
-                    let get = |i: usize, name: &str| {
-                        v[i].ok_or(format!("the [[wave]] at line {line} lacks {name}"))
-                    };
-                    let w = Wave {
-                        kx: get(0, "kx")?,
-                        kz: get(1, "kz")?,
-                        amplitude: get(2, "amplitude")?,
-                        phase: get(3, "phase")?,
-                        steepness: v[4].unwrap_or(1.0),
-                    };
-                    waves.push(check(w, line)?);
-                }
-                Ok(())
-            };
-        for (i, raw) in text.lines().enumerate() {
-            let line = raw.split('#').next().unwrap_or("").trim();
-            if line.is_empty() {
-                continue;
-            }
-            if line == "[[wave]]" {
-                finish(current.take(), &mut waves)?;
-                current = Some((i + 1, [None; 5]));
-                continue;
-            }
-            let (key, value) = line
-                .split_once('=')
-                .ok_or(format!("line {}: expected [[wave]] or key = value", i + 1))?;
-            let slot = ["kx", "kz", "amplitude", "phase", "steepness"]
-                .iter()
-                .position(|k| *k == key.trim())
-                .ok_or(format!("line {}: unknown key '{}'", i + 1, key.trim()))?;
-            let (_, values) = current
-                .as_mut()
-                .ok_or(format!("line {}: key outside a [[wave]] table", i + 1))?;
-            values[slot] = Some(number(value, i + 1)?);
-        }
-        finish(current, &mut waves)?;
+        waves = parse_toml_waves(text, check)?;
     } else {
         for (i, raw) in text.lines().enumerate() {
             let line = raw.split('#').next().unwrap_or("").trim();
@@ -157,6 +117,82 @@ pub fn parse_waves(text: &str, toml: bool) -> Result<Vec<Wave>, String> {
         return Err("no waves in the table".to_string());
     }
     Ok(waves)
+}
+
+/// The `[[wave]]` tables of a TOML wave table (parsed by toml_edit), each checked by `check`.
+fn parse_toml_waves(
+    text: &str,
+    check: impl Fn(Wave, usize) -> Result<Wave, String>,
+) -> Result<Vec<Wave>, String> {
+    let doc = toml_edit::Document::parse(text).map_err(|e| toml_error_line(&e))?;
+    let line_at = |span: Option<std::ops::Range<usize>>| {
+        span.map_or(0, |s| text[..s.start].matches('\n').count() + 1)
+    };
+    let mut waves = Vec::new();
+    for (key, item) in doc.as_table().iter() {
+        let line = line_at(doc.as_table().key(key).and_then(|k| k.span()));
+        let tables = match (key, item.as_array_of_tables()) {
+            ("wave", Some(tables)) => tables,
+            ("wave", None) => return Err(format!("line {line}: 'wave' must be [[wave]] tables")),
+            _ => {
+                return Err(format!(
+                    "line {line}: unknown key '{key}' (expected [[wave]] tables)"
+                ))
+            }
+        };
+        for table in tables.iter() {
+            let line = line_at(table.span());
+            let mut values = [None; 5];
+            for (key, item) in table.iter() {
+                let at = line_at(table.key(key).and_then(|k| k.span()));
+                let slot = ["kx", "kz", "amplitude", "phase", "steepness"]
+                    .iter()
+                    .position(|k| *k == key)
+                    .ok_or(format!("line {at}: unknown key '{key}'"))?;
+                let value = item
+                    .as_float()
+                    .or(item.as_integer().map(|i| i as f64))
+                    .ok_or(format!("line {at}: '{key}' must be a number"))?;
+                if !value.is_finite() {
+                    return Err(format!("line {at}: '{key}' is not finite"));
+                }
+                values[slot] = Some(value);
+            }
+            let get = |i: usize, name: &str| {
+                values[i].ok_or(format!("the [[wave]] at line {line} lacks {name}"))
+            };
+            let wave = Wave {
+                kx: get(0, "kx")?,
+                kz: get(1, "kz")?,
+                amplitude: get(2, "amplitude")?,
+                phase: get(3, "phase")?,
+                steepness: values[4].unwrap_or(1.0),
+            };
+            waves.push(check(wave, line)?);
+        }
+    }
+    Ok(waves)
+}
+
+/// A TOML error on one line: "line L, column C: what is wrong" (toml_edit's message spans
+/// several lines with a picture of the input).
+pub fn toml_error_line(e: &toml_edit::TomlError) -> String {
+    let text = e.to_string();
+    let mut lines = text.lines();
+    let place = lines
+        .next()
+        .unwrap_or("")
+        .trim_start_matches("TOML parse error at ")
+        .to_string();
+    let reason: Vec<&str> = lines
+        .filter(|l| !l.trim_start().starts_with('|') && !l.contains(" | "))
+        .map(str::trim)
+        .filter(|l| !l.is_empty())
+        .collect();
+    match reason.is_empty() {
+        true => place,
+        false => format!("{place}: {}", reason.join("; ")),
+    }
 }
 
 /// Displaced position (x, y, z) and unit normal of the surface point (α, β) at time t.
@@ -254,7 +290,30 @@ mod tests {
             .contains("zero"));
         assert!(parse_waves("[[wave]]\nkx=1\n", true)
             .unwrap_err()
-            .contains("lacks kz"));
+            .contains("the [[wave]] at line 1 lacks kz"));
+        // toml_edit's own errors, on one line, with the reason.
+        let duplicate = parse_waves("[[wave]]\nkx = 1\nkx = 2\n", true).unwrap_err();
+        assert!(
+            duplicate.starts_with("line 3, column 1: ") && duplicate.contains("duplicate key"),
+            "{duplicate}"
+        );
+        let unknown = "[[wave]]\nkx = 1\nkz = 0\namplitude = 1\nphase = 0\nspeed = 3\n";
+        assert_eq!(
+            parse_waves(unknown, true).unwrap_err(),
+            "line 6: unknown key 'speed'"
+        );
+        assert_eq!(
+            parse_waves("[[wave]]\nkx = \"1\"\n", true).unwrap_err(),
+            "line 2: 'kx' must be a number"
+        );
+        assert_eq!(
+            parse_waves("[[wave]]\nkx = inf\n", true).unwrap_err(),
+            "line 2: 'kx' is not finite"
+        );
+        assert_eq!(
+            parse_waves("waves = 3\n", true).unwrap_err(),
+            "line 1: unknown key 'waves' (expected [[wave]] tables)"
+        );
         assert!(parse_waves("", false).is_err());
     }
 
