@@ -11,10 +11,6 @@ use vkocean::gpu::Context;
 use vkocean::ocean::cpu::inverse_2d;
 use vkocean::ocean::fft::{check_plan, threads_for, Direction, GpuFft, Kernel};
 
-fn context() -> Arc<Context> {
-    common::gpu_context()
-}
-
 /// Deterministic pseudo-random complex values in [-1, 1]² (the benchmark's signal).
 fn random_input(len: usize, seed: u64) -> Vec<[f32; 2]> {
     vkocean::bench::test_signal(len, seed)
@@ -41,13 +37,11 @@ fn run_gpu(
 }
 
 fn relative_l2(ours: &[[f32; 2]], reference: &[Complex64]) -> f64 {
-    let err: f64 = ours
-        .iter()
-        .zip(reference)
-        .map(|(a, b)| (a[0] as f64 - b.re).powi(2) + (a[1] as f64 - b.im).powi(2))
-        .sum();
-    let norm: f64 = reference.iter().map(|b| b.norm_sqr()).sum();
-    (err / norm).sqrt()
+    common::relative_l2(
+        ours.iter()
+            .zip(reference)
+            .flat_map(|(a, b)| [(a[0] as f64, b.re), (a[1] as f64, b.im)]),
+    )
 }
 
 /// Every (N, batch, kernel) to test: both kernels wherever the device can run them, the
@@ -69,7 +63,7 @@ fn plans(ctx: &Context, sizes: &[usize], batches: &[usize]) -> Vec<(usize, usize
 
 #[test]
 fn lavapipe_gets_the_register_kernel_up_to_512() {
-    let ctx = context();
+    let ctx = common::gpu_context();
     if ctx.info.device_type != vkocean::gpu::vk::PhysicalDeviceType::CPU {
         return; // GPUs keep the shared-memory kernel; nothing to check
     }
@@ -88,7 +82,7 @@ fn lavapipe_gets_the_register_kernel_up_to_512() {
 
 #[test]
 fn inverse_fft_matches_rustfft_for_every_size() {
-    let ctx = context();
+    let ctx = common::gpu_context();
     let sizes = [64usize, 128, 256, 512, 1024];
     for n in sizes {
         if let Err(e) = check_plan(&ctx, n, 3) {
@@ -117,7 +111,7 @@ fn inverse_fft_matches_rustfft_for_every_size() {
 
 #[test]
 fn forward_then_inverse_is_identity() {
-    let ctx = context();
+    let ctx = common::gpu_context();
     for (n, batch, kernel) in plans(&ctx, &[64, 256, 512, 1024], &[2]) {
         let fft = GpuFft::with_kernel(&ctx, n, batch, kernel).unwrap();
         let input = random_input(batch * n * n, n as u64);
@@ -143,7 +137,7 @@ fn forward_then_inverse_is_identity() {
 
 #[test]
 fn unsupported_sizes_are_refused_with_a_reason() {
-    let ctx = context();
+    let ctx = common::gpu_context();
     for n in [0usize, 32, 100, 2048] {
         let err = check_plan(&ctx, n, 1).unwrap_err();
         assert!(err.contains(&n.to_string()), "{err}");

@@ -9,21 +9,14 @@
 
 mod common;
 
-use common::{clean_run, read_png, run_with_env, scratch};
+use common::{luma, mean_abs_diff, std_dev};
 
 const W: u32 = 320;
 const H: u32 = 180;
 
 /// One validation-clean headless frame at W x H with `args` and `env`: RGBA pixels.
 fn shot(name: &str, args: &[&str], env: &[(&str, &str)]) -> Vec<u8> {
-    let dir = scratch(&format!("precision-{name}"));
-    let png = dir.join("s.png");
-    let size = format!("{W}x{H}");
     let mut all = vec![
-        "--headless",
-        "--validation",
-        "--size",
-        &size,
         // The level these statistics were measured at (render scale 1: the UNORM test compares
         // encodings, and a bilinear blit at a smaller scale filters encoded values for UNORM but
         // linear light for sRGB formats: 0.57 of 255 apart on average at scale 0.5).
@@ -34,46 +27,28 @@ fn shot(name: &str, args: &[&str], env: &[(&str, &str)]) -> Vec<u8> {
         // Deep enough that no sea floor shows: the far camera has none around it.
         "--sea-floor",
         "500",
-        "--screenshot",
-        png.to_str().unwrap(),
     ];
     all.extend_from_slice(args);
-    let out = run_with_env(&all, env);
-    clean_run(&out, &format!("{all:?}"));
-    let (w, h, pixels) = read_png(&png);
-    assert_eq!((w, h), (W, H));
-    let _ = std::fs::remove_dir_all(&dir);
-    pixels
+    common::shot(&format!("precision-{name}"), (W, H), &all, env)
 }
 
 /// Luma of the rows `rows` (the water below the horizon).
 fn water_luma(p: &[u8], rows: std::ops::Range<u32>) -> Vec<f64> {
-    p.chunks(4)
-        .enumerate()
-        .filter(|(i, _)| rows.contains(&(*i as u32 / W)))
-        .map(|(_, c)| 0.2126 * c[0] as f64 + 0.7152 * c[1] as f64 + 0.0722 * c[2] as f64)
-        .collect()
+    let row_bytes = W as usize * 4;
+    luma(&p[rows.start as usize * row_bytes..rows.end as usize * row_bytes])
 }
 
 /// (mean, standard deviation, mean |horizontal gradient|) of the luma of `rows`.
 fn statistics(p: &[u8], rows: std::ops::Range<u32>) -> [f64; 3] {
     let l = water_luma(p, rows);
     let mean = l.iter().sum::<f64>() / l.len() as f64;
-    let std = (l.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / l.len() as f64).sqrt();
+    let std = std_dev(&l);
     let gradient = l
         .chunks(W as usize)
         .flat_map(|row| row.windows(2).map(|w| (w[1] - w[0]).abs()))
         .sum::<f64>()
         / l.len() as f64;
     [mean, std, gradient]
-}
-
-fn mean_abs_diff(a: &[u8], b: &[u8]) -> f64 {
-    a.iter()
-        .zip(b)
-        .map(|(x, y)| (*x as f64 - *y as f64).abs())
-        .sum::<f64>()
-        / a.len() as f64
 }
 
 /// Asserts `ours` is within `tolerance` (a fraction) of `reference` for each statistic.

@@ -4,57 +4,19 @@
 
 mod common;
 
-use common::{clean_run, read_png, run, scratch, stderr};
+use common::{clean_run, luma, mean_abs_diff, read_png, run, scratch, std_dev, stderr};
 use vkocean::render::scene::terrain_height;
 use vkocean::render::SceneLayout;
 
 const W: u32 = 320;
 const H: u32 = 180;
 
-/// Renders one headless frame at W x H with validation and returns its RGBA pixels. At
-/// `--quality high` (the golden image's level; lavapipe's own default is low) unless `args`
-/// sets its parts.
+/// One headless frame at W x H at `--quality high` (the golden image's level; lavapipe's own
+/// default is low) unless `args` sets its parts.
 fn shot(name: &str, args: &[&str]) -> Vec<u8> {
-    let dir = scratch(&format!("render-{name}"));
-    let png = dir.join("s.png");
-    let size = format!("{W}x{H}");
-    let mut all = vec![
-        "--headless",
-        "--validation",
-        "--quality",
-        "high",
-        "--size",
-        &size,
-        "--screenshot",
-        png.to_str().unwrap(),
-    ];
+    let mut all = vec!["--quality", "high"];
     all.extend_from_slice(args);
-    let out = run(&all);
-    clean_run(&out, &format!("{all:?}"));
-    let (w, h, pixels) = read_png(&png);
-    assert_eq!((w, h), (W, H));
-    let _ = std::fs::remove_dir_all(&dir);
-    pixels
-}
-
-fn luma(p: &[u8]) -> Vec<f64> {
-    p.chunks(4)
-        .map(|c| 0.2126 * c[0] as f64 + 0.7152 * c[1] as f64 + 0.0722 * c[2] as f64)
-        .collect()
-}
-
-fn std_dev(v: &[f64]) -> f64 {
-    let mean = v.iter().sum::<f64>() / v.len() as f64;
-    (v.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / v.len() as f64).sqrt()
-}
-
-/// Mean absolute difference per channel value (0..255).
-fn mean_abs_diff(a: &[u8], b: &[u8]) -> f64 {
-    a.iter()
-        .zip(b)
-        .map(|(x, y)| (*x as f64 - *y as f64).abs())
-        .sum::<f64>()
-        / a.len() as f64
+    common::shot(&format!("render-{name}"), (W, H), &all, &[])
 }
 
 /// Pixels whose colour differs by more than `threshold` in some channel.

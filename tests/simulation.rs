@@ -4,32 +4,22 @@
 
 mod common;
 
-use std::sync::Arc;
-
-use vkocean::gpu::Context;
 use vkocean::ocean::cpu::CpuOcean;
 use vkocean::ocean::simulation::Simulation;
 use vkocean::ocean::{OceanSettings, SeaState, SpectrumKind};
 
-fn context() -> Arc<Context> {
-    common::gpu_context()
-}
-
 /// Relative L2 error of components `comps` of GPU values against CPU values.
 fn relative_l2(gpu: &[[f32; 4]], cpu: &[[f64; 4]], comps: std::ops::Range<usize>) -> f64 {
-    let (mut err, mut norm) = (0.0, 0.0);
-    for (g, c) in gpu.iter().zip(cpu) {
-        for i in comps.clone() {
-            err += (g[i] as f64 - c[i]).powi(2);
-            norm += c[i].powi(2);
-        }
-    }
-    (err / norm).sqrt()
+    common::relative_l2(
+        gpu.iter()
+            .zip(cpu)
+            .flat_map(|(g, c)| comps.clone().map(move |i| (g[i] as f64, c[i]))),
+    )
 }
 
 #[test]
 fn gpu_fields_match_the_cpu_reference() {
-    let ctx = context();
+    let ctx = common::gpu_context();
     // Late times too: the GPU gets the time as ticks of the repeat period computed in f64, so
     // t = 10^6 s (the CLI's limit) matches the f64 reference as well as t = 3.25 s does.
     let cases = [
@@ -74,7 +64,7 @@ fn gpu_fields_match_the_cpu_reference() {
 
 #[test]
 fn same_seed_same_surface() {
-    let ctx = context();
+    let ctx = common::gpu_context();
     let settings = OceanSettings {
         fft_size: 64,
         ..OceanSettings::default()
@@ -106,7 +96,7 @@ fn same_seed_same_surface() {
 fn gerstner_gpu_matches_the_analytic_waves() {
     use vkocean::ocean::gerstner::{default_waves, evaluate};
     use vkocean::ocean::Waves;
-    let ctx = context();
+    let ctx = common::gpu_context();
     let waves = default_waves();
     let (n, window) = (64usize, 100.0f64);
     let settings = OceanSettings {
@@ -161,7 +151,7 @@ fn gerstner_gpu_matches_the_analytic_waves() {
 fn no_nan_or_inf_on_the_gpu_across_sea_states_and_sizes() {
     // Extreme sea states (calm and shallow, storm over a long fetch, Phillips in a storm) at the
     // smallest and largest FFT sizes: every texel of both images stays finite.
-    let ctx = context();
+    let ctx = common::gpu_context();
     let states = [
         SeaState {
             spectrum: SpectrumKind::Jonswap,

@@ -115,3 +115,56 @@ pub fn assert_validation_clean(ctx: std::sync::Arc<vkocean::gpu::Context>) {
         "validation messages"
     );
 }
+
+/// One validation-clean headless frame of `size` with `args` (and `env`): its RGBA pixels.
+/// `name` names the scratch directory.
+pub fn shot(name: &str, size: (u32, u32), args: &[&str], env: &[(&str, &str)]) -> Vec<u8> {
+    let dir = scratch(&format!("shot-{name}"));
+    let png = dir.join("s.png");
+    let size_arg = format!("{}x{}", size.0, size.1);
+    let mut all = vec![
+        "--headless",
+        "--validation",
+        "--size",
+        &size_arg,
+        "--screenshot",
+        png.to_str().expect("temp paths are UTF-8"),
+    ];
+    all.extend_from_slice(args);
+    let out = run_with_env(&all, env);
+    clean_run(&out, &format!("{all:?}"));
+    let (w, h, pixels) = read_png(&png);
+    assert_eq!((w, h), size);
+    let _ = std::fs::remove_dir_all(&dir);
+    pixels
+}
+
+/// Rec. 709 luma of each RGBA pixel (0..255).
+pub fn luma(p: &[u8]) -> Vec<f64> {
+    p.chunks(4)
+        .map(|c| 0.2126 * c[0] as f64 + 0.7152 * c[1] as f64 + 0.0722 * c[2] as f64)
+        .collect()
+}
+
+/// Mean absolute difference of two pictures' bytes (0..255).
+pub fn mean_abs_diff(a: &[u8], b: &[u8]) -> f64 {
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| (*x as f64 - *y as f64).abs())
+        .sum::<f64>()
+        / a.len() as f64
+}
+
+/// Relative L2 error ‖ours − reference‖ / ‖reference‖ of (ours, reference) pairs.
+pub fn relative_l2(pairs: impl IntoIterator<Item = (f64, f64)>) -> f64 {
+    let (err, norm) = pairs.into_iter().fold((0.0, 0.0), |(e, n), (o, r)| {
+        (e + (o - r).powi(2), n + r * r)
+    });
+    (err / norm).sqrt()
+}
+
+/// Standard deviation of `v` (population).
+pub fn std_dev(v: &[f64]) -> f64 {
+    let mean = v.iter().sum::<f64>() / v.len() as f64;
+    (v.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / v.len() as f64).sqrt()
+}
