@@ -203,6 +203,8 @@ impl App {
 
     /// Renders and presents one frame, recreating the swapchain first when needed; does nothing
     /// while the window is minimised.
+    // Long: one window frame in the order its steps depend on each other (acquire, recreate,
+    // capture, time, record, present, title); each step uses the previous one's result.
     fn draw(&mut self, event_loop: &ActiveEventLoop) -> anyhow::Result<()> {
         let Some(state) = self.state.as_mut() else {
             return Ok(());

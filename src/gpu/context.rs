@@ -91,6 +91,9 @@ impl Context {
 
     /// Creates the instance, picks the device (`desc.gpu_index` or the best one), creates the
     /// device, queues, allocator and frame timeline.
+    // Long: Vulkan's creation sequence (instance, messenger, surface, device choice, device,
+    // queues, allocator, timeline) with one partial-teardown guard; split, the guard would
+    // have to travel through every piece.
     pub fn new(desc: &ContextDesc) -> GpuResult<Arc<Context>> {
         let entry = load_entry()?;
         let counters = Arc::new(MessageCounters::new(desc.validation));

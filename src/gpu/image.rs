@@ -75,6 +75,7 @@ pub fn aspect_of(format: vk::Format) -> vk::ImageAspectFlags {
 
 impl Image {
     /// Creates a named image (optimal tiling, device-local) and its view.
+    // Long: create, allocate, bind and make views, each failure freeing what came before.
     pub fn new(ctx: &Arc<Context>, desc: &ImageDesc) -> GpuResult<Image> {
         let layers = if desc.cube { 6 } else { desc.layers.max(1) };
         let info = vk::ImageCreateInfo::default()

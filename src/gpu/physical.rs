@@ -150,6 +150,8 @@ pub(crate) fn driver_string(instance: &ash::Instance, physical: vk::PhysicalDevi
 }
 
 /// Inspects a device; `Err(reason)` when vkocean cannot run on it.
+// Long: every property, feature and queue vkocean needs of a device, read and judged in
+// one place so `--list-gpus` and device choice cannot disagree.
 pub(crate) fn inspect(
     instance: &ash::Instance,
     physical: vk::PhysicalDevice,

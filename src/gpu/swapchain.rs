@@ -167,6 +167,8 @@ impl Swapchain {
 
     /// (Re)creates the swapchain. Waits for the device to go idle first (resizes are rare); the
     /// old swapchain is retired (see the module comment).
+    // Long: the swapchain's creation (capabilities, format, mode, extent, images, per-image
+    // semaphores) with the old swapchain handed over; each step needs the previous one.
     pub fn recreate(&mut self, size: vk::Extent2D, mode: PresentMode) -> GpuResult<()> {
         self.ctx.wait_idle()?;
         let (surface_fns, surface) = self

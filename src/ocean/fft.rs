@@ -201,6 +201,8 @@ impl GpuFft {
     }
 
     /// Plans transforms with a given kernel (tests run both on every device that can).
+    // Long: both kernels' buffers, views, descriptor sets and pipelines; the kernel decides
+    // each binding, so the steps stay side by side.
     pub fn with_kernel(
         ctx: &Arc<Context>,
         n: usize,

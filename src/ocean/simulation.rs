@@ -1,7 +1,7 @@
-//! The FFT ocean on the compute queue: h0 (uploaded once), then per frame
-//! evolve (shaders/ocean/evolve.comp) → inverse FFT (`fft.rs`) → assemble (assemble.comp) into
-//! the displacement and normal images of the frame's slot (slot = frame % 2, one array layer per
-//! cascade).
+//! The ocean on the compute queue: a wave model (`fft_model.rs`: h0 uploaded once, then per
+//! frame evolve → inverse FFT → assemble; or `gerstner_model.rs`: a sum of Gerstner waves)
+//! writes the displacement and normal images of the frame's slot (slot = frame % 2, one array
+//! layer per cascade).
 //!
 //! Synchronization (the design card):
 //! - frame f's compute submission waits for the graphics timeline to reach frame f−2's value
@@ -16,29 +16,25 @@ use std::sync::Arc;
 
 use ash::vk;
 
+mod fft_model;
+mod gerstner_model;
 mod readback;
 
-use super::fft::{Direction, GpuFft};
-use super::gerstner::{Wave, G_SEED};
+use fft_model::FftModel;
+use gerstner_model::GerstnerModel;
+
+use super::gerstner::Wave;
 use super::params::{OceanSettings, Waves};
-use super::spectrum::{h0, omega_steps_grid, time_ticks, Cascade};
+use super::spectrum::Cascade;
 use crate::gpu::compute::ComputeQueue;
-use crate::gpu::descriptors::{self, Write};
-use crate::gpu::oneshot::upload_on;
+use crate::gpu::descriptors::Write;
 use crate::gpu::{
     Buffer, Context, DescriptorPool, DescriptorSetLayout, FormatUse, Frame, GpuResult, Image,
-    ImageDesc, MemoryLocation, Pipeline, PipelineLayout, Profiler, Recorder, Tracked, Use,
-    FRAMES_IN_FLIGHT,
+    ImageDesc, Pipeline, PipelineLayout, Profiler, Recorder, Tracked, Use, FRAMES_IN_FLIGHT,
 };
-use crate::shaders;
 
 /// A named compute pass: timestamps when a profiler is given, a debug label always.
-fn scope(
-    timer: &mut Option<(&mut Profiler, &Frame)>,
-    rec: &Recorder,
-    name: &'static str,
-    body: impl FnOnce(),
-) {
+fn scope(timer: &mut Timer, rec: &Recorder, name: &'static str, body: impl FnOnce()) {
     match timer {
         Some((profiler, _)) => profiler.pass(rec, name, body),
         None => {
@@ -88,26 +84,6 @@ pub const FOAM_GAIN: f32 = 0.8;
 /// (`OCEAN_MANUAL_FILTER` in shaders/common/water.glsl).
 pub const IMAGE_FORMAT: vk::Format = vk::Format::R32G32B32A32_SFLOAT;
 
-#[repr(C)]
-#[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
-struct EvolveParams {
-    patch_m: [f32; 4],
-    /// `spectrum::time_ticks` of the frame's time.
-    ticks: u32,
-    n: u32,
-}
-
-#[repr(C)]
-#[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
-struct AssembleParams {
-    choppiness: f32,
-    dt_s: f32,
-    foam_threshold: f32,
-    foam_decay_s: f32,
-    foam_gain: f32,
-    n: u32,
-}
-
 /// A compute pipeline with its layouts.
 struct Kernel {
     set_layout: DescriptorSetLayout,
@@ -144,55 +120,55 @@ impl Kernel {
     }
 }
 
-/// The model-specific GPU resources.
-enum Model {
-    Fft {
-        /// h0 of every cascade, (K, N, N) complex.
-        h0: Buffer,
-        /// Every element's quantized frequency ω/ω0 (`spectrum::omega_steps`), (K, N, N) u32.
-        omega_steps: Box<Buffer>,
-        /// Boxed: it dwarfs the Gerstner variant.
-        fft: Box<GpuFft>,
-        evolve: Kernel,
-        assemble: Kernel,
-        evolve_set: vk::DescriptorSet,
-        /// Per slot: writes that slot's images, reads the other slot's normals (foam).
-        assemble_sets: Vec<vk::DescriptorSet>,
-    },
-    Gerstner {
-        /// The waves; per slot, as θ at the window origin changes every frame.
-        waves: Vec<Wave>,
-        buffers: Vec<Buffer>,
-        kernel: Kernel,
-        /// Per slot, like `assemble_sets`.
-        sets: Vec<vk::DescriptorSet>,
-    },
+/// One frame as a wave model sees it.
+pub(super) struct ModelFrame {
+    pub slot: usize,
+    /// Simulation time (s).
+    pub time_s: f64,
+    /// Time since the previous frame (s; foam decay).
+    pub dt_s: f32,
+    /// World position of the images' texel (0, 0) (the Gerstner window's corner).
+    pub origin_m: [f64; 2],
+    /// Grid size N and cascades (image layers).
+    pub n: u32,
+    pub layers: u32,
+    pub choppiness: f32,
+    pub patch_m: [f32; 4],
+    /// Side of the Gerstner window (m).
+    pub window_m: f64,
 }
 
-/// One wave as gerstner.comp reads it.
-#[repr(C)]
-#[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
-struct GpuWave {
-    wave: [f32; 4],
-    extra: [f32; 4],
-}
+/// The compute-queue profiler and the frame it times, when timing.
+type Timer<'a> = Option<(&'a mut Profiler, &'a Frame)>;
 
-#[repr(C)]
-#[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
-struct GerstnerParams {
-    window_m: f32,
-    dt_s: f32,
-    foam_threshold: f32,
-    foam_decay_s: f32,
-    foam_gain: f32,
-    n: u32,
-    count: u32,
+/// What the simulation needs of a wave model: the FFT cascades (`fft_model.rs`) or the sum of
+/// Gerstner waves (`gerstner_model.rs`). Both write the same images.
+trait WaveModel {
+    /// Host work before the frame is recorded, once the slot's previous compute work is done.
+    fn prepare(&mut self, _frame: &ModelFrame) {}
+    /// Records the model's passes; `images` are its uses of the slot's images (to declare with
+    /// the pass that writes them).
+    fn record(
+        &self,
+        rec: &Recorder,
+        timer: &mut Timer,
+        frame: &ModelFrame,
+        images: &[(&dyn Tracked, Use)],
+    );
+    /// The spectrum's h0 (FFT only; `--dump`).
+    fn h0(&self) -> Option<&Buffer> {
+        None
+    }
+    /// The waves (Gerstner only).
+    fn gerstner_waves(&self) -> Option<&[Wave]> {
+        None
+    }
 }
 
 pub struct Simulation {
     pub settings: OceanSettings,
     pub cascades: Vec<Cascade>,
-    model: Model,
+    model: Box<dyn WaveModel>,
     _pool: DescriptorPool,
     /// World position of texel (0, 0) of the images: 0 for the periodic FFT cascades, the
     /// camera-following (grid-snapped) window corner for Gerstner waves.
@@ -256,14 +232,15 @@ impl Simulation {
             displacement.push(image(format!("ocean displacement slot {slot}"))?);
             normals.push(image(format!("ocean normals+foam slot {slot}"))?);
         }
-        let storage = vk::DescriptorType::STORAGE_BUFFER;
-        let storage_image = vk::DescriptorType::STORAGE_IMAGE;
         let slots = FRAMES_IN_FLIGHT as u32;
         let pool = DescriptorPool::new(
             ctx,
             "ocean descriptors",
             1 + slots,
-            &[(storage, 3 + slots), (storage_image, 3 * slots)],
+            &[
+                (vk::DescriptorType::STORAGE_BUFFER, 3 + slots),
+                (vk::DescriptorType::STORAGE_IMAGE, 3 * slots),
+            ],
         )?;
         // Per slot: write this slot's images, read the other slot's normals (foam).
         let image_writes = |slot: usize| {
@@ -283,154 +260,14 @@ impl Simulation {
                 },
             ]
         };
-        let max_displacement_m;
-        let model = match &settings.waves {
+        let (model, max_displacement_m): (Box<dyn WaveModel>, f64) = match &settings.waves {
             Waves::Fft => {
-                let fft = GpuFft::new(ctx, n, 4 * k)?;
-                let h0_values: Vec<[f32; 2]> = cascades
-                    .iter()
-                    .enumerate()
-                    .flat_map(|(c, cascade)| h0(&settings.sea, n, cascade, c as u32, settings.seed))
-                    .collect();
-                // Parseval: the height variance is Σ_k E|h(k,t)|² = 2 Σ_k |h0(k)|² (item 3's two
-                // terms); crests rarely pass 4σ, and choppiness moves points sideways by about
-                // λ times the height's scale.
-                let variance: f64 = h0_values
-                    .iter()
-                    .map(|[re, im]| 2.0 * (*re as f64 * *re as f64 + *im as f64 * *im as f64))
-                    .sum();
-                max_displacement_m = 4.0 * variance.sqrt() * (1.0 + settings.choppiness) + 0.5;
-                let h0_bytes: &[u8] = bytemuck::cast_slice(&h0_values);
-                // Uploaded, read and (--dump) downloaded on the compute queue only: it never
-                // crosses queue families.
-                let h0_buffer = Buffer::new(
-                    ctx,
-                    "h0 (all cascades)",
-                    h0_bytes.len() as u64,
-                    vk::BufferUsageFlags::STORAGE_BUFFER
-                        | vk::BufferUsageFlags::TRANSFER_DST
-                        | vk::BufferUsageFlags::TRANSFER_SRC,
-                    MemoryLocation::GpuOnly,
-                )?;
-                upload_on(ctx, ctx.compute, &h0_buffer, h0_bytes)?;
-                let steps: Vec<u32> = cascades
-                    .iter()
-                    .flat_map(|c| omega_steps_grid(n, c.patch_m, settings.sea.depth_m))
-                    .collect();
-                let steps_buffer = Buffer::new(
-                    ctx,
-                    "omega steps (all cascades)",
-                    (steps.len() * 4) as u64,
-                    vk::BufferUsageFlags::STORAGE_BUFFER | vk::BufferUsageFlags::TRANSFER_DST,
-                    MemoryLocation::GpuOnly,
-                )?;
-                upload_on(
-                    ctx,
-                    ctx.compute,
-                    &steps_buffer,
-                    bytemuck::cast_slice(&steps),
-                )?;
-                let evolve = Kernel::new(
-                    ctx,
-                    "ocean evolve",
-                    shaders::OCEAN_EVOLVE_COMP,
-                    &[storage, storage, storage],
-                    std::mem::size_of::<EvolveParams>(),
-                )?;
-                let assemble = Kernel::new(
-                    ctx,
-                    "ocean assemble",
-                    shaders::OCEAN_ASSEMBLE_COMP,
-                    &[storage, storage_image, storage_image, storage_image],
-                    std::mem::size_of::<AssembleParams>(),
-                )?;
-                let evolve_set = pool.allocate(&evolve.set_layout, "ocean evolve set")?;
-                descriptors::update(
-                    ctx,
-                    evolve_set,
-                    &[
-                        Write::StorageBuffer {
-                            binding: 0,
-                            buffer: h0_buffer.raw,
-                        },
-                        Write::StorageBuffer {
-                            binding: 1,
-                            buffer: fft.data.raw,
-                        },
-                        Write::StorageBuffer {
-                            binding: 2,
-                            buffer: steps_buffer.raw,
-                        },
-                    ],
-                );
-                let mut assemble_sets = Vec::new();
-                for slot in 0..FRAMES_IN_FLIGHT {
-                    let set = pool.allocate(
-                        &assemble.set_layout,
-                        &format!("ocean assemble set slot {slot}"),
-                    )?;
-                    let mut writes = vec![Write::StorageBuffer {
-                        binding: 0,
-                        buffer: fft.data.raw,
-                    }];
-                    writes.extend(image_writes(slot));
-                    descriptors::update(ctx, set, &writes);
-                    assemble_sets.push(set);
-                }
-                Model::Fft {
-                    h0: h0_buffer,
-                    omega_steps: Box::new(steps_buffer),
-                    fft: Box::new(fft),
-                    evolve,
-                    assemble,
-                    evolve_set,
-                    assemble_sets,
-                }
+                let (m, d) = FftModel::new(ctx, settings, &cascades, &pool, &image_writes)?;
+                (Box::new(m), d)
             }
             Waves::Gerstner(waves) => {
-                anyhow::ensure!(!waves.is_empty(), "Gerstner mode needs at least one wave");
-                let kernel = Kernel::new(
-                    ctx,
-                    "ocean gerstner",
-                    shaders::OCEAN_GERSTNER_COMP,
-                    &[storage, storage_image, storage_image, storage_image],
-                    std::mem::size_of::<GerstnerParams>(),
-                )?;
-                let mut buffers = Vec::new();
-                let mut sets = Vec::new();
-                for slot in 0..FRAMES_IN_FLIGHT {
-                    let buffer = Buffer::new(
-                        ctx,
-                        &format!("gerstner waves slot {slot}"),
-                        (waves.len() * std::mem::size_of::<GpuWave>()) as u64,
-                        vk::BufferUsageFlags::STORAGE_BUFFER,
-                        MemoryLocation::CpuToGpu,
-                    )?;
-                    let set = pool.allocate(
-                        &kernel.set_layout,
-                        &format!("ocean gerstner set slot {slot}"),
-                    )?;
-                    let mut writes = vec![Write::StorageBuffer {
-                        binding: 0,
-                        buffer: buffer.raw,
-                    }];
-                    writes.extend(image_writes(slot));
-                    descriptors::update(ctx, set, &writes);
-                    buffers.push(buffer);
-                    sets.push(set);
-                }
-                // Each wave moves a point by at most a vertically and Q·a sideways.
-                max_displacement_m = waves
-                    .iter()
-                    .map(|w| w.amplitude.abs() * (1.0 + w.steepness.abs()))
-                    .sum::<f64>()
-                    + 0.5;
-                Model::Gerstner {
-                    waves: waves.clone(),
-                    buffers,
-                    kernel,
-                    sets,
-                }
+                let (m, d) = GerstnerModel::new(ctx, waves, &pool, &image_writes)?;
+                (Box::new(m), d)
             }
         };
         Ok(Simulation {
@@ -468,7 +305,7 @@ impl Simulation {
 
     /// True for a bounded window (Gerstner), false for periodic cascades (FFT).
     pub fn is_window(&self) -> bool {
-        matches!(self.model, Model::Gerstner { .. })
+        self.model.gerstner_waves().is_some()
     }
 
     /// Patch sizes of the cascades, padded to four (for shaders).
@@ -494,9 +331,17 @@ impl Simulation {
             .map(|t| (time_s - t).max(0.0) as f32)
             .unwrap_or(0.0);
         self.last_time_s = Some(time_s);
-        let n = self.settings.fft_size as u32;
-        let groups = n.div_ceil(8);
-        let layers = self.cascades.len() as u32;
+        let frame = ModelFrame {
+            slot,
+            time_s,
+            dt_s,
+            origin_m: self.origin_m,
+            n: self.settings.fft_size as u32,
+            layers: self.cascades.len() as u32,
+            choppiness: self.settings.choppiness as f32,
+            patch_m: patch_sizes(&self.cascades),
+            window_m: self.settings.patch_size_m,
+        };
         let init: Vec<&Image> = if self.initialized {
             Vec::new()
         } else {
@@ -512,130 +357,25 @@ impl Simulation {
             (&self.displacement[slot], Use::ComputeWrite),
             (&self.normals[slot], Use::ComputeWrite),
         ];
-        match &mut self.model {
-            Model::Fft {
-                h0,
-                omega_steps,
-                fft,
-                evolve,
-                assemble,
-                evolve_set,
-                assemble_sets,
-            } => {
-                let evolve_params = EvolveParams {
-                    patch_m: patch_sizes(&self.cascades),
-                    ticks: time_ticks(time_s),
-                    n,
-                };
-                let assemble_params = AssembleParams {
-                    choppiness: self.settings.choppiness as f32,
-                    dt_s,
-                    foam_threshold: FOAM_THRESHOLD,
-                    foam_decay_s: FOAM_DECAY_S,
-                    foam_gain: FOAM_GAIN,
-                    n,
-                };
-                let (h0, omega_steps) = (&*h0, &**omega_steps);
-                let (fft, evolve, assemble) = (&*fft, &*evolve, &*assemble);
-                let (evolve_set, assemble_set) = (*evolve_set, assemble_sets[slot]);
-                self.queue.submit(slot, value, wait_graphics, |rec| {
-                    let mut timer = timing;
-                    if let Some((profiler, frame)) = timer.as_mut() {
-                        profiler.begin_frame(rec, frame)?;
-                    }
-                    if !init.is_empty() {
-                        record_images_init(rec, &init);
-                    }
-                    scope(&mut timer, rec, "ocean evolve", || {
-                        // h(k, t) from h0 into the FFT data (the previous frame's FFT and
-                        // assemble used it).
-                        rec.uses(&[
-                            (h0, Use::ComputeRead),
-                            (omega_steps, Use::ComputeRead),
-                            (&fft.data, Use::ComputeWrite),
-                        ]);
-                        rec.bind_pipeline(&evolve.pipeline);
-                        rec.bind_sets(&evolve.pipeline, &evolve.layout, &[evolve_set]);
-                        rec.push_constants(&evolve.layout, &evolve_params);
-                        rec.dispatch(groups, groups, layers);
-                    });
-                    scope(&mut timer, rec, "ocean fft", || {
-                        fft.record(rec, Direction::Inverse)
-                    });
-                    scope(&mut timer, rec, "ocean assemble", || {
-                        let mut uses = images.to_vec();
-                        uses.push((&fft.data, Use::ComputeRead));
-                        rec.uses(&uses);
-                        rec.bind_pipeline(&assemble.pipeline);
-                        rec.bind_sets(&assemble.pipeline, &assemble.layout, &[assemble_set]);
-                        rec.push_constants(&assemble.layout, &assemble_params);
-                        rec.dispatch(groups, groups, layers);
-                    });
-                    if let Some((profiler, _)) = timer.as_mut() {
-                        profiler.end_frame(rec);
-                    }
-                    Ok(())
-                })
+        // The slot's previous compute work (two frames ago) must be done before the host
+        // rewrites its inputs.
+        self.queue.wait_for_slot(value)?;
+        self.model.prepare(&frame);
+        let model = &*self.model;
+        self.queue.submit(slot, value, wait_graphics, |rec| {
+            let mut timer = timing;
+            if let Some((profiler, frame)) = timer.as_mut() {
+                profiler.begin_frame(rec, frame)?;
             }
-            Model::Gerstner {
-                waves,
-                buffers,
-                kernel,
-                sets,
-            } => {
-                let window = self.settings.patch_size_m;
-                let origin = self.origin_m;
-                let gpu_waves: Vec<GpuWave> = waves
-                    .iter()
-                    .map(|w| {
-                        let k = (w.kx * w.kx + w.kz * w.kz).sqrt();
-                        let omega = (G_SEED * k).sqrt();
-                        // θ at the origin, reduced in f64 so the shader's float phase stays exact.
-                        let theta0 =
-                            (w.kx * origin[0] + w.kz * origin[1] - omega * time_s - w.phase)
-                                .rem_euclid(2.0 * std::f64::consts::PI);
-                        GpuWave {
-                            wave: [w.kx as f32, w.kz as f32, w.amplitude as f32, theta0 as f32],
-                            extra: [w.steepness as f32, omega as f32, k as f32, 0.0],
-                        }
-                    })
-                    .collect();
-                // The slot's previous compute work (two frames ago) must be done before the
-                // host rewrites its wave buffer.
-                self.queue.wait_for_slot(value)?;
-                buffers[slot].write(bytemuck::cast_slice(&gpu_waves));
-                let params = GerstnerParams {
-                    window_m: window as f32,
-                    dt_s,
-                    foam_threshold: FOAM_THRESHOLD,
-                    foam_decay_s: FOAM_DECAY_S,
-                    foam_gain: FOAM_GAIN,
-                    n,
-                    count: waves.len() as u32,
-                };
-                let (kernel, set) = (&*kernel, sets[slot]);
-                self.queue.submit(slot, value, wait_graphics, |rec| {
-                    let mut timer = timing;
-                    if let Some((profiler, frame)) = timer.as_mut() {
-                        profiler.begin_frame(rec, frame)?;
-                    }
-                    if !init.is_empty() {
-                        record_images_init(rec, &init);
-                    }
-                    scope(&mut timer, rec, "ocean gerstner", || {
-                        rec.uses(&images);
-                        rec.bind_pipeline(&kernel.pipeline);
-                        rec.bind_sets(&kernel.pipeline, &kernel.layout, &[set]);
-                        rec.push_constants(&kernel.layout, &params);
-                        rec.dispatch(groups, groups, 1);
-                    });
-                    if let Some((profiler, _)) = timer.as_mut() {
-                        profiler.end_frame(rec);
-                    }
-                    Ok(())
-                })
+            if !init.is_empty() {
+                record_images_init(rec, &init);
             }
-        }
+            model.record(rec, &mut timer, &frame, &images);
+            if let Some((profiler, _)) = timer.as_mut() {
+                profiler.end_frame(rec);
+            }
+            Ok(())
+        })
     }
 
     /// The wait a graphics submission adds before sampling frame `value`'s images.
@@ -650,9 +390,6 @@ impl Simulation {
 
     /// The Gerstner waves (Gerstner mode).
     pub fn gerstner_waves(&self) -> Option<&[Wave]> {
-        match &self.model {
-            Model::Fft { .. } => None,
-            Model::Gerstner { waves, .. } => Some(waves),
-        }
+        self.model.gerstner_waves()
     }
 }

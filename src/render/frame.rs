@@ -88,6 +88,8 @@ pub struct FrameParts<'a> {
 
 /// Records and submits frame `frames.next`: the three submissions of the diagram above.
 /// `hazard` (tests only) is recorded first. Returns the frame's timeline value.
+// Long: the frame top to bottom, as the README's diagram draws it: split, a reader would
+// have to jump between functions to follow one frame (issue 15).
 pub fn record_frame(
     parts: FrameParts,
     output: &OutputTarget,

@@ -111,6 +111,8 @@ pub struct Renderer {
 impl Renderer {
     /// `output_format`: format of the images the frontend renders to (8-bit sRGB); the main
     /// target takes it, so a frame at `--render-scale 1` ends in a plain copy.
+    // Long: every object the renderer holds, created in dependency order (targets, layouts,
+    // uniforms, samplers, sky, DU/DV, passes); each is a few lines.
     pub fn new(
         ctx: &Arc<Context>,
         output_format: vk::Format,

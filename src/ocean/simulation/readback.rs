@@ -5,7 +5,7 @@ use std::sync::Arc;
 
 use ash::vk;
 
-use super::{Model, Simulation, Texels};
+use super::{Simulation, Texels};
 use crate::gpu::oneshot::{download_on, run_once_on};
 use crate::gpu::{Buffer, Context, GpuResult, MemoryLocation, Tracked, Use};
 
@@ -61,9 +61,9 @@ impl Simulation {
     /// h0 as uploaded, read back on the compute queue that owns it (FFT mode; for dumps):
     /// (K, N, N) complex f32 bytes.
     pub fn download_h0(&self, ctx: &Arc<Context>) -> GpuResult<Option<Vec<u8>>> {
-        match &self.model {
-            Model::Fft { h0, .. } => download_on(ctx, ctx.compute, h0, h0.size as usize).map(Some),
-            Model::Gerstner { .. } => Ok(None),
+        match self.model.h0() {
+            Some(h0) => download_on(ctx, ctx.compute, h0, h0.size as usize).map(Some),
+            None => Ok(None),
         }
     }
 }

@@ -170,6 +170,7 @@ fn legend_width(w: u32, s: f64) -> u32 {
 }
 
 /// The per-pass stacked bars into `buf` (RGB, `size`); `title` replaces the default caption.
+// Long: one chart: axes, stacked bars, labels, legend and the 30 FPS line, in drawing order.
 pub fn draw_passes(
     buf: &mut [u8],
     size: (u32, u32),

@@ -1,0 +1,228 @@
+//! The FFT wave model (Tessendorf 2001): h0 and each element's ω quantum uploaded once; per
+//! frame evolve (shaders/ocean/evolve.comp) → inverse FFT (`ocean::fft`) → assemble
+//! (assemble.comp: sign correction, Jacobian, foam) into the slot's images.
+
+use std::sync::Arc;
+
+use ash::vk;
+
+use super::{scope, Kernel, ModelFrame, Timer, WaveModel, FOAM_DECAY_S, FOAM_GAIN, FOAM_THRESHOLD};
+use crate::gpu::descriptors::{self, Write};
+use crate::gpu::oneshot::upload_on;
+use crate::gpu::{Buffer, Context, DescriptorPool, MemoryLocation, Recorder, Tracked, Use};
+use crate::ocean::fft::{Direction, GpuFft};
+use crate::ocean::params::OceanSettings;
+use crate::ocean::spectrum::{h0, omega_steps_grid, time_ticks, Cascade};
+use crate::shaders;
+
+#[repr(C)]
+#[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
+struct EvolveParams {
+    patch_m: [f32; 4],
+    /// `spectrum::time_ticks` of the frame's time.
+    ticks: u32,
+    n: u32,
+}
+
+#[repr(C)]
+#[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
+struct AssembleParams {
+    choppiness: f32,
+    dt_s: f32,
+    foam_threshold: f32,
+    foam_decay_s: f32,
+    foam_gain: f32,
+    n: u32,
+}
+
+pub(super) struct FftModel {
+    /// h0 of every cascade, (K, N, N) complex.
+    h0: Buffer,
+    /// Every element's quantized frequency ω/ω0 (`spectrum::omega_steps`), (K, N, N) u32.
+    omega_steps: Buffer,
+    fft: GpuFft,
+    evolve: Kernel,
+    assemble: Kernel,
+    evolve_set: vk::DescriptorSet,
+    /// Per slot: writes that slot's images, reads the other slot's normals (foam).
+    assemble_sets: Vec<vk::DescriptorSet>,
+}
+
+impl FftModel {
+    /// The model's buffers, kernels and sets; `image_writes(slot)` binds a slot's images (at
+    /// bindings 1–3). Also returns a bound on the displacement (m).
+    pub(super) fn new(
+        ctx: &Arc<Context>,
+        settings: &OceanSettings,
+        cascades: &[Cascade],
+        pool: &DescriptorPool,
+        image_writes: &dyn Fn(usize) -> [Write; 3],
+    ) -> anyhow::Result<(FftModel, f64)> {
+        let fft = GpuFft::new(ctx, settings.fft_size, 4 * cascades.len())?;
+        let (h0_buffer, steps_buffer, max_displacement_m) =
+            upload_spectrum(ctx, settings, cascades)?;
+        let storage = vk::DescriptorType::STORAGE_BUFFER;
+        let storage_image = vk::DescriptorType::STORAGE_IMAGE;
+        let evolve = Kernel::new(
+            ctx,
+            "ocean evolve",
+            shaders::OCEAN_EVOLVE_COMP,
+            &[storage, storage, storage],
+            std::mem::size_of::<EvolveParams>(),
+        )?;
+        let assemble = Kernel::new(
+            ctx,
+            "ocean assemble",
+            shaders::OCEAN_ASSEMBLE_COMP,
+            &[storage, storage_image, storage_image, storage_image],
+            std::mem::size_of::<AssembleParams>(),
+        )?;
+        let evolve_set = pool.allocate(&evolve.set_layout, "ocean evolve set")?;
+        let buffer = |binding, buffer: &Buffer| Write::StorageBuffer {
+            binding,
+            buffer: buffer.raw,
+        };
+        descriptors::update(
+            ctx,
+            evolve_set,
+            &[
+                buffer(0, &h0_buffer),
+                buffer(1, &fft.data),
+                buffer(2, &steps_buffer),
+            ],
+        );
+        let mut assemble_sets = Vec::new();
+        for slot in 0..super::FRAMES_IN_FLIGHT {
+            let set = pool.allocate(
+                &assemble.set_layout,
+                &format!("ocean assemble set slot {slot}"),
+            )?;
+            let mut writes = vec![buffer(0, &fft.data)];
+            writes.extend(image_writes(slot));
+            descriptors::update(ctx, set, &writes);
+            assemble_sets.push(set);
+        }
+        let model = FftModel {
+            h0: h0_buffer,
+            omega_steps: steps_buffer,
+            fft,
+            evolve,
+            assemble,
+            evolve_set,
+            assemble_sets,
+        };
+        Ok((model, max_displacement_m))
+    }
+}
+
+/// h0 of every cascade and every element's ω quantum, uploaded on the compute queue; and a
+/// bound on the displacement (m) from the spectrum's variance.
+fn upload_spectrum(
+    ctx: &Arc<Context>,
+    settings: &OceanSettings,
+    cascades: &[Cascade],
+) -> anyhow::Result<(Buffer, Buffer, f64)> {
+    let n = settings.fft_size;
+    let h0_values: Vec<[f32; 2]> = cascades
+        .iter()
+        .enumerate()
+        .flat_map(|(c, cascade)| h0(&settings.sea, n, cascade, c as u32, settings.seed))
+        .collect();
+    // Parseval: the height variance is Σ_k E|h(k,t)|² = 2 Σ_k |h0(k)|² (item 3's two terms);
+    // crests rarely pass 4σ, and choppiness moves points sideways by about λ times the
+    // height's scale.
+    let variance: f64 = h0_values
+        .iter()
+        .map(|[re, im]| 2.0 * (*re as f64 * *re as f64 + *im as f64 * *im as f64))
+        .sum();
+    let max_displacement_m = 4.0 * variance.sqrt() * (1.0 + settings.choppiness) + 0.5;
+    // Uploaded, read and (--dump) downloaded on the compute queue only: it never crosses
+    // queue families.
+    let h0_bytes: &[u8] = bytemuck::cast_slice(&h0_values);
+    let h0_buffer = Buffer::new(
+        ctx,
+        "h0 (all cascades)",
+        h0_bytes.len() as u64,
+        vk::BufferUsageFlags::STORAGE_BUFFER
+            | vk::BufferUsageFlags::TRANSFER_DST
+            | vk::BufferUsageFlags::TRANSFER_SRC,
+        MemoryLocation::GpuOnly,
+    )?;
+    upload_on(ctx, ctx.compute, &h0_buffer, h0_bytes)?;
+    let steps: Vec<u32> = cascades
+        .iter()
+        .flat_map(|c| omega_steps_grid(n, c.patch_m, settings.sea.depth_m))
+        .collect();
+    let steps_buffer = Buffer::new(
+        ctx,
+        "omega steps (all cascades)",
+        (steps.len() * 4) as u64,
+        vk::BufferUsageFlags::STORAGE_BUFFER | vk::BufferUsageFlags::TRANSFER_DST,
+        MemoryLocation::GpuOnly,
+    )?;
+    upload_on(
+        ctx,
+        ctx.compute,
+        &steps_buffer,
+        bytemuck::cast_slice(&steps),
+    )?;
+    Ok((h0_buffer, steps_buffer, max_displacement_m))
+}
+
+impl WaveModel for FftModel {
+    fn record(
+        &self,
+        rec: &Recorder,
+        timer: &mut Timer,
+        f: &ModelFrame,
+        images: &[(&dyn Tracked, Use)],
+    ) {
+        let groups = f.n.div_ceil(8);
+        let evolve_params = EvolveParams {
+            patch_m: f.patch_m,
+            ticks: time_ticks(f.time_s),
+            n: f.n,
+        };
+        let assemble_params = AssembleParams {
+            choppiness: f.choppiness,
+            dt_s: f.dt_s,
+            foam_threshold: FOAM_THRESHOLD,
+            foam_decay_s: FOAM_DECAY_S,
+            foam_gain: FOAM_GAIN,
+            n: f.n,
+        };
+        let (evolve, assemble) = (&self.evolve, &self.assemble);
+        scope(timer, rec, "ocean evolve", || {
+            // h(k, t) from h0 into the FFT data (the previous frame's FFT and assemble used it).
+            rec.uses(&[
+                (&self.h0, Use::ComputeRead),
+                (&self.omega_steps, Use::ComputeRead),
+                (&self.fft.data, Use::ComputeWrite),
+            ]);
+            rec.bind_pipeline(&evolve.pipeline);
+            rec.bind_sets(&evolve.pipeline, &evolve.layout, &[self.evolve_set]);
+            rec.push_constants(&evolve.layout, &evolve_params);
+            rec.dispatch(groups, groups, f.layers);
+        });
+        scope(timer, rec, "ocean fft", || {
+            self.fft.record(rec, Direction::Inverse)
+        });
+        scope(timer, rec, "ocean assemble", || {
+            let mut uses = images.to_vec();
+            uses.push((&self.fft.data, Use::ComputeRead));
+            rec.uses(&uses);
+            rec.bind_pipeline(&assemble.pipeline);
+            rec.bind_sets(
+                &assemble.pipeline,
+                &assemble.layout,
+                &[self.assemble_sets[f.slot]],
+            );
+            rec.push_constants(&assemble.layout, &assemble_params);
+            rec.dispatch(groups, groups, f.layers);
+        });
+    }
+
+    fn h0(&self) -> Option<&Buffer> {
+        Some(&self.h0)
+    }
+}

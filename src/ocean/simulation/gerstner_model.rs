@@ -1,0 +1,154 @@
+//! The Gerstner wave model: a sum of analytic trochoidal waves with exact normals
+//! (shaders/ocean/gerstner.comp), evaluated over a window that follows the camera. The waves'
+//! phases at the window origin are reduced in f64 on the CPU every frame.
+
+use std::sync::Arc;
+
+use ash::vk;
+
+use super::{scope, Kernel, ModelFrame, Timer, WaveModel, FOAM_DECAY_S, FOAM_GAIN, FOAM_THRESHOLD};
+use crate::gpu::descriptors::{self, Write};
+use crate::gpu::{Buffer, Context, DescriptorPool, MemoryLocation, Recorder, Tracked, Use};
+use crate::ocean::gerstner::{Wave, G_SEED};
+use crate::shaders;
+
+/// One wave as gerstner.comp reads it.
+#[repr(C)]
+#[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
+struct GpuWave {
+    wave: [f32; 4],
+    extra: [f32; 4],
+}
+
+#[repr(C)]
+#[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
+struct GerstnerParams {
+    window_m: f32,
+    dt_s: f32,
+    foam_threshold: f32,
+    foam_decay_s: f32,
+    foam_gain: f32,
+    n: u32,
+    count: u32,
+}
+
+pub(super) struct GerstnerModel {
+    pub(super) waves: Vec<Wave>,
+    /// Per slot: the waves as the slot's frame sees them (θ at the window origin changes every
+    /// frame), written by the host.
+    buffers: Vec<Buffer>,
+    kernel: Kernel,
+    /// Per slot, like the FFT model's assemble sets.
+    sets: Vec<vk::DescriptorSet>,
+}
+
+impl GerstnerModel {
+    /// The model's buffers, kernel and sets; `image_writes(slot)` binds a slot's images (at
+    /// bindings 1–3). Also returns a bound on the displacement (m).
+    pub(super) fn new(
+        ctx: &Arc<Context>,
+        waves: &[Wave],
+        pool: &DescriptorPool,
+        image_writes: &dyn Fn(usize) -> [Write; 3],
+    ) -> anyhow::Result<(GerstnerModel, f64)> {
+        anyhow::ensure!(!waves.is_empty(), "Gerstner mode needs at least one wave");
+        let storage = vk::DescriptorType::STORAGE_BUFFER;
+        let storage_image = vk::DescriptorType::STORAGE_IMAGE;
+        let kernel = Kernel::new(
+            ctx,
+            "ocean gerstner",
+            shaders::OCEAN_GERSTNER_COMP,
+            &[storage, storage_image, storage_image, storage_image],
+            std::mem::size_of::<GerstnerParams>(),
+        )?;
+        let mut buffers = Vec::new();
+        let mut sets = Vec::new();
+        for slot in 0..super::FRAMES_IN_FLIGHT {
+            let buffer = Buffer::new(
+                ctx,
+                &format!("gerstner waves slot {slot}"),
+                (waves.len() * std::mem::size_of::<GpuWave>()) as u64,
+                vk::BufferUsageFlags::STORAGE_BUFFER,
+                MemoryLocation::CpuToGpu,
+            )?;
+            let set = pool.allocate(
+                &kernel.set_layout,
+                &format!("ocean gerstner set slot {slot}"),
+            )?;
+            let mut writes = vec![Write::StorageBuffer {
+                binding: 0,
+                buffer: buffer.raw,
+            }];
+            writes.extend(image_writes(slot));
+            descriptors::update(ctx, set, &writes);
+            buffers.push(buffer);
+            sets.push(set);
+        }
+        // Each wave moves a point by at most a vertically and Q·a sideways.
+        let max_displacement_m = waves
+            .iter()
+            .map(|w| w.amplitude.abs() * (1.0 + w.steepness.abs()))
+            .sum::<f64>()
+            + 0.5;
+        let model = GerstnerModel {
+            waves: waves.to_vec(),
+            buffers,
+            kernel,
+            sets,
+        };
+        Ok((model, max_displacement_m))
+    }
+}
+
+impl WaveModel for GerstnerModel {
+    fn prepare(&mut self, f: &ModelFrame) {
+        let gpu_waves: Vec<GpuWave> = self
+            .waves
+            .iter()
+            .map(|w| {
+                let k = (w.kx * w.kx + w.kz * w.kz).sqrt();
+                let omega = (G_SEED * k).sqrt();
+                // θ at the origin, reduced in f64 so the shader's float phase stays exact.
+                let theta0 =
+                    (w.kx * f.origin_m[0] + w.kz * f.origin_m[1] - omega * f.time_s - w.phase)
+                        .rem_euclid(2.0 * std::f64::consts::PI);
+                GpuWave {
+                    wave: [w.kx as f32, w.kz as f32, w.amplitude as f32, theta0 as f32],
+                    extra: [w.steepness as f32, omega as f32, k as f32, 0.0],
+                }
+            })
+            .collect();
+        self.buffers[f.slot].write(bytemuck::cast_slice(&gpu_waves));
+    }
+
+    fn record(
+        &self,
+        rec: &Recorder,
+        timer: &mut Timer,
+        f: &ModelFrame,
+        images: &[(&dyn Tracked, Use)],
+    ) {
+        let params = GerstnerParams {
+            window_m: f.window_m as f32,
+            dt_s: f.dt_s,
+            foam_threshold: FOAM_THRESHOLD,
+            foam_decay_s: FOAM_DECAY_S,
+            foam_gain: FOAM_GAIN,
+            n: f.n,
+            count: self.waves.len() as u32,
+        };
+        let kernel = &self.kernel;
+        scope(timer, rec, "ocean gerstner", || {
+            rec.uses(images);
+            rec.bind_pipeline(&kernel.pipeline);
+            rec.bind_sets(&kernel.pipeline, &kernel.layout, &[self.sets[f.slot]]);
+            rec.push_constants(&kernel.layout, &params);
+            let groups = f.n.div_ceil(8);
+            rec.dispatch(groups, groups, 1);
+        });
+    }
+
+    fn gerstner_waves(&self) -> Option<&[Wave]> {
+        Some(&self.waves)
+    }
+}
