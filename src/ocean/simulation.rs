@@ -27,7 +27,7 @@ use super::gerstner::Wave;
 use super::params::{OceanSettings, Waves};
 use super::spectrum::Cascade;
 use crate::gpu::compute::ComputeQueue;
-use crate::gpu::descriptors::Write;
+use crate::gpu::descriptors::{self, Write};
 use crate::gpu::{
     Buffer, Context, DescriptorPool, DescriptorSetLayout, FormatUse, Frame, GpuResult, Image,
     ImageDesc, Pipeline, PipelineLayout, Profiler, Recorder, Tracked, Use, FRAMES_IN_FLIGHT,
@@ -117,6 +117,45 @@ impl Kernel {
             layout,
             pipeline,
         })
+    }
+}
+
+impl Kernel {
+    /// A kernel that writes a slot's images: binding 0 is its input (a storage buffer), 1–3
+    /// the slot's displacement and normals and the previous slot's normals.
+    fn image_writer(
+        ctx: &Arc<Context>,
+        name: &str,
+        spirv: &[u8],
+        push_size: usize,
+    ) -> GpuResult<Kernel> {
+        let image = vk::DescriptorType::STORAGE_IMAGE;
+        let bindings = [vk::DescriptorType::STORAGE_BUFFER, image, image, image];
+        Kernel::new(ctx, name, spirv, &bindings, push_size)
+    }
+
+    /// One set per slot for an `image_writer` kernel: `input(slot)` at binding 0 and
+    /// `image_writes(slot)` at 1–3.
+    fn slot_sets(
+        &self,
+        ctx: &Arc<Context>,
+        pool: &DescriptorPool,
+        name: &str,
+        input: impl Fn(usize) -> vk::Buffer,
+        image_writes: &dyn Fn(usize) -> [Write; 3],
+    ) -> GpuResult<Vec<vk::DescriptorSet>> {
+        (0..FRAMES_IN_FLIGHT)
+            .map(|slot| {
+                let set = pool.allocate(&self.set_layout, &format!("{name} set slot {slot}"))?;
+                let mut writes = vec![Write::StorageBuffer {
+                    binding: 0,
+                    buffer: input(slot),
+                }];
+                writes.extend(image_writes(slot));
+                descriptors::update(ctx, set, &writes);
+                Ok(set)
+            })
+            .collect()
     }
 }
 

@@ -62,7 +62,6 @@ impl FftModel {
         let (h0_buffer, steps_buffer, max_displacement_m) =
             upload_spectrum(ctx, settings, cascades)?;
         let storage = vk::DescriptorType::STORAGE_BUFFER;
-        let storage_image = vk::DescriptorType::STORAGE_IMAGE;
         let evolve = Kernel::new(
             ctx,
             "ocean evolve",
@@ -70,11 +69,10 @@ impl FftModel {
             &[storage, storage, storage],
             std::mem::size_of::<EvolveParams>(),
         )?;
-        let assemble = Kernel::new(
+        let assemble = Kernel::image_writer(
             ctx,
             "ocean assemble",
             shaders::OCEAN_ASSEMBLE_COMP,
-            &[storage, storage_image, storage_image, storage_image],
             std::mem::size_of::<AssembleParams>(),
         )?;
         let evolve_set = pool.allocate(&evolve.set_layout, "ocean evolve set")?;
@@ -91,17 +89,9 @@ impl FftModel {
                 buffer(2, &steps_buffer),
             ],
         );
-        let mut assemble_sets = Vec::new();
-        for slot in 0..super::FRAMES_IN_FLIGHT {
-            let set = pool.allocate(
-                &assemble.set_layout,
-                &format!("ocean assemble set slot {slot}"),
-            )?;
-            let mut writes = vec![buffer(0, &fft.data)];
-            writes.extend(image_writes(slot));
-            descriptors::update(ctx, set, &writes);
-            assemble_sets.push(set);
-        }
+        let data = fft.data.raw;
+        let assemble_sets =
+            assemble.slot_sets(ctx, pool, "ocean assemble", |_| data, image_writes)?;
         let model = FftModel {
             h0: h0_buffer,
             omega_steps: steps_buffer,

@@ -7,7 +7,7 @@ use std::sync::Arc;
 use ash::vk;
 
 use super::{scope, Kernel, ModelFrame, Timer, WaveModel, FOAM_DECAY_S, FOAM_GAIN, FOAM_THRESHOLD};
-use crate::gpu::descriptors::{self, Write};
+use crate::gpu::descriptors::Write;
 use crate::gpu::{Buffer, Context, DescriptorPool, MemoryLocation, Recorder, Tracked, Use};
 use crate::ocean::gerstner::{Wave, G_SEED};
 use crate::shaders;
@@ -52,38 +52,30 @@ impl GerstnerModel {
         image_writes: &dyn Fn(usize) -> [Write; 3],
     ) -> anyhow::Result<(GerstnerModel, f64)> {
         anyhow::ensure!(!waves.is_empty(), "Gerstner mode needs at least one wave");
-        let storage = vk::DescriptorType::STORAGE_BUFFER;
-        let storage_image = vk::DescriptorType::STORAGE_IMAGE;
-        let kernel = Kernel::new(
+        let kernel = Kernel::image_writer(
             ctx,
             "ocean gerstner",
             shaders::OCEAN_GERSTNER_COMP,
-            &[storage, storage_image, storage_image, storage_image],
             std::mem::size_of::<GerstnerParams>(),
         )?;
-        let mut buffers = Vec::new();
-        let mut sets = Vec::new();
-        for slot in 0..super::FRAMES_IN_FLIGHT {
-            let buffer = Buffer::new(
-                ctx,
-                &format!("gerstner waves slot {slot}"),
-                (waves.len() * std::mem::size_of::<GpuWave>()) as u64,
-                vk::BufferUsageFlags::STORAGE_BUFFER,
-                MemoryLocation::CpuToGpu,
-            )?;
-            let set = pool.allocate(
-                &kernel.set_layout,
-                &format!("ocean gerstner set slot {slot}"),
-            )?;
-            let mut writes = vec![Write::StorageBuffer {
-                binding: 0,
-                buffer: buffer.raw,
-            }];
-            writes.extend(image_writes(slot));
-            descriptors::update(ctx, set, &writes);
-            buffers.push(buffer);
-            sets.push(set);
-        }
+        let buffers = (0..super::FRAMES_IN_FLIGHT)
+            .map(|slot| {
+                Buffer::new(
+                    ctx,
+                    &format!("gerstner waves slot {slot}"),
+                    (waves.len() * std::mem::size_of::<GpuWave>()) as u64,
+                    vk::BufferUsageFlags::STORAGE_BUFFER,
+                    MemoryLocation::CpuToGpu,
+                )
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        let sets = kernel.slot_sets(
+            ctx,
+            pool,
+            "ocean gerstner",
+            |slot| buffers[slot].raw,
+            image_writes,
+        )?;
         // Each wave moves a point by at most a vertically and Q·a sideways.
         let max_displacement_m = waves
             .iter()
