@@ -35,7 +35,7 @@ pub use formats::FormatUse;
 pub use frame::{Frame, Frames, Submission, FRAMES_IN_FLIGHT};
 pub use gpu_allocator::MemoryLocation;
 pub use image::{Image, ImageDesc, Sampler};
-pub use pass::Target;
+pub use pass::{Rendering, Target};
 pub use pipeline::{GraphicsDesc, Pipeline, PipelineLayout};
 pub use queues::{QueuePlan, QueueUsers};
 pub use swapchain::{PresentMode, Swapchain};

@@ -1,5 +1,5 @@
 //! Passes declare what they use; the recorder turns that into barriers (`track`) and, for
-//! rendering, into the scope's attachments: [`Recorder::uses`] and [`Recorder::render`].
+//! rendering, into the scope's attachments: [`Recorder::uses`] and [`Recorder::rendering`].
 
 use ash::vk;
 
@@ -7,7 +7,7 @@ use super::command::{Attachment, ImageBarrier, Load, Recorder};
 use super::image::Image;
 use super::track::{transition, Handle, Tracked, Use};
 
-/// An attachment of [`Recorder::render`]: an image (through its default view or another one,
+/// An attachment of [`Recorder::rendering`]: an image (through its default view or another one,
 /// e.g. a cube face) and what the scope does with its previous contents.
 pub struct Target<'a> {
     pub image: &'a Image,
@@ -59,55 +59,64 @@ impl Recorder<'_> {
         }
     }
 
-    /// A rendering scope over the colour attachments' extent: the barriers for the attachments
-    /// (loaded or not, by `Load`) and for `samples` (images its shaders sample), then
-    /// `vkCmdBeginRendering`, `body`, `vkCmdEndRendering`.
-    pub fn render(
-        &self,
+    /// Records the barriers a rendering scope needs (its attachments, loaded or not by `Load`,
+    /// and `samples`, the images its shaders sample) and returns the scope to record, so that
+    /// a pass's timestamps can start after its barriers (they time the pass, not the wait for
+    /// the pass before it).
+    pub fn rendering<'r>(
+        &'r self,
         colour: &[Target],
         depth: Option<Target>,
         samples: &[&Image],
-        body: impl FnOnce(),
-    ) {
+    ) -> Rendering<'r> {
         let keep = |load: &Load| matches!(load, Load::Keep);
         let mut uses: Vec<(&dyn Tracked, Use)> = Vec::new();
         for t in colour {
-            uses.push((
-                t.image,
-                Use::Colour {
-                    keep: keep(&t.load),
-                },
-            ));
+            let keep = keep(&t.load);
+            uses.push((t.image, Use::Colour { keep }));
         }
         if let Some(t) = &depth {
-            uses.push((
-                t.image,
-                Use::Depth {
-                    keep: keep(&t.load),
-                },
-            ));
+            let keep = keep(&t.load);
+            uses.push((t.image, Use::Depth { keep }));
         }
         for image in samples {
             uses.push((*image, Use::FragmentSampled));
         }
         self.uses(&uses);
-        let extent = colour
-            .first()
-            .or(depth.as_ref())
-            .map_or(vk::Extent2D::default(), |t| t.image.extent);
         let attachment = |t: &Target, layout| Attachment {
             view: t.view,
             layout,
             load: t.load,
         };
-        let colour: Vec<_> = colour
-            .iter()
-            .map(|t| attachment(t, vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL))
-            .collect();
-        let depth =
-            depth.map(|t| attachment(&t, vk::ImageLayout::DEPTH_STENCIL_ATTACHMENT_OPTIMAL));
-        self.begin_rendering(extent, &colour, depth);
+        Rendering {
+            rec: self,
+            extent: colour
+                .first()
+                .or(depth.as_ref())
+                .map_or(vk::Extent2D::default(), |t| t.image.extent),
+            colour: colour
+                .iter()
+                .map(|t| attachment(t, vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL))
+                .collect(),
+            depth: depth.map(|t| attachment(&t, vk::ImageLayout::DEPTH_STENCIL_ATTACHMENT_OPTIMAL)),
+        }
+    }
+}
+
+/// A rendering scope whose barriers are recorded ([`Recorder::rendering`]).
+pub struct Rendering<'r> {
+    rec: &'r Recorder<'r>,
+    extent: vk::Extent2D,
+    colour: Vec<Attachment>,
+    depth: Option<Attachment>,
+}
+
+impl Rendering<'_> {
+    /// `vkCmdBeginRendering` over the attachments' extent, `body`, `vkCmdEndRendering`.
+    pub fn record(self, body: impl FnOnce()) {
+        self.rec
+            .begin_rendering(self.extent, &self.colour, self.depth);
         body();
-        self.end_rendering();
+        self.rec.end_rendering();
     }
 }

@@ -2,7 +2,7 @@
 //! the state its last use left it in ([`State`]: layout, the last write or layout transition,
 //! the reads since). A pass names how it uses each resource ([`Use`]) and [`Recorder::uses`]
 //! (`pass.rs`) records exactly the barriers those uses need, all in one
-//! `vkCmdPipelineBarrier2`; [`Recorder::render`] does the same for a rendering scope's attachments and the textures its
+//! `vkCmdPipelineBarrier2`; `Recorder::rendering` does the same for a rendering scope's attachments and the textures its
 //! shaders sample, then opens the scope. No barrier is written by hand above this file.
 //!
 //! The rules (Vulkan spec, "Synchronization and Cache Control"):

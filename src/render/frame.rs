@@ -34,8 +34,8 @@ use super::uniforms::ViewIndex;
 use super::{FrameInputs, ViewMode};
 use crate::gpu::selftest::SyncHazard;
 use crate::gpu::{
-    Buffer, Context, Frames, GpuResult, Load, Profiler, Recorder, Submission, Target, Use,
-    GRAPHICS_OCEAN, GRAPHICS_SCENE,
+    Buffer, Context, Frames, GpuResult, Load, Profiler, Recorder, Rendering, Submission, Target,
+    Use, GRAPHICS_OCEAN, GRAPHICS_SCENE,
 };
 use crate::ocean::simulation::Simulation;
 
@@ -132,33 +132,30 @@ pub fn record_frame(
             profiler.pass(&rec, "sky cube", || cube.update(&rec, sun, scale));
         }
         let t = &r.targets;
+        // Each pass: its rendering scope's barriers, then its timestamps around the drawing.
+        let scope = drawn_anew(&rec, &t.reflection, Load::DontCare);
         profiler.pass(&rec, "reflection", || {
             // The sky, last, writes every pixel the terrain left.
-            let (colour, depth) = colour_depth(&t.reflection, Load::DontCare);
-            rec.render(&colour, depth, &[], || {
+            scope.record(|| {
                 r.terrain.record(&rec, set, ViewIndex::Reflection);
                 r.sky.record(&rec, set, ViewIndex::Reflection);
-            });
+            })
         });
+        let deep = Load::Clear(vk::ClearValue {
+            color: vk::ClearColorValue {
+                float32: DEEP_WATER,
+            },
+        });
+        let scope = drawn_anew(&rec, &t.refraction, deep);
         profiler.pass(&rec, "refraction", || {
-            let deep = Load::Clear(vk::ClearValue {
-                color: vk::ClearColorValue {
-                    float32: DEEP_WATER,
-                },
-            });
-            let (colour, depth) = colour_depth(&t.refraction, deep);
-            rec.render(&colour, depth, &[], || {
-                r.terrain.record(&rec, set, ViewIndex::Refraction);
-            });
+            scope.record(|| r.terrain.record(&rec, set, ViewIndex::Refraction))
         });
         // Scene, water and sky are three rendering scopes, so each pass's timestamps cover its
         // own rasterisation (a CPU driver may defer drawing to the end of a scope). The sky goes
         // last and fills only what terrain and water left: no covered pixel is shaded twice.
+        let scope = drawn_anew(&rec, &t.main, Load::DontCare);
         profiler.pass(&rec, "scene", || {
-            let (colour, depth) = colour_depth(&t.main, Load::DontCare);
-            rec.render(&colour, depth, &[], || {
-                r.terrain.record(&rec, set, ViewIndex::Main);
-            });
+            scope.record(|| r.terrain.record(&rec, set, ViewIndex::Main))
         });
         profiler.pause(&rec);
         rec.end_label();
@@ -203,34 +200,26 @@ pub fn record_frame(
             &t.refraction.depth,
         ];
         let wireframe = r.settings.view == ViewMode::Wireframe;
+        let main = [keep(&t.main.colour)];
+        let scope = rec.rendering(&main, Some(keep(&t.main.depth)), &textures);
         profiler.begin_pass(&rec, "water");
-        rec.render(
-            &[keep(&t.main.colour)],
-            Some(keep(&t.main.depth)),
-            &textures,
-            || {
-                // Patches, tessellation-evaluation invocations, triangles and fragments.
-                profiler.statistics(&rec, || r.water.record(&rec, set, wireframe));
-            },
-        );
+        scope.record(|| {
+            // Patches, tessellation-evaluation invocations, triangles and fragments.
+            profiler.statistics(&rec, || r.water.record(&rec, set, wireframe));
+        });
         profiler.end_pass(&rec);
+        let scope = rec.rendering(&main, Some(keep(&t.main.depth)), &[]);
         profiler.pass(&rec, "sky", || {
-            rec.render(
-                &[keep(&t.main.colour)],
-                Some(keep(&t.main.depth)),
-                &[],
-                || r.sky.record(&rec, set, ViewIndex::Main),
-            );
+            scope.record(|| r.sky.record(&rec, set, ViewIndex::Main))
         });
         if matches!(
             r.settings.view,
             ViewMode::Reflection | ViewMode::Refraction | ViewMode::Dudv
         ) {
+            let over = [Target::new(&t.main.colour, Load::DontCare)];
+            let scope = rec.rendering(&over, None, &textures);
             profiler.pass(&rec, "textures view", || {
-                let over = [Target::new(&t.main.colour, Load::DontCare)];
-                rec.render(&over, None, &textures, || {
-                    r.water.record_textures_view(&rec, set)
-                });
+                scope.record(|| r.water.record_textures_view(&rec, set))
             });
         }
         profiler.pass(&rec, "output", || {
@@ -249,13 +238,11 @@ pub fn record_frame(
     Ok(value)
 }
 
-/// A colour target's attachments for a pass that draws it anew: the colour loaded as `colour`
-/// says, the depth cleared.
-fn colour_depth(cd: &ColourDepth, colour: Load) -> ([Target<'_>; 1], Option<Target<'_>>) {
-    (
-        [Target::new(&cd.colour, colour)],
-        Some(Target::new(&cd.depth, CLEAR_DEPTH)),
-    )
+/// The rendering scope of a pass that draws a colour target anew: the colour loaded as
+/// `colour` says, the depth cleared (barriers recorded).
+fn drawn_anew<'r>(rec: &'r Recorder, cd: &ColourDepth, colour: Load) -> Rendering<'r> {
+    let target = [Target::new(&cd.colour, colour)];
+    rec.rendering(&target, Some(Target::new(&cd.depth, CLEAR_DEPTH)), &[])
 }
 
 /// Records a copy of the output into `buffer` for the host (screenshots).
