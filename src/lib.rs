@@ -10,6 +10,7 @@ pub mod frontend;
 pub mod gpu;
 pub mod ocean;
 pub mod output;
+pub mod pass_names;
 pub mod profile;
 pub mod render;
 /// Constants Rust and the shaders share (build.rs writes them as `shared.glsl`).

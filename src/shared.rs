@@ -19,15 +19,6 @@ impl Glsl for u32 {
     }
 }
 
-impl Glsl for i32 {
-    fn glsl_type() -> &'static str {
-        "int"
-    }
-    fn glsl_literal(&self) -> String {
-        format!("{self}")
-    }
-}
-
 impl Glsl for f32 {
     fn glsl_type() -> &'static str {
         "float"
@@ -83,14 +74,18 @@ shared_constants! {
     /// underwater terrain.
     ABSORPTION_PER_M: [f32; 3] = [0.45, 0.09, 0.06];
     /// `--view` values the shaders react to (`ViewMode` in src/render/mod.rs).
-    VIEW_FINAL: i32 = 0;
-    VIEW_REFLECTION: i32 = 1;
-    VIEW_REFRACTION: i32 = 2;
-    VIEW_DUDV: i32 = 3;
-    VIEW_DISPLACEMENT: i32 = 4;
-    VIEW_NORMALS: i32 = 5;
-    VIEW_FOAM: i32 = 6;
-    VIEW_WIREFRAME: i32 = 7;
+    VIEW_FINAL: u32 = 0;
+    VIEW_REFLECTION: u32 = 1;
+    VIEW_REFRACTION: u32 = 2;
+    VIEW_DUDV: u32 = 3;
+    VIEW_DISPLACEMENT: u32 = 4;
+    VIEW_NORMALS: u32 = 5;
+    VIEW_FOAM: u32 = 6;
+    VIEW_WIREFRAME: u32 = 7;
+    /// `--fresnel` models (`FresnelModel` in src/render/mod.rs).
+    FRESNEL_SCHLICK: u32 = 0;
+    FRESNEL_EXACT: u32 = 1;
+    FRESNEL_POWER: u32 = 2;
 }
 
 #[cfg(test)]
@@ -104,7 +99,7 @@ mod tests {
             "const uint PATCHES = 32u;",
             "const float PEAK_M = 48.0;",
             "const vec3 WATER_COLOUR = vec3(0.004, 0.045, 0.075);",
-            "const int VIEW_WIREFRAME = 7;",
+            "const uint VIEW_WIREFRAME = 7u;",
         ] {
             assert!(glsl.contains(line), "{line} missing from:\n{glsl}");
         }

@@ -166,16 +166,7 @@ fn bench_frames_reports_passes_frames_and_settings() {
     assert!(report["fps"].as_f64().unwrap() > 0.0);
     let passes = report["passes"].as_array().unwrap();
     let names: Vec<&str> = passes.iter().map(|p| p["name"].as_str().unwrap()).collect();
-    for name in [
-        "ocean evolve",
-        "ocean fft",
-        "ocean assemble",
-        "reflection",
-        "refraction",
-        "scene",
-        "water",
-        "output",
-    ] {
+    for name in vkocean::pass_names::FFT_FRAME {
         assert!(names.contains(&name), "{name} not in {names:?}");
     }
     for p in passes {

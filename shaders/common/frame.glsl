@@ -1,5 +1,5 @@
 // Per-frame uniforms shared by every scene pass (set 0, binding 0), filled by
-// src/render/camera.rs (`FrameUniforms`, std140). Rendering is camera-relative: vertex positions
+// src/render/uniforms.rs (`FrameUniforms`, std140). Rendering is camera-relative: vertex positions
 // are world positions minus the view's eye, so view_proj holds no translation.
 struct View {
     mat4 view_proj;      // eye-relative world position -> clip space (reversed-Z, infinite far)
@@ -10,25 +10,26 @@ struct View {
 
 layout(set = 0, binding = 0, std140) uniform FrameUniforms {
     View views[3];       // 0: camera, 1: reflection (mirrored about the water), 2: refraction
-    vec4 time;           // x: simulation time mod the repeat period (s); y: water level (m); z: debug view; w: Fresnel model
+    uvec4 modes;         // x: debug view (VIEW_*); y: Fresnel model (FRESNEL_*); z: 1 = bounded
+                         // ocean window (Gerstner); w: 1 = solid test background
     vec4 sun_dir;        // xyz: unit vector toward the sun; w: sun radiance scale
     vec4 viewport;       // xy: main target size (px); zw: 1 / size
     vec4 patch_m;        // side of each ocean cascade's patch (m), cascades 0..3
-    vec4 ocean;          // x: number of cascades; y: 1 for a bounded window (Gerstner); zw: unused
-    vec4 lod;            // x: focal length (px); y: target edge (px); z: max displacement (m); w: solid background
+    vec4 lod;            // x: focal length (px); y: target edge (px); z: max displacement (m)
     vec4 terrain;        // xy: island centre (m); z: sea floor depth (m); w: island radius (m)
     vec4 objects[4];     // (x, z, radius, top height) of the objects in the water; 0 height = none
-    vec4 background;     // xyz: the solid test background (lod.w = 1)
-    // Camera-relative water (WaterFrame in src/render/camera.rs): the water's vertices are
+    vec4 background;     // xyz: the solid test background (modes.w = 1)
+    // Camera-relative water (WaterFrame in src/render/uniforms.rs): the water's vertices are
     // measured from a centre near the camera; what depends on absolute position is reduced on
     // the CPU in f64, so precision holds however far from the origin and however late.
-    vec4 water;          // xy: camera xz relative to the water grid centre (m); z: near plane (m)
+    vec4 water;          // xy: camera xz relative to the water grid centre (m); z: water level (m);
+                         // w: the camera's near plane (m; depth = near / view distance)
     vec4 cascade_uv[2];  // ocean image coordinates of the grid centre: cascade c in [c/2].xy / .zw
     vec4 dudv_origin;    // DU/DV tile coordinates of the grid centre (mod 1): xy sample 1, zw sample 2
     vec4 dudv;           // x: tiles per metre; y: sample 2's scale; z: scroll phase (turns)
 } frame;
 
-// Which view a draw renders (ViewIndex in src/render/camera.rs).
+// Which view a draw renders (ViewIndex in src/render/uniforms.rs).
 layout(push_constant) uniform Pass { uint view; } pass;
 
 #define VIEW frame.views[pass.view]
@@ -36,7 +37,9 @@ layout(push_constant) uniform Pass { uint view; } pass;
 // Debug views (`--view`, ViewMode in src/render/mod.rs) the scene shaders react to: VIEW_*
 // of src/shared.rs.
 #include "shared.glsl"
-int debug_view() { return int(frame.time.z + 0.5); }
+uint debug_view() { return frame.modes.x; }
+// The water level (m).
+float water_level() { return frame.water.z; }
 
 // The ocean simulation's images of this frame's slot, one layer per cascade (GENERAL layout,
 // repeat sampler): (dx, h, dz, 0) and (dh/dx, dh/dz, Jacobian, foam).
@@ -55,7 +58,7 @@ vec3 ocean_uv(vec2 xz, int c, float dist, out float weight) {
     vec2 q = abs(uv - 0.5);
     // Branch-free (see ocean_displacement_at in common/water.glsl for why).
     weight = mix(clamp(2.0 - dist / (patch_m * 4.0), 0.0, 1.0),
-                 1.0 - smoothstep(0.35, 0.5, max(q.x, q.y)), step(0.5, frame.ocean.y));
+                 1.0 - smoothstep(0.35, 0.5, max(q.x, q.y)), float(frame.modes.z));
     return vec3(uv, c);
 }
 

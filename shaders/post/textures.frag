@@ -14,7 +14,7 @@ layout(set = 1, binding = 1) uniform sampler2D refraction_colour;
 layout(set = 1, binding = 3) uniform sampler2D dudv_map;
 
 void main() {
-    int view = debug_view();
+    uint view = debug_view();
     if (view == VIEW_REFLECTION) {
         out_colour = target_colour(textureLod(reflection_colour, in_uv, 0.0).rgb);
     } else if (view == VIEW_REFRACTION) {

@@ -1,7 +1,7 @@
 #version 460
 // Sky pass: every pixel gets the sky cubemap's radiance along its view ray (in the reflection
 // view the ray is mirrored, so the reflection shows the sky the water reflects). With the test
-// background on (lod.w), the main view paints a solid colour found nowhere else instead.
+// background on (modes.w), the main view paints a solid colour found nowhere else instead.
 #include "common/frame.glsl"
 #include "common/display.glsl"
 
@@ -10,7 +10,7 @@ layout(location = 1) in vec2 in_ndc;
 layout(location = 0) out vec4 out_colour;
 
 void main() {
-    if (frame.lod.w > 0.5 && pass.view == 0u) {
+    if (frame.modes.w == 1u && pass.view == 0u) {
         out_colour = target_colour(frame.background.rgb);
         return;
     }

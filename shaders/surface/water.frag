@@ -48,8 +48,8 @@ vec4 ocean_normal_foam(vec2 xz, float dist) {
 
 // Fraction of light reflected at incidence cos θ (θ between normal and view).
 float fresnel(float cos_theta) {
-    int model = int(frame.time.w + 0.5);
-    if (model == 1) {
+    uint model = frame.modes.y;
+    if (model == FRESNEL_EXACT) {
         // Exact unpolarised Fresnel equations (seed 004 §2.5), Snell: sin θt = sin θi / n.
         float ti = acos(clamp(cos_theta, 1e-4, 1.0));
         if (ti < 1e-3) {
@@ -60,7 +60,7 @@ float fresnel(float cos_theta) {
         float t = tan(tt - ti) / tan(tt + ti);
         return clamp(0.5 * (s * s + t * t), 0.0, 1.0);
     }
-    if (model == 2) {
+    if (model == FRESNEL_POWER) {
         // Seed 001 eq. 6: r_refract = θ^r with r = 0.5, θ taken as cos θ = N·V (the angle itself
         // would make straight-down views fully reflective).
         return 1.0 - pow(cos_theta, 0.5);
@@ -74,7 +74,7 @@ void main() {
     vec3 v = -in_rel_pos / dist; // toward the camera
     vec4 nf = ocean_normal_foam(in_xz, dist);
     vec3 n = nf.xyz;
-    int view = debug_view();
+    uint view = debug_view();
     if (view == VIEW_DISPLACEMENT) {
         out_colour = target_colour(0.5 + 0.25 * in_displacement.xzy);
         return;
@@ -106,7 +106,7 @@ void main() {
     vec3 c_reflect = textureLod(reflection_colour, clamp(screen + offset, 0.001, 0.999), 0.0).rgb;
 
     // Water thickness along the ray: refraction depth behind the surface minus the surface's.
-    float near_m = frame.water.z; // Camera::near_m (depth = near / view distance)
+    float near_m = frame.water.w; // Camera::near_m (depth = near / view distance)
     float water_view = near_m / gl_FragCoord.z;
     vec2 refr_uv = clamp(screen + offset, 0.001, 0.999);
     float floor_ndc = textureLod(refraction_depth, refr_uv, 0.0).r;

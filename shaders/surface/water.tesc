@@ -13,7 +13,7 @@ layout(location = 0) out vec2 out_xz[];
 const float MAX_LEVEL = 63.0;
 
 float edge_level(vec2 a, vec2 b) {
-    vec3 mid = vec3(0.5 * (a.x + b.x), frame.time.y, 0.5 * (a.y + b.y)) - water_eye();
+    vec3 mid = vec3(0.5 * (a.x + b.x), water_level(), 0.5 * (a.y + b.y)) - water_eye();
     float dist = max(length(mid), 1e-3);
     float px = distance(a, b) * frame.lod.x / dist;
     return clamp(px / frame.lod.y, 1.0, MAX_LEVEL);
@@ -28,7 +28,7 @@ bool outside_frustum() {
     int out_l = 0, out_r = 0, out_b = 0, out_t = 0, out_n = 0;
     for (int i = 0; i < 8; ++i) {
         vec3 p = vec3((i & 1) == 0 ? lo.x : hi.x,
-                      frame.time.y + ((i & 2) == 0 ? -m : m),
+                      water_level() + ((i & 2) == 0 ? -m : m),
                       (i & 4) == 0 ? lo.y : hi.y);
         vec4 c = frame.views[0].view_proj * vec4(p - eye, 1.0);
         out_l += c.x < -c.w ? 1 : 0;

@@ -18,7 +18,7 @@ void main() {
     vec3 eye = water_eye();
     vec2 offset = xz - eye.xz;
     vec3 d = ocean_displacement_at(xz, length(offset));
-    vec3 rel = vec3(offset.x + d.x, frame.time.y + d.y - eye.y, offset.y + d.z);
+    vec3 rel = vec3(offset.x + d.x, water_level() + d.y - eye.y, offset.y + d.z);
     out_rel_pos = rel;
     out_xz = xz;
     out_displacement = d;

@@ -31,7 +31,7 @@ void main() {
     vec3 ambient = mix(vec3(0.18, 0.2, 0.22), vec3(0.35, 0.45, 0.6), n.y * 0.5 + 0.5);
     vec3 colour = albedo * (vec3(1.0, 0.92, 0.8) * lambert * 1.6 + ambient);
     // Below the water: light attenuated on its way down (Beer-Lambert, depth below the surface).
-    float below = max(frame.time.y - in_world.y, 0.0);
+    float below = max(water_level() - in_world.y, 0.0);
     colour *= exp(-below * ABSORPTION_PER_M);
     float dist = length(in_rel_pos);
     vec3 horizon = sky_lookup(normalize(vec3(in_rel_pos.x, 0.0, in_rel_pos.z) + vec3(0.0, 0.02, 0.0)));

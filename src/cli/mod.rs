@@ -13,7 +13,9 @@ mod values;
 
 pub use bench::{BenchCommand, BenchFftArgs, BenchFramesArgs, BenchGerstnerArgs, Command};
 pub use config::with_config;
-pub use presets::{quality_level, sea_preset, PresetArg, Quality, QualityArg};
+pub use presets::{
+    quality_level, sea_preset, PresetArg, Quality, QualityArg, SeaPreset, DEFAULT_SEA,
+};
 pub use values::parse_fft_size;
 use values::*;
 
@@ -75,8 +77,8 @@ pub struct Cli {
     pub list_gpus: bool,
 
     /// Window presentation mode (falls back to fifo when the surface lacks it).
-    #[arg(long, value_enum, value_name = "MODE", default_value_t = PresentModeArg::Fifo)]
-    pub present_mode: PresentModeArg,
+    #[arg(long, value_enum, value_name = "MODE", default_value_t = PresentMode::Fifo)]
+    pub present_mode: PresentMode,
 
     /// Read settings from a TOML file: `flag-name = value` for any option above, e.g.
     /// `wind-speed = 14`, `camera = [0, 12, 0]`, `validation = true`. Flags given on the
@@ -119,9 +121,9 @@ pub struct Cli {
           value_parser = |s: &str| parse_whole(s, 1, 10_000).map(|n| n as usize), help_heading = "Ocean")]
     pub gerstner_count: Option<usize>,
 
-    /// Ocean spectrum: phillips (Tessendorf), jonswap (fetch-limited), pierson-moskowitz (fully developed).
-    #[arg(long, global = true, value_enum, value_name = "KIND", default_value_t = SpectrumArg::Jonswap, help_heading = "Ocean")]
-    pub spectrum: SpectrumArg,
+    /// Ocean spectrum.
+    #[arg(long, global = true, value_enum, value_name = "KIND", default_value_t = SpectrumKind::Jonswap, help_heading = "Ocean")]
+    pub spectrum: SpectrumKind,
 
     /// Wind speed 10 m above the sea, U10 (m/s, 0 < U <= 100). [default: 10; --preset sets it]
     #[arg(long, global = true, value_name = "M_S", allow_hyphen_values = true,
@@ -202,13 +204,12 @@ pub struct Cli {
     pub look_at: Option<[f32; 3]>,
 
     /// Show the final picture or one intermediate full screen.
-    #[arg(long, global = true, value_enum, value_name = "VIEW", default_value_t = ViewArg::Final, help_heading = "Scene")]
-    pub view: ViewArg,
+    #[arg(long, global = true, value_enum, value_name = "VIEW", default_value_t = ViewMode::Final, help_heading = "Scene")]
+    pub view: ViewMode,
 
-    /// Reflection/refraction weight: schlick (approximation), exact (Fresnel equations, seed
-    /// 004), power (seed 001: refraction weight cos θ^0.5).
-    #[arg(long, global = true, value_enum, value_name = "MODEL", default_value_t = FresnelArg::Schlick, help_heading = "Scene")]
-    pub fresnel: FresnelArg,
+    /// How the water weighs reflection against refraction.
+    #[arg(long, global = true, value_enum, value_name = "MODEL", default_value_t = FresnelModel::Schlick, help_heading = "Scene")]
+    pub fresnel: FresnelModel,
 
     /// Size of the reflection and refraction textures relative to the output (window or image; 0.1 to 1). [default: 0.25 low, 0.35 medium, 0.5 high]
     #[arg(long, global = true, value_name = "S", allow_hyphen_values = true,
@@ -278,39 +279,6 @@ pub enum WavesArg {
     Gerstner,
 }
 
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-pub enum SpectrumArg {
-    Phillips,
-    Jonswap,
-    PiersonMoskowitz,
-}
-
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-pub enum ViewArg {
-    Final,
-    Reflection,
-    Refraction,
-    Displacement,
-    Normals,
-    Foam,
-    Dudv,
-    Wireframe,
-}
-
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-pub enum FresnelArg {
-    Schlick,
-    Exact,
-    Power,
-}
-
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-pub enum PresentModeArg {
-    Fifo,
-    Mailbox,
-    Immediate,
-}
-
 /// A command-line value that is wrong (exit code 2).
 #[derive(Debug, thiserror::Error)]
 #[error("{0}")]
@@ -378,21 +346,8 @@ impl Cli {
             }
         };
         Ok(SceneSettings {
-            view: match self.view {
-                ViewArg::Final => ViewMode::Final,
-                ViewArg::Reflection => ViewMode::Reflection,
-                ViewArg::Refraction => ViewMode::Refraction,
-                ViewArg::Displacement => ViewMode::Displacement,
-                ViewArg::Normals => ViewMode::Normals,
-                ViewArg::Foam => ViewMode::Foam,
-                ViewArg::Dudv => ViewMode::Dudv,
-                ViewArg::Wireframe => ViewMode::Wireframe,
-            },
-            fresnel: match self.fresnel {
-                FresnelArg::Schlick => FresnelModel::Schlick,
-                FresnelArg::Exact => FresnelModel::Exact,
-                FresnelArg::Power => FresnelModel::Power,
-            },
+            view: self.view,
+            fresnel: self.fresnel,
             rtt_scale: self.rtt_scale.unwrap_or(quality.rtt_scale) as f32,
             render_scale: self.render_scale.unwrap_or(quality.render_scale) as f32,
             terrain_grid: self.terrain_grid.unwrap_or(quality.terrain_grid),
@@ -466,10 +421,8 @@ impl Cli {
                         let text = std::fs::read_to_string(path).map_err(|e| {
                             UsageError(format!("--gerstner-waves {}: {e}", path.display()))
                         })?;
-                        let toml = path
-                            .extension()
-                            .is_some_and(|e| e.eq_ignore_ascii_case("toml"));
-                        gerstner::parse_waves(&text, toml).map_err(|e| {
+                        let format = gerstner::TableFormat::of_path(path);
+                        gerstner::parse_waves(&text, format).map_err(|e| {
                             UsageError(format!("--gerstner-waves {}: {e}", path.display()))
                         })?
                     }
@@ -514,7 +467,7 @@ impl Cli {
         let camera = self.camera_setting()?;
         let quality = quality_level(self.quality_in_force());
         // Without --preset: 10 m/s, 100 km, λ = 1, 400 m (between breeze and moderate).
-        let sea = self.preset.map_or((10.0, 100.0, 1.0, 400.0), sea_preset);
+        let sea = self.preset.map_or(DEFAULT_SEA, sea_preset);
         Ok(RunSettings {
             quality: (self.quality_in_force().name(), self.quality_chosen_by()),
             scene,
@@ -528,11 +481,7 @@ impl Cli {
             profile: self.profile.clone(),
             validation: self.validation,
             gpu: self.gpu,
-            present_mode: match self.present_mode {
-                PresentModeArg::Fifo => PresentMode::Fifo,
-                PresentModeArg::Mailbox => PresentMode::Mailbox,
-                PresentModeArg::Immediate => PresentMode::Immediate,
-            },
+            present_mode: self.present_mode,
             inject_sync_hazard: self.inject_sync_hazard,
             unorm_output: self.unorm_output,
             stats: self.stats,
@@ -540,20 +489,16 @@ impl Cli {
             dump: self.dump.clone(),
             ocean: OceanSettings {
                 sea: SeaState {
-                    spectrum: match self.spectrum {
-                        SpectrumArg::Phillips => SpectrumKind::Phillips,
-                        SpectrumArg::Jonswap => SpectrumKind::Jonswap,
-                        SpectrumArg::PiersonMoskowitz => SpectrumKind::PiersonMoskowitz,
-                    },
-                    wind_speed_m_s: self.wind_speed.unwrap_or(sea.0),
+                    spectrum: self.spectrum,
+                    wind_speed_m_s: self.wind_speed.unwrap_or(sea.wind_speed_m_s),
                     wind_dir_deg: self.wind_dir,
-                    fetch_km: self.fetch.unwrap_or(sea.1),
+                    fetch_km: self.fetch.unwrap_or(sea.fetch_km),
                     depth_m: self.depth,
                 },
                 fft_size: self.fft_size.unwrap_or(quality.fft_size),
-                patch_size_m: self.patch_size.unwrap_or(sea.3),
+                patch_size_m: self.patch_size.unwrap_or(sea.patch_size_m),
                 cascades: self.cascades.unwrap_or(quality.cascades),
-                choppiness: self.choppiness.unwrap_or(sea.2),
+                choppiness: self.choppiness.unwrap_or(sea.choppiness),
                 seed: self.seed,
                 waves,
             },

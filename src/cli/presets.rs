@@ -66,15 +66,42 @@ pub enum PresetArg {
     Storm,
 }
 
-/// What a `--preset` sets: (U10 m/s, fetch km, choppiness, largest patch m). Wind speeds are
-/// mid-range of their Beaufort force (WMO: force 2 light breeze 1.6–3.3 m/s, 4 moderate breeze
-/// 5.5–7.9, 6 strong breeze 10.8–13.8, 10 storm 24.5–28.4); fetches grow with the force, the
-/// storm's patch holds its ~570 m peak wavelength (2πg/ω_p², ω_p = 0.877 g/U).
-pub fn sea_preset(p: PresetArg) -> (f64, f64, f64, f64) {
+/// What a `--preset` sets (and the defaults without one).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SeaPreset {
+    /// Wind speed 10 m above the sea, U10 (m/s).
+    pub wind_speed_m_s: f64,
+    /// Fetch (km).
+    pub fetch_km: f64,
+    /// Choppy displacement factor.
+    pub choppiness: f64,
+    /// Side of the largest cascade's patch (m).
+    pub patch_size_m: f64,
+}
+
+/// The sea without `--preset`: a moderate breeze over 100 km of fetch.
+pub const DEFAULT_SEA: SeaPreset = SeaPreset {
+    wind_speed_m_s: 10.0,
+    fetch_km: 100.0,
+    choppiness: 1.0,
+    patch_size_m: 400.0,
+};
+
+/// The sea of a `--preset`. Wind speeds are mid-range of their Beaufort force (WMO: force 2
+/// light breeze 1.6–3.3 m/s, 4 moderate breeze 5.5–7.9, 6 strong breeze 10.8–13.8, 10 storm
+/// 24.5–28.4); fetches grow with the force, the storm's patch holds its ~570 m peak wavelength
+/// (2πg/ω_p², ω_p = 0.877 g/U).
+pub fn sea_preset(p: PresetArg) -> SeaPreset {
+    let sea = |wind_speed_m_s, fetch_km, choppiness, patch_size_m| SeaPreset {
+        wind_speed_m_s,
+        fetch_km,
+        choppiness,
+        patch_size_m,
+    };
     match p {
-        PresetArg::Calm => (2.5, 10.0, 0.5, 400.0),
-        PresetArg::Breeze => (6.7, 50.0, 0.8, 400.0),
-        PresetArg::Moderate => (12.3, 200.0, 1.0, 400.0),
-        PresetArg::Storm => (26.5, 1000.0, 1.2, 1000.0),
+        PresetArg::Calm => sea(2.5, 10.0, 0.5, 400.0),
+        PresetArg::Breeze => sea(6.7, 50.0, 0.8, 400.0),
+        PresetArg::Moderate => sea(12.3, 200.0, 1.0, 400.0),
+        PresetArg::Storm => sea(26.5, 1000.0, 1.2, 1000.0),
     }
 }

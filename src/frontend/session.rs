@@ -8,9 +8,10 @@ use ash::vk;
 
 use super::RunSettings;
 use crate::gpu::selftest::SyncHazard;
-use crate::gpu::{Buffer, Context, Frames, GpuResult, GpuTimings, MemoryLocation, Profiler};
+use crate::gpu::{Buffer, Context, Frames, GpuResult, GpuTimings, MemoryLocation, Profilers};
+use crate::ocean::dump;
 use crate::ocean::simulation::Simulation;
-use crate::ocean::stats::{npy, stats_line};
+use crate::ocean::stats::stats_line;
 use crate::output::PendingFile;
 use crate::profile::{ProfileReport, WARMUP_FRAMES};
 use crate::render::{
@@ -20,9 +21,8 @@ use crate::render::{
 pub struct Session {
     pub ctx: Arc<Context>,
     pub frames: Frames,
-    pub profiler: Profiler,
-    /// Timestamps of the compute passes (their own query pools, in the compute submission).
-    pub compute_profiler: Profiler,
+    /// GPU timestamps of the graphics and the compute passes.
+    pub profilers: Profilers,
     pub renderer: Renderer,
     /// The FFT ocean on the compute queue.
     pub simulation: Simulation,
@@ -51,8 +51,8 @@ impl Session {
         } else {
             None
         };
-        let profiler = Profiler::new(ctx, WARMUP_FRAMES, s.profile.is_some())?;
-        if s.profile.is_some() && !profiler.enabled() {
+        let profilers = Profilers::new(ctx, WARMUP_FRAMES, s.profile.is_some())?;
+        if s.profile.is_some() && !profilers.graphics.enabled() {
             anyhow::bail!(
                 "--profile: {} has no timestamp queries on its graphics queue",
                 ctx.info.name
@@ -66,15 +66,12 @@ impl Session {
             cascades: simulation.cascades.len() as u32,
             max_displacement_m: simulation.max_displacement_m as f32,
         };
-        let mut renderer = Renderer::new(ctx, output_format, extent, ocean, &s.scene)?;
-        if let Some(camera) = s.camera {
-            renderer.camera = camera;
-        }
+        let camera = s.camera.unwrap_or_default();
+        let renderer = Renderer::new(ctx, output_format, extent, ocean, &s.scene, camera)?;
         let mut session = Session {
             ctx: ctx.clone(),
             frames: Frames::new(ctx)?,
-            profiler,
-            compute_profiler: Profiler::for_compute(ctx, WARMUP_FRAMES)?,
+            profilers,
             renderer,
             simulation,
             hazard,
@@ -117,8 +114,7 @@ impl Session {
             frames: &mut self.frames,
             renderer: &mut self.renderer,
             simulation: &mut self.simulation,
-            profiler: &mut self.profiler,
-            compute_profiler: &mut self.compute_profiler,
+            profilers: &mut self.profilers,
         };
         let value = record_frame(parts, output, inputs, delivery, self.hazard.take())?;
         self.last = Some((slot, value, inputs.time_s));
@@ -128,8 +124,7 @@ impl Session {
     /// Measures nothing until [`Session::start_measuring`] (a warm-up of unknown length).
     pub fn defer_measuring(&mut self) {
         self.measure_from = u64::MAX;
-        self.profiler.set_warmup(u64::MAX);
-        self.compute_profiler.set_warmup(u64::MAX);
+        self.profilers.set_warmup(u64::MAX);
     }
 
     /// Ends the warm-up now: statistics count only frames submitted from here on (instead of
@@ -137,8 +132,7 @@ impl Session {
     pub fn start_measuring(&mut self) -> u64 {
         let n = self.frames.submitted();
         self.measure_from = n;
-        self.profiler.set_warmup(n);
-        self.compute_profiler.set_warmup(n);
+        self.profilers.set_warmup(n);
         n
     }
 
@@ -172,70 +166,13 @@ impl Session {
         Ok(())
     }
 
-    /// `--dump`: the last frame's files, ready to be written: h0.npy (complex64, K×N×N),
-    /// displacement.npy and normals.npy (float32, K×N×N×4) and params.json.
+    /// `--dump`: the last frame's files, ready to be written (`ocean::dump`).
     pub fn dump_contents(&mut self) -> anyhow::Result<Vec<(&'static str, Vec<u8>)>> {
         let (slot, value, t) = self
             .last
             .ok_or_else(|| anyhow::anyhow!("--dump: no frame was rendered"))?;
         self.frames.wait_for(value)?;
-        let sim = &self.simulation;
-        let (n, k) = (sim.settings.fft_size, sim.cascades.len());
-        let (displacement, normals) = sim.read_back(&self.ctx, slot)?;
-        let h0 = sim.download_h0(&self.ctx)?;
-        let s = &sim.settings;
-        let mut params = serde_json::json!({
-            "waves": if h0.is_some() { "fft" } else { "gerstner" },
-            "t": t,
-            "g": crate::ocean::spectrum::G,
-            "spectrum": s.sea.spectrum.name(),
-            "wind_speed_m_s": s.sea.wind_speed_m_s,
-            "wind_dir_deg": s.sea.wind_dir_deg,
-            "fetch_km": s.sea.fetch_km,
-            "depth_m": s.sea.depth_m,
-            "fft_size": n,
-            "cascades": k,
-            "patch_sizes_m": sim.cascades.iter().map(|c| c.patch_m).collect::<Vec<_>>(),
-            "k_bands_rad_m": sim.cascades.iter().map(|c| [c.k_min, if c.k_max.is_finite() { c.k_max } else { f64::MAX }]).collect::<Vec<_>>(),
-            "choppiness": s.choppiness,
-            "seed": s.seed,
-            // The surface repeats exactly with this period: every ω is a whole multiple of the
-            // quantum (spectrum::REPEAT_PERIOD_S).
-            "repeat_period_s": crate::ocean::spectrum::REPEAT_PERIOD_S,
-            "omega_quantum_rad_s": crate::ocean::spectrum::omega_quantum(),
-            "foam": {
-                "threshold": crate::ocean::simulation::FOAM_THRESHOLD,
-                "decay_s": crate::ocean::simulation::FOAM_DECAY_S,
-                "gain": crate::ocean::simulation::FOAM_GAIN,
-            },
-            "layout": "h0[c, m, n] has k = (2π(n − N/2), 2π(m − N/2)) / L_c; displacement and normals [c, m, n] are at x = n·L_c/N, z = m·L_c/N",
-        });
-        if let Some(waves) = sim.gerstner_waves() {
-            params["origin_m"] = serde_json::json!(sim.origin_m());
-            params["g"] = serde_json::json!(crate::ocean::gerstner::G_SEED);
-            params["waves_table"] = waves
-                .iter()
-                .map(|w| serde_json::json!({"kx": w.kx, "kz": w.kz, "amplitude": w.amplitude, "phase": w.phase, "steepness": w.steepness}))
-                .collect();
-            params["layout"] = serde_json::json!("displacement and normals [0, m, n] are at (α, β) = origin_m + (n, m)·window/N; displacement = (x − α, y, z − β, 0)");
-        }
-        let mut files = Vec::new();
-        if let Some(h0) = h0 {
-            files.push(("h0.npy", npy("<c8", &[k, n, n], &h0)));
-        }
-        files.push((
-            "displacement.npy",
-            npy("<f4", &[k, n, n, 4], bytemuck::cast_slice(&displacement)),
-        ));
-        files.push((
-            "normals.npy",
-            npy("<f4", &[k, n, n, 4], bytemuck::cast_slice(&normals)),
-        ));
-        files.push((
-            "params.json",
-            (serde_json::to_string_pretty(&params)? + "\n").into_bytes(),
-        ));
-        Ok(files)
+        dump::files(&self.simulation, &self.ctx, slot, t)
     }
 
     /// Waits for every frame and builds the profile report. Nothing is written or printed:
@@ -275,7 +212,7 @@ impl Session {
                     .push((last, start.elapsed().as_secs_f64() * 1e3));
             }
         }
-        Ok((self.profiler.finish()?, self.compute_profiler.finish()?))
+        Ok(self.profilers.finish()?)
     }
 
     /// The closing line of a run: frames, size, wall time, device.

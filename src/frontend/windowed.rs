@@ -268,7 +268,7 @@ impl App {
             .last_frame
             .map_or(0.0, |last| now.duration_since(last).as_secs_f32());
         self.last_frame = Some(now);
-        self.fly.update(&mut state.session.renderer.camera, step);
+        self.fly.update(state.session.renderer.camera_mut(), step);
         let inputs = FrameInputs {
             time_s: match self.settings.dt_s {
                 Some(dt) => {

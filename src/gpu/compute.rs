@@ -13,6 +13,7 @@ use super::context::Context;
 use super::error::{GpuResult, VkResultExt};
 use super::frame::{command_slot, FRAMES_IN_FLIGHT};
 use super::garbage::Garbage;
+use super::submit;
 
 pub struct ComputeQueue {
     ctx: Arc<Context>,
@@ -60,18 +61,11 @@ impl ComputeQueue {
     ) -> GpuResult<()> {
         self.wait_for_slot(value)?;
         let (pool, cmd) = self.slots[slot];
-        // SAFETY: the slot's previous submission has completed (waited above).
+        // SAFETY: the slot's previous submission has completed (waited above); the reset puts
+        // its command buffer in the initial state.
         unsafe {
-            self.ctx
-                .device
-                .reset_command_pool(pool, vk::CommandPoolResetFlags::empty())
-                .vk("vkResetCommandPool")?;
-            let begin = vk::CommandBufferBeginInfo::default()
-                .flags(vk::CommandBufferUsageFlags::ONE_TIME_SUBMIT);
-            self.ctx
-                .device
-                .begin_command_buffer(cmd, &begin)
-                .vk("vkBeginCommandBuffer")?;
+            submit::reset_pool(&self.ctx, pool)?;
+            submit::begin_one_time(&self.ctx, &[cmd])?;
         }
         {
             let rec = Recorder::new(&self.ctx, cmd);
@@ -84,8 +78,6 @@ impl ComputeQueue {
                 return Err(e);
             }
         }
-        // SAFETY: recording began above.
-        unsafe { self.ctx.device.end_command_buffer(cmd) }.vk("vkEndCommandBuffer")?;
         let waits: Vec<_> = wait_graphics
             .map(|v| {
                 vk::SemaphoreSubmitInfo::default()
@@ -101,18 +93,12 @@ impl ComputeQueue {
             .semaphore(self.timeline)
             .value(value)
             .stage_mask(vk::PipelineStageFlags2::ALL_COMMANDS)];
-        let cmds = [vk::CommandBufferSubmitInfo::default().command_buffer(cmd)];
-        let submit = vk::SubmitInfo2::default()
-            .wait_semaphore_infos(&waits)
-            .command_buffer_infos(&cmds)
-            .signal_semaphore_infos(&signals);
-        // SAFETY: the command buffer is executable; semaphores are live; one submitting thread.
+        let queue = self.ctx.compute.raw;
+        // SAFETY: recording began above, on a pool of the compute family; the semaphores are
+        // live; one submitting thread.
         unsafe {
-            self.ctx
-                .device
-                .queue_submit2(self.ctx.compute.raw, &[submit], vk::Fence::null())
+            submit::end_and_submit(&self.ctx, queue, cmd, &waits, &signals, vk::Fence::null())
         }
-        .vk("vkQueueSubmit2")
     }
 
     /// Waits until the compute work of the frame two before `value` (the previous user of the

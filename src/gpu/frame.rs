@@ -17,6 +17,7 @@ use super::command::Recorder;
 use super::context::Context;
 use super::error::{GpuError, GpuResult, VkResultExt};
 use super::garbage::Garbage;
+use super::submit;
 
 /// Number of frames the CPU may record ahead of the GPU.
 pub const FRAMES_IN_FLIGHT: usize = 2;
@@ -160,20 +161,10 @@ impl Frames {
         self.ctx.collect_garbage()?;
         let s = &self.slots[slot];
         // SAFETY: the slot's previous submission has completed (waited above), so its pool
-        // and command buffer are no longer in use.
+        // and command buffers are idle; the reset puts them in the initial state.
         unsafe {
-            self.ctx
-                .device
-                .reset_command_pool(s.pool, vk::CommandPoolResetFlags::empty())
-                .vk("vkResetCommandPool")?;
-            let begin = vk::CommandBufferBeginInfo::default()
-                .flags(vk::CommandBufferUsageFlags::ONE_TIME_SUBMIT);
-            for &cmd in &s.cmds {
-                self.ctx
-                    .device
-                    .begin_command_buffer(cmd, &begin)
-                    .vk("vkBeginCommandBuffer")?;
-            }
+            submit::reset_pool(&self.ctx, s.pool)?;
+            submit::begin_one_time(&self.ctx, &s.cmds)?;
         }
         Ok(Frame {
             index,
@@ -189,17 +180,10 @@ impl Frames {
     /// submission, so a separate compute queue runs the simulation while this draws.
     pub fn submit_scene(&mut self, frame: &mut Frame) -> GpuResult<()> {
         let cmd = frame.cmds[Submission::Scene as usize];
-        // SAFETY: `cmd` is in the recording state (begun in `begin`, not yet ended).
-        unsafe { self.ctx.device.end_command_buffer(cmd) }.vk("vkEndCommandBuffer")?;
-        let cmd_infos = [vk::CommandBufferSubmitInfo::default().command_buffer(cmd)];
-        let submit = vk::SubmitInfo2::default().command_buffer_infos(&cmd_infos);
-        // SAFETY: the command buffer is executable; only this thread submits.
-        unsafe {
-            self.ctx
-                .device
-                .queue_submit2(self.ctx.graphics.raw, &[submit], vk::Fence::null())
-        }
-        .vk("vkQueueSubmit2")?;
+        let queue = self.ctx.graphics.raw;
+        // SAFETY: `cmd` is recording (begun in `begin`, not yet ended) graphics commands; only
+        // this thread submits.
+        unsafe { submit::end_and_submit(&self.ctx, queue, cmd, &[], &[], vk::Fence::null())? };
         frame.scene_submitted = true;
         Ok(())
     }
@@ -217,25 +201,24 @@ impl Frames {
             self.submit_scene(&mut frame)?;
         }
         let cmd = frame.cmds[Submission::Ocean as usize];
-        // SAFETY: `cmd` is in the recording state (begun in `begin`).
-        unsafe { self.ctx.device.end_command_buffer(cmd) }.vk("vkEndCommandBuffer")?;
         let mut all_signals = vec![vk::SemaphoreSubmitInfo::default()
             .semaphore(self.ctx.frame_timeline)
             .value(frame.signal_value())
             .stage_mask(vk::PipelineStageFlags2::ALL_COMMANDS)];
         all_signals.extend_from_slice(signals);
-        let cmd_infos = [vk::CommandBufferSubmitInfo::default().command_buffer(cmd)];
-        let submit = vk::SubmitInfo2::default()
-            .wait_semaphore_infos(waits)
-            .command_buffer_infos(&cmd_infos)
-            .signal_semaphore_infos(&all_signals);
-        // SAFETY: the command buffer is executable; semaphores are live; only this thread submits.
+        let queue = self.ctx.graphics.raw;
+        // SAFETY: `cmd` is recording (begun in `begin`) graphics commands; the semaphores are
+        // live; only this thread submits.
         unsafe {
-            self.ctx
-                .device
-                .queue_submit2(self.ctx.graphics.raw, &[submit], vk::Fence::null())
-        }
-        .vk("vkQueueSubmit2")?;
+            submit::end_and_submit(
+                &self.ctx,
+                queue,
+                cmd,
+                waits,
+                &all_signals,
+                vk::Fence::null(),
+            )?
+        };
         // Only a submitted frame counts: waits for its value can then complete.
         self.next = frame.index + 1;
         self.ctx.set_signaled_value(frame.value);

@@ -20,6 +20,7 @@ pub mod physical;
 pub mod pipeline;
 pub mod queues;
 pub mod selftest;
+mod submit;
 pub mod swapchain;
 pub mod timestamps;
 pub mod track;
@@ -40,6 +41,7 @@ pub use pipeline::{GraphicsDesc, Pipeline, PipelineLayout};
 pub use queues::{QueuePlan, QueueUsers};
 pub use swapchain::{PresentMode, Swapchain};
 pub use timestamps::{
-    DrawStatistics, FrameTimes, GpuTimings, Profiler, COMPUTE, GRAPHICS_OCEAN, GRAPHICS_SCENE,
+    DrawStatistics, FrameTimes, GpuTimings, Profiler, Profilers, COMPUTE, GRAPHICS_OCEAN,
+    GRAPHICS_SCENE,
 };
 pub use track::{ExternalImage, Handle, State, Tracked, Use};

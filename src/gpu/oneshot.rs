@@ -15,6 +15,7 @@ use super::command::Recorder;
 use super::context::{Context, Queue};
 use super::error::{GpuError, GpuResult, VkResultExt};
 use super::image::Image;
+use super::submit;
 use super::track::Use;
 
 /// Records commands with `record`, submits them and blocks until the GPU has finished.
@@ -50,10 +51,8 @@ pub fn run_once_on<R>(
         let cmd = unsafe { ctx.device.allocate_command_buffers(&alloc) }
             .vk("vkAllocateCommandBuffers")?[0];
         ctx.name(cmd, name);
-        let begin = vk::CommandBufferBeginInfo::default()
-            .flags(vk::CommandBufferUsageFlags::ONE_TIME_SUBMIT);
         // SAFETY: a freshly allocated command buffer.
-        unsafe { ctx.device.begin_command_buffer(cmd, &begin) }.vk("vkBeginCommandBuffer")?;
+        unsafe { submit::begin_one_time(ctx, &[cmd])? };
         let value = {
             let rec = Recorder::new(ctx, cmd);
             rec.begin_label(name);
@@ -61,8 +60,6 @@ pub fn run_once_on<R>(
             rec.end_label();
             value
         };
-        // SAFETY: recording began above.
-        unsafe { ctx.device.end_command_buffer(cmd) }.vk("vkEndCommandBuffer")?;
         // SAFETY: valid create info on a live device.
         let fence = unsafe {
             ctx.device
@@ -70,13 +67,9 @@ pub fn run_once_on<R>(
         }
         .vk("vkCreateFence")?;
         ctx.count_created(1);
-        let cmds = [vk::CommandBufferSubmitInfo::default().command_buffer(cmd)];
-        let submit = vk::SubmitInfo2::default()
-            .wait_semaphore_infos(waits)
-            .command_buffer_infos(&cmds);
-        // SAFETY: the command buffer is executable; the fence is unsignalled.
-        let submitted =
-            unsafe { ctx.device.queue_submit2(queue.raw, &[submit], fence) }.vk("vkQueueSubmit2");
+        // SAFETY: recording began above, on a pool of `queue`'s family; the fence is new and
+        // unsignalled; the sample submits from one thread.
+        let submitted = unsafe { submit::end_and_submit(ctx, queue.raw, cmd, waits, &[], fence) };
         // SAFETY: the fence was submitted (or the submit failed and it stays unsignalled, in which
         // case we do not wait on it).
         let waited = submitted.and_then(|()| {

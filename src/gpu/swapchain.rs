@@ -19,11 +19,14 @@ use super::frame::{Frames, FRAMES_IN_FLIGHT};
 /// Presents on a new swapchain after which a retired one is destroyed.
 const RETIRE_AFTER_PRESENTS: u64 = 8;
 
-/// Presentation mode requested on the command line.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+/// Presentation mode requested on the command line (`--present-mode`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
 pub enum PresentMode {
+    /// Wait for vertical blank (always available).
     Fifo,
+    /// Replace the queued image (no tearing, no waiting).
     Mailbox,
+    /// Present at once (may tear).
     Immediate,
 }
 

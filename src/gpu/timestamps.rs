@@ -422,3 +422,35 @@ impl Drop for Profiler {
         }
     }
 }
+
+/// The frame's two profilers, one per queue, each with its own query pools and recorded into
+/// its own queue's submissions: `graphics` (graphics 1 and 2) and `compute` (the simulation).
+pub struct Profilers {
+    pub graphics: Profiler,
+    pub compute: Profiler,
+}
+
+impl Profilers {
+    /// `draw_statistics`: as for [`Profiler::new`].
+    pub fn new(
+        ctx: &Arc<Context>,
+        warmup_frames: u64,
+        draw_statistics: bool,
+    ) -> GpuResult<Profilers> {
+        Ok(Profilers {
+            graphics: Profiler::new(ctx, warmup_frames, draw_statistics)?,
+            compute: Profiler::for_compute(ctx, warmup_frames)?,
+        })
+    }
+
+    /// [`Profiler::set_warmup`] on both.
+    pub fn set_warmup(&mut self, frames: u64) {
+        self.graphics.set_warmup(frames);
+        self.compute.set_warmup(frames);
+    }
+
+    /// [`Profiler::finish`] on both: (graphics, compute) timings.
+    pub fn finish(&mut self) -> GpuResult<(GpuTimings, GpuTimings)> {
+        Ok((self.graphics.finish()?, self.compute.finish()?))
+    }
+}

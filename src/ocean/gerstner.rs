@@ -53,10 +53,33 @@ pub fn default_waves() -> Vec<Wave> {
         .collect()
 }
 
-/// Parses a wave table: CSV lines `kx,kz,amplitude,phase[,steepness]` (blank lines, `#` comments
-/// and a header line are skipped), or with `toml` a list of `[[wave]]` tables with the keys
-/// `kx`, `kz`, `amplitude`, `phase` and optional `steepness` (default 1). Errors name the line.
-pub fn parse_waves(text: &str, toml: bool) -> Result<Vec<Wave>, String> {
+/// How a wave table file is written.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum TableFormat {
+    /// Lines `kx,kz,amplitude,phase[,steepness]`; blank lines, `#` comments and a header line
+    /// are skipped.
+    Csv,
+    /// A list of `[[wave]]` tables with the keys `kx`, `kz`, `amplitude`, `phase` and optional
+    /// `steepness` (default 1).
+    Toml,
+}
+
+impl TableFormat {
+    /// By the file's extension: `.toml` (any case) is TOML, anything else CSV.
+    pub fn of_path(path: &std::path::Path) -> TableFormat {
+        if path
+            .extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("toml"))
+        {
+            TableFormat::Toml
+        } else {
+            TableFormat::Csv
+        }
+    }
+}
+
+/// Parses a wave table written in `format`. Errors name the line.
+pub fn parse_waves(text: &str, format: TableFormat) -> Result<Vec<Wave>, String> {
     let number = |v: &str, line: usize| -> Result<f64, String> {
         let x: f64 = v
             .trim()
@@ -82,7 +105,7 @@ pub fn parse_waves(text: &str, toml: bool) -> Result<Vec<Wave>, String> {
         Ok(w)
     };
     let mut waves = Vec::new();
-    if toml {
+    if format == TableFormat::Toml {
         waves = parse_toml_waves(text, check)?;
     } else {
         for (i, raw) in text.lines().enumerate() {
@@ -272,49 +295,49 @@ mod tests {
     #[test]
     fn wave_tables_parse_and_errors_name_the_line() {
         let csv = "kx,kz,amplitude,phase\n# comment\n0.3,-0.46,0.2,0\n0.1, 0.2, 0.5, 1.0, 0.5\n";
-        let w = parse_waves(csv, false).unwrap();
+        let w = parse_waves(csv, TableFormat::Csv).unwrap();
         assert_eq!(w.len(), 2);
         assert_eq!((w[1].kz, w[1].steepness), (0.2, 0.5));
         let toml = "[[wave]]\nkx = 0.3\nkz = -0.46\namplitude = 0.2\nphase = 0\n\n[[wave]]\nkx=1\nkz=0\namplitude=0.1\nphase=0.5\nsteepness=0\n";
-        let t = parse_waves(toml, true).unwrap();
+        let t = parse_waves(toml, TableFormat::Toml).unwrap();
         assert_eq!(t.len(), 2);
         assert_eq!((t[0].steepness, t[1].steepness), (1.0, 0.0));
-        assert!(parse_waves("1,2,3\n", false)
+        assert!(parse_waves("1,2,3\n", TableFormat::Csv)
             .unwrap_err()
             .contains("line 1"));
-        assert!(parse_waves("1,2,x,4\n", false)
+        assert!(parse_waves("1,2,x,4\n", TableFormat::Csv)
             .unwrap_err()
             .contains("line 1"));
-        assert!(parse_waves("0,0,1,0\n", false)
+        assert!(parse_waves("0,0,1,0\n", TableFormat::Csv)
             .unwrap_err()
             .contains("zero"));
-        assert!(parse_waves("[[wave]]\nkx=1\n", true)
+        assert!(parse_waves("[[wave]]\nkx=1\n", TableFormat::Toml)
             .unwrap_err()
             .contains("the [[wave]] at line 1 lacks kz"));
         // toml_edit's own errors, on one line, with the reason.
-        let duplicate = parse_waves("[[wave]]\nkx = 1\nkx = 2\n", true).unwrap_err();
+        let duplicate = parse_waves("[[wave]]\nkx = 1\nkx = 2\n", TableFormat::Toml).unwrap_err();
         assert!(
             duplicate.starts_with("line 3, column 1: ") && duplicate.contains("duplicate key"),
             "{duplicate}"
         );
         let unknown = "[[wave]]\nkx = 1\nkz = 0\namplitude = 1\nphase = 0\nspeed = 3\n";
         assert_eq!(
-            parse_waves(unknown, true).unwrap_err(),
+            parse_waves(unknown, TableFormat::Toml).unwrap_err(),
             "line 6: unknown key 'speed'"
         );
         assert_eq!(
-            parse_waves("[[wave]]\nkx = \"1\"\n", true).unwrap_err(),
+            parse_waves("[[wave]]\nkx = \"1\"\n", TableFormat::Toml).unwrap_err(),
             "line 2: 'kx' must be a number"
         );
         assert_eq!(
-            parse_waves("[[wave]]\nkx = inf\n", true).unwrap_err(),
+            parse_waves("[[wave]]\nkx = inf\n", TableFormat::Toml).unwrap_err(),
             "line 2: 'kx' is not finite"
         );
         assert_eq!(
-            parse_waves("waves = 3\n", true).unwrap_err(),
+            parse_waves("waves = 3\n", TableFormat::Toml).unwrap_err(),
             "line 1: unknown key 'waves' (expected [[wave]] tables)"
         );
-        assert!(parse_waves("", false).is_err());
+        assert!(parse_waves("", TableFormat::Csv).is_err());
     }
 
     #[test]

@@ -2,6 +2,7 @@
 //! ([`cpu`]), and analytic Gerstner waves ([`gerstner`]).
 
 pub mod cpu;
+pub mod dump;
 pub mod fft;
 pub mod gerstner;
 pub mod params;

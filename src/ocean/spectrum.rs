@@ -36,8 +36,9 @@ use std::f64::consts::PI;
 /// Gravitational acceleration (m/s²).
 pub const G: f64 = 9.81;
 
-/// Which spectrum shapes the sea.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+/// Which spectrum shapes the sea (`--spectrum`; the variants' doc comments are `--help`'s
+/// descriptions of the values).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
 pub enum SpectrumKind {
     /// Tessendorf's graphics spectrum (2001), from wind speed and direction only.
     Phillips,

@@ -28,16 +28,18 @@
 
 use ash::vk;
 
-use super::renderer::{OutputTarget, Renderer};
+use super::passes::TexturesViewPass;
+use super::renderer::{OutputTarget, Renderer, SUN_SCALE};
 use super::targets::ColourDepth;
 use super::uniforms::ViewIndex;
-use super::{FrameInputs, ViewMode};
+use super::FrameInputs;
 use crate::gpu::selftest::SyncHazard;
 use crate::gpu::{
-    Buffer, Context, Frames, GpuResult, Load, Profiler, Recorder, Rendering, Submission, Target,
+    Buffer, Context, Frames, GpuResult, Load, Profilers, Recorder, Rendering, Submission, Target,
     Use, GRAPHICS_OCEAN, GRAPHICS_SCENE,
 };
 use crate::ocean::simulation::Simulation;
+use crate::pass_names as names;
 
 /// The linear refraction texture where nothing lies under the water: the deep water colour.
 const DEEP_WATER: [f32; 4] = {
@@ -82,8 +84,7 @@ pub struct FrameParts<'a> {
     pub frames: &'a mut Frames,
     pub renderer: &'a mut Renderer,
     pub simulation: &'a mut Simulation,
-    pub profiler: &'a mut Profiler,
-    pub compute_profiler: &'a mut Profiler,
+    pub profilers: &'a mut Profilers,
 }
 
 /// Records and submits frame `frames.next`: the three submissions of the diagram above.
@@ -102,13 +103,16 @@ pub fn record_frame(
         frames,
         renderer: r,
         simulation,
-        profiler,
-        compute_profiler,
+        profilers,
     } = parts;
+    let Profilers {
+        graphics: profiler,
+        compute: compute_profiler,
+    } = profilers;
     debug_assert_eq!(output.extent, r.extent());
     let mut frame = frames.begin()?;
     let value = frame.signal_value();
-    let camera = r.camera.position;
+    let camera = r.camera().position;
     simulation.place_window([camera.x as f64, camera.z as f64]);
     let inputs = &FrameInputs {
         ocean_origin_m: simulation.origin_m(),
@@ -127,14 +131,15 @@ pub fn record_frame(
             // Dropped now; the deletion queue keeps it alive until this frame is done.
         }
         let set = r.write_uniforms(frame.slot, output, inputs);
-        if r.sky_cube.is_stale(r.sun_dir, r.sun_scale) {
-            let (cube, sun, scale) = (&mut r.sky_cube, r.sun_dir, r.sun_scale);
-            profiler.pass(&rec, "sky cube", || cube.update(&rec, sun, scale));
+        let sun = r.settings.sun_dir;
+        if r.sky_cube.is_stale(sun, SUN_SCALE) {
+            let cube = &mut r.sky_cube;
+            profiler.pass(&rec, names::SKY_CUBE, || cube.update(&rec, sun, SUN_SCALE));
         }
         let t = &r.targets;
         // Each pass: its rendering scope's barriers, then its timestamps around the drawing.
         let scope = drawn_anew(&rec, &t.reflection, Load::DontCare);
-        profiler.pass(&rec, "reflection", || {
+        profiler.pass(&rec, names::REFLECTION, || {
             // The sky, last, writes every pixel the terrain left.
             scope.record(|| {
                 r.terrain.record(&rec, set, ViewIndex::Reflection);
@@ -147,14 +152,14 @@ pub fn record_frame(
             },
         });
         let scope = drawn_anew(&rec, &t.refraction, deep);
-        profiler.pass(&rec, "refraction", || {
+        profiler.pass(&rec, names::REFRACTION, || {
             scope.record(|| r.terrain.record(&rec, set, ViewIndex::Refraction))
         });
         // Scene, water and sky are three rendering scopes, so each pass's timestamps cover its
         // own rasterisation (a CPU driver may defer drawing to the end of a scope). The sky goes
         // last and fills only what terrain and water left: no covered pixel is shaded twice.
         let scope = drawn_anew(&rec, &t.main, Load::DontCare);
-        profiler.pass(&rec, "scene", || {
+        profiler.pass(&rec, names::SCENE, || {
             scope.record(|| r.terrain.record(&rec, set, ViewIndex::Main))
         });
         profiler.pause(&rec);
@@ -199,31 +204,27 @@ pub fn record_frame(
             &t.refraction.colour,
             &t.refraction.depth,
         ];
-        let wireframe = r.settings.view == ViewMode::Wireframe;
         let main = [keep(&t.main.colour)];
         let scope = rec.rendering(&main, Some(keep(&t.main.depth)), &textures);
-        profiler.begin_pass(&rec, "water");
+        profiler.begin_pass(&rec, names::WATER);
         scope.record(|| {
             // Patches, tessellation-evaluation invocations, triangles and fragments.
-            profiler.statistics(&rec, || r.water.record(&rec, set, wireframe));
+            profiler.statistics(&rec, || r.water.record(&rec, set, r.settings.view));
         });
         profiler.end_pass(&rec);
         let scope = rec.rendering(&main, Some(keep(&t.main.depth)), &[]);
-        profiler.pass(&rec, "sky", || {
+        profiler.pass(&rec, names::SKY, || {
             scope.record(|| r.sky.record(&rec, set, ViewIndex::Main))
         });
-        if matches!(
-            r.settings.view,
-            ViewMode::Reflection | ViewMode::Refraction | ViewMode::Dudv
-        ) {
+        if TexturesViewPass::shows(r.settings.view) {
             let over = [Target::new(&t.main.colour, Load::DontCare)];
             let scope = rec.rendering(&over, None, &textures);
-            profiler.pass(&rec, "textures view", || {
-                scope.record(|| r.water.record_textures_view(&rec, set))
+            profiler.pass(&rec, names::TEXTURES_VIEW, || {
+                scope.record(|| r.textures_view.record(&rec, set, r.water.textures()))
             });
         }
-        profiler.pass(&rec, "output", || {
-            super::passes::output::record(&rec, &t.main.colour, output, r.blit_linear)
+        profiler.pass(&rec, names::OUTPUT, || {
+            super::passes::output::record(&rec, &t.main.colour, output, r.scale_filter)
         });
         if let Some(buffer) = delivery.readback {
             record_readback(&rec, output, buffer);

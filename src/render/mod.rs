@@ -20,39 +20,41 @@ pub use frame::{record_frame, Delivery, FrameParts, SwapchainSync, ACQUIRE_WAIT_
 pub use renderer::{OutputTarget, Renderer};
 pub use uniforms::{FrameInputs, FrameUniforms, OceanBindings, SceneLayout};
 
-/// `--view`: the final picture, or one intermediate full screen.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+/// `--view`: the final picture, or one intermediate full screen. (The variants' doc comments are
+/// `--help`'s descriptions of the values.)
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, clap::ValueEnum)]
 #[repr(u32)]
 pub enum ViewMode {
+    /// The final picture.
     #[default]
-    Final = shared::VIEW_FINAL as u32,
+    Final = shared::VIEW_FINAL,
     /// The reflection texture.
-    Reflection = shared::VIEW_REFLECTION as u32,
+    Reflection = shared::VIEW_REFLECTION,
     /// The refraction texture.
-    Refraction = shared::VIEW_REFRACTION as u32,
-    /// The DU/DV map, tiled.
-    Dudv = shared::VIEW_DUDV as u32,
+    Refraction = shared::VIEW_REFRACTION,
     /// The ocean coloured by its displacement (x, y, z → r, b, g around grey).
-    Displacement = shared::VIEW_DISPLACEMENT as u32,
+    Displacement = shared::VIEW_DISPLACEMENT,
     /// The ocean coloured by its normal.
-    Normals = shared::VIEW_NORMALS as u32,
+    Normals = shared::VIEW_NORMALS,
     /// The ocean's foam coverage.
-    Foam = shared::VIEW_FOAM as u32,
+    Foam = shared::VIEW_FOAM,
+    /// The DU/DV map, tiled.
+    Dudv = shared::VIEW_DUDV,
     /// The tessellated ocean as lines over the scene.
-    Wireframe = shared::VIEW_WIREFRAME as u32,
+    Wireframe = shared::VIEW_WIREFRAME,
 }
 
 /// `--fresnel`: how the water weighs reflection against refraction.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, clap::ValueEnum)]
 #[repr(u32)]
 pub enum FresnelModel {
     /// Schlick's approximation, F0 = 0.02.
     #[default]
-    Schlick = 0,
+    Schlick = shared::FRESNEL_SCHLICK,
     /// The Fresnel equations for unpolarised light (seed 004 §2.5), n = 1.333.
-    Exact = 1,
+    Exact = shared::FRESNEL_EXACT,
     /// Seed 001 eq. 6: refraction weight cos θ^0.5.
-    Power = 2,
+    Power = shared::FRESNEL_POWER,
 }
 
 /// How the scene looks: everything the renderer takes from the command line.

@@ -7,11 +7,10 @@
 use std::sync::Arc;
 
 use ash::vk;
-use glam::Vec3;
 
 use super::camera::Camera;
 use super::passes::water::WaterSamplers;
-use super::passes::{SkyCube, SkyPass, TerrainPass, WaterPass};
+use super::passes::{SkyCube, SkyPass, TerrainPass, TexturesViewPass, WaterPass};
 use super::scene::{generate_dudv, load_dudv, DUDV_SIDE};
 use super::targets::Targets;
 use super::targets::{DEPTH_FORMAT, HDR_FORMAT};
@@ -78,14 +77,15 @@ fn check_formats(ctx: &Context, display: vk::Format, scaled: bool) -> GpuResult<
     ])
 }
 
+/// Radiance of the sun disc relative to the sky.
+pub const SUN_SCALE: f32 = 40.0;
+
+/// What the frame draws with: targets, frame uniforms, samplers, textures and passes. The
+/// settings are fixed at construction (`new` checks them against the device); the camera moves.
 pub struct Renderer {
     ctx: Arc<Context>,
-    pub camera: Camera,
-    /// Unit vector toward the sun.
-    pub sun_dir: Vec3,
-    /// Radiance of the sun disc relative to the sky.
-    pub sun_scale: f32,
-    pub settings: SceneSettings,
+    camera: Camera,
+    pub(super) settings: SceneSettings,
     pub(super) targets: Targets,
     /// Layout of the frame-uniform sets; kept alive with them.
     _frame_set_layout: DescriptorSetLayout,
@@ -104,8 +104,10 @@ pub struct Renderer {
     pub(super) sky: SkyPass,
     pub(super) terrain: TerrainPass,
     pub(super) water: WaterPass,
-    /// The main target's format filters linearly (a scaled output blit is bilinear).
-    pub(super) blit_linear: bool,
+    pub(super) textures_view: TexturesViewPass,
+    /// How the output pass scales the main target: linear where its format filters linearly
+    /// (optional in Vulkan), else nearest.
+    pub(super) scale_filter: vk::Filter,
 }
 
 impl Renderer {
@@ -119,6 +121,7 @@ impl Renderer {
         extent: vk::Extent2D,
         ocean: OceanBindings,
         settings: &SceneSettings,
+        camera: Camera,
     ) -> anyhow::Result<Renderer> {
         check_formats(ctx, output_format, settings.render_scale < 1.0)?;
         let targets = Targets::new(
@@ -269,6 +272,12 @@ impl Renderer {
             ocean.cascades,
             !ocean_linear,
         )?;
+        let textures_view = TexturesViewPass::new(
+            ctx,
+            &frame_set_layout,
+            water.textures(),
+            targets.display_format(),
+        )?;
         if settings.view == ViewMode::Wireframe && !water.has_wireframe() {
             anyhow::bail!(
                 "--view wireframe: {} cannot draw lines (no fillModeNonSolid)",
@@ -277,9 +286,7 @@ impl Renderer {
         }
         Ok(Renderer {
             ctx: ctx.clone(),
-            camera: Camera::default(),
-            sun_dir: settings.sun_dir,
-            sun_scale: 40.0,
+            camera,
             settings: settings.clone(),
             targets,
             _frame_set_layout: frame_set_layout,
@@ -296,8 +303,22 @@ impl Renderer {
             sky,
             terrain,
             water,
-            blit_linear: ctx.filters_linearly(output_format),
+            textures_view,
+            scale_filter: if ctx.filters_linearly(output_format) {
+                vk::Filter::LINEAR
+            } else {
+                vk::Filter::NEAREST
+            },
         })
+    }
+
+    pub fn camera(&self) -> &Camera {
+        &self.camera
+    }
+
+    /// The camera, to move (the fly camera, tests).
+    pub fn camera_mut(&mut self) -> &mut Camera {
+        &mut self.camera
     }
 
     /// Size of the output the renderer was made for.
@@ -342,15 +363,15 @@ impl Renderer {
         let uniforms = FrameUniforms::new(
             &self.camera,
             &FrameParams {
-                sun_dir: self.sun_dir,
-                sun_scale: self.sun_scale,
+                sun_dir: s.sun_dir,
+                sun_scale: SUN_SCALE,
                 time_s: inputs.time_s,
                 size: (extent.width, extent.height),
                 aspect: output.extent.width as f32 / output.extent.height.max(1) as f32,
                 ocean: &self.ocean,
                 inputs,
-                view_mode: s.view as u32,
-                fresnel: s.fresnel as u32,
+                view_mode: s.view,
+                fresnel: s.fresnel,
                 tess_edge_px: s.tess_edge_px,
                 scene: &s.layout,
                 background: s.background,

@@ -5,7 +5,7 @@
 use glam::{Mat4, Vec3, Vec4};
 
 use super::camera::Camera;
-use super::ViewMode;
+use super::{FresnelModel, ViewMode};
 
 /// Per-frame inputs.
 #[derive(Clone, Copy, Debug, Default)]
@@ -122,20 +122,17 @@ pub fn frame_views(camera: &Camera, aspect: f32, hidden_below_m: Option<f32>) ->
 #[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct FrameUniforms {
     pub views: [ViewUniforms; 3],
-    /// x: simulation time mod `spectrum::REPEAT_PERIOD_S` (s); y: water level (m); z: debug view
-    /// (`ViewMode` as f32); w: Fresnel model (`FresnelModel` as f32).
-    pub time: [f32; 4],
+    /// x: debug view (`ViewMode`, `VIEW_*`); y: Fresnel model (`FresnelModel`, `FRESNEL_*`);
+    /// z: 1 for a bounded ocean window (Gerstner), 0 for repeating cascades; w: 1 to paint the
+    /// solid test background instead of the sky.
+    pub modes: [u32; 4],
     /// xyz: unit vector toward the sun; w: sun radiance scale.
     pub sun_dir: [f32; 4],
     /// xy: main target size (px); zw: reciprocal.
     pub viewport: [f32; 4],
     /// Patch side of each ocean cascade (m).
     pub patch_m: [f32; 4],
-    /// x: number of cascades; y: 1 for a bounded window (Gerstner); zw: unused (the images'
-    /// origin is in `cascade_uv`).
-    pub ocean: [f32; 4],
-    /// x: focal length (px); y: target tessellated edge (px); z: max displacement (m); w: 1 to
-    /// paint the solid test background instead of the sky.
+    /// x: focal length (px); y: target tessellated edge (px); z: max displacement (m); w: unused.
     pub lod: [f32; 4],
     /// xy: island centre (m); z: sea floor depth (m); w: island radius (m).
     pub terrain: [f32; 4],
@@ -144,8 +141,8 @@ pub struct FrameUniforms {
     pub objects: [[f32; 4]; 4],
     /// xyz: solid background colour (`--view` tests); w: unused.
     pub background: [f32; 4],
-    /// xy: camera xz relative to the water grid's centre (m); z: the near plane (m,
-    /// `Camera::near_m`: depth = near / view distance); w: unused. (`WaterFrame`)
+    /// xy: camera xz relative to the water grid's centre (m, `WaterFrame`); z: the water level
+    /// (m); w: the near plane (m, `Camera::near_m`: depth = near / view distance).
     pub water: [f32; 4],
     /// Ocean image coordinates of the water grid's centre: cascade c in element c / 2, xy for
     /// even c, zw for odd c; reduced mod 1 for the repeating FFT cascades.
@@ -250,8 +247,8 @@ pub struct FrameParams<'a> {
     pub aspect: f32,
     pub ocean: &'a OceanBindings,
     pub inputs: &'a FrameInputs,
-    pub view_mode: u32,
-    pub fresnel: u32,
+    pub view_mode: ViewMode,
+    pub fresnel: FresnelModel,
     pub tess_edge_px: f32,
     pub scene: &'a SceneLayout,
     pub background: Option<[f32; 3]>,
@@ -269,29 +266,18 @@ impl FrameUniforms {
                 camera,
                 p.aspect,
                 // The wireframe view draws the water as lines: what lies under it shows.
-                (p.view_mode != ViewMode::Wireframe as u32).then_some(p.ocean.max_displacement_m),
+                (p.view_mode != ViewMode::Wireframe).then_some(p.ocean.max_displacement_m),
             ),
-            time: [
-                p.time_s.rem_euclid(crate::ocean::spectrum::REPEAT_PERIOD_S) as f32,
-                WATER_LEVEL_M,
-                p.view_mode as f32,
-                p.fresnel as f32,
+            modes: [
+                p.view_mode as u32,
+                p.fresnel as u32,
+                p.inputs.ocean_window.into(),
+                p.background.is_some().into(),
             ],
             sun_dir: p.sun_dir.normalize().extend(p.sun_scale).to_array(),
             viewport: Vec4::new(w, h, 1.0 / w, 1.0 / h).to_array(),
             patch_m: p.ocean.patch_m,
-            ocean: [
-                p.ocean.cascades as f32,
-                if p.inputs.ocean_window { 1.0 } else { 0.0 },
-                0.0,
-                0.0,
-            ],
-            lod: [
-                focal_px,
-                p.tess_edge_px,
-                p.ocean.max_displacement_m,
-                if p.background.is_some() { 1.0 } else { 0.0 },
-            ],
+            lod: [focal_px, p.tess_edge_px, p.ocean.max_displacement_m, 0.0],
             terrain: [
                 p.scene.island_xz[0],
                 p.scene.island_xz[1],
@@ -306,8 +292,8 @@ impl FrameUniforms {
             water: [
                 (camera.position.x as f64 - water.centre[0]) as f32,
                 (camera.position.z as f64 - water.centre[1]) as f32,
+                WATER_LEVEL_M,
                 camera.near_m,
-                0.0,
             ],
             cascade_uv: [0, 1].map(|half| {
                 let uv = |c: usize| {

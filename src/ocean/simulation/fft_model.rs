@@ -13,6 +13,7 @@ use crate::gpu::{Buffer, Context, DescriptorPool, MemoryLocation, Recorder, Trac
 use crate::ocean::fft::{Direction, GpuFft};
 use crate::ocean::params::OceanSettings;
 use crate::ocean::spectrum::{h0, omega_steps_grid, time_ticks, Cascade};
+use crate::pass_names as names;
 use crate::shaders;
 
 #[repr(C)]
@@ -64,14 +65,14 @@ impl FftModel {
         let storage = vk::DescriptorType::STORAGE_BUFFER;
         let evolve = Kernel::new(
             ctx,
-            "ocean evolve",
+            names::OCEAN_EVOLVE,
             shaders::OCEAN_EVOLVE_COMP,
             &[storage, storage, storage],
             std::mem::size_of::<EvolveParams>(),
         )?;
         let assemble = Kernel::image_writer(
             ctx,
-            "ocean assemble",
+            names::OCEAN_ASSEMBLE,
             shaders::OCEAN_ASSEMBLE_COMP,
             std::mem::size_of::<AssembleParams>(),
         )?;
@@ -91,7 +92,7 @@ impl FftModel {
         );
         let data = fft.data.raw;
         let assemble_sets =
-            assemble.slot_sets(ctx, pool, "ocean assemble", |_| data, image_writes)?;
+            assemble.slot_sets(ctx, pool, names::OCEAN_ASSEMBLE, |_| data, image_writes)?;
         let model = FftModel {
             h0: h0_buffer,
             omega_steps: steps_buffer,
@@ -182,7 +183,7 @@ impl WaveModel for FftModel {
             n: f.n,
         };
         let (evolve, assemble) = (&self.evolve, &self.assemble);
-        scope(timer, rec, "ocean evolve", || {
+        scope(timer, rec, names::OCEAN_EVOLVE, || {
             // h(k, t) from h0 into the FFT data (the previous frame's FFT and assemble used it).
             rec.uses(&[
                 (&self.h0, Use::ComputeRead),
@@ -194,10 +195,10 @@ impl WaveModel for FftModel {
             rec.push_constants(&evolve.layout, &evolve_params);
             rec.dispatch(groups, groups, f.layers);
         });
-        scope(timer, rec, "ocean fft", || {
+        scope(timer, rec, names::OCEAN_FFT, || {
             self.fft.record(rec, Direction::Inverse)
         });
-        scope(timer, rec, "ocean assemble", || {
+        scope(timer, rec, names::OCEAN_ASSEMBLE, || {
             let mut uses = images.to_vec();
             uses.push((&self.fft.data, Use::ComputeRead));
             rec.uses(&uses);

@@ -10,6 +10,7 @@ use super::{scope, Kernel, ModelFrame, Timer, WaveModel, FOAM_DECAY_S, FOAM_GAIN
 use crate::gpu::descriptors::Write;
 use crate::gpu::{Buffer, Context, DescriptorPool, MemoryLocation, Recorder, Tracked, Use};
 use crate::ocean::gerstner::{Wave, G_SEED};
+use crate::pass_names as names;
 use crate::shaders;
 
 /// One wave as gerstner.comp reads it.
@@ -54,7 +55,7 @@ impl GerstnerModel {
         anyhow::ensure!(!waves.is_empty(), "Gerstner mode needs at least one wave");
         let kernel = Kernel::image_writer(
             ctx,
-            "ocean gerstner",
+            names::OCEAN_GERSTNER,
             shaders::OCEAN_GERSTNER_COMP,
             std::mem::size_of::<GerstnerParams>(),
         )?;
@@ -72,7 +73,7 @@ impl GerstnerModel {
         let sets = kernel.slot_sets(
             ctx,
             pool,
-            "ocean gerstner",
+            names::OCEAN_GERSTNER,
             |slot| buffers[slot].raw,
             image_writes,
         )?;
@@ -130,7 +131,7 @@ impl WaveModel for GerstnerModel {
             count: self.waves.len() as u32,
         };
         let kernel = &self.kernel;
-        scope(timer, rec, "ocean gerstner", || {
+        scope(timer, rec, names::OCEAN_GERSTNER, || {
             rec.uses(images);
             rec.bind_pipeline(&kernel.pipeline);
             rec.bind_sets(&kernel.pipeline, &kernel.layout, &[self.sets[f.slot]]);

@@ -5,11 +5,13 @@
 //! sky cube) and a push constant picking the view (`ViewIndex`). They draw linear HDR radiance
 //! into the reflection and refraction textures and tone-mapped display colour into the main
 //! target ([`SceneTarget`], shaders/common/display.glsl), so terrain and sky have a pipeline for
-//! each. `output` puts the main target into the output image.
+//! each. `textures_view` shows a texture full screen (`--view`); `output` puts the main target
+//! into the output image.
 
 pub mod output;
 pub mod sky;
 pub mod terrain;
+pub mod textures_view;
 pub mod water;
 
 use std::sync::Arc;
@@ -18,6 +20,7 @@ use ash::vk;
 
 pub use sky::{SkyCube, SkyPass};
 pub use terrain::TerrainPass;
+pub use textures_view::TexturesViewPass;
 pub use water::WaterPass;
 
 use crate::gpu::{

@@ -15,18 +15,17 @@ use crate::gpu::{Image, Recorder, Use};
 use crate::render::OutputTarget;
 
 /// Records the copy or blit of `main` (the main colour, last written as a colour attachment)
-/// into `output`. Outside any rendering scope. `linear`: the main target's format supports
-/// linear filtering (optional in Vulkan), so a scaling blit is bilinear.
-pub fn record(rec: &Recorder, main: &Image, output: &OutputTarget, linear: bool) {
+/// into `output`. Outside any rendering scope. A blit that scales filters with `scale_filter`.
+pub fn record(rec: &Recorder, main: &Image, output: &OutputTarget, scale_filter: vk::Filter) {
     rec.uses(&[(main, Use::TransferSrc), (output.image, Use::TransferDst)]);
     let raw = output.raw();
     if main.extent == output.extent && main.format == output.format {
         rec.copy_image(main.raw, raw, output.extent);
     } else {
-        let filter = if main.extent == output.extent || !linear {
+        let filter = if main.extent == output.extent {
             vk::Filter::NEAREST
         } else {
-            vk::Filter::LINEAR
+            scale_filter
         };
         rec.blit_image((main.raw, main.extent), (raw, output.extent), filter);
     }

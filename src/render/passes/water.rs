@@ -2,9 +2,8 @@
 //! layout in shaders/common/water.glsl). The control shader picks each edge's level from its
 //! screen size and culls patches outside the frustum; the evaluation shader displaces the
 //! vertices by the simulation's images; the fragment shader shades with the reflection and
-//! refraction textures (set 1, rewritten on resize), the DU/DV map and the sky cube. The same
-//! set feeds the texture debug views (`--view reflection|refraction|dudv`,
-//! shaders/post/textures.frag), drawn over the whole main target.
+//! refraction textures (set 1, [`WaterTextures`], rewritten on resize), the DU/DV map and the
+//! sky cube. The same set feeds the texture debug views (`textures_view.rs`).
 
 use std::sync::Arc;
 
@@ -18,6 +17,7 @@ use crate::gpu::{
 };
 use crate::render::targets::Targets;
 use crate::render::uniforms::ViewIndex;
+use crate::render::ViewMode;
 use crate::shaders;
 
 /// Patches per side (shared with water.vert).
@@ -33,17 +33,88 @@ pub struct WaterSamplers {
     pub repeat: vk::Sampler,
 }
 
-pub struct WaterPass {
+/// The water's textures (set 1 of the water and of the textures view): reflection colour,
+/// refraction colour and depth, the DU/DV map.
+pub struct WaterTextures {
     ctx: Arc<Context>,
-    _set_layout: DescriptorSetLayout,
+    pub layout: DescriptorSetLayout,
+    _pool: DescriptorPool,
+    pub set: vk::DescriptorSet,
+}
+
+impl WaterTextures {
+    pub fn new(
+        ctx: &Arc<Context>,
+        targets: &Targets,
+        dudv: vk::ImageView,
+        samplers: &WaterSamplers,
+    ) -> GpuResult<WaterTextures> {
+        let sampled = vk::DescriptorType::COMBINED_IMAGE_SAMPLER;
+        let fragment = vk::ShaderStageFlags::FRAGMENT;
+        let layout = DescriptorSetLayout::new(
+            ctx,
+            "water textures layout",
+            &[
+                (0, sampled, fragment),
+                (1, sampled, fragment),
+                (2, sampled, fragment),
+                (3, sampled, fragment),
+            ],
+        )?;
+        let pool = DescriptorPool::new(ctx, "water descriptors", 1, &[(sampled, 4)])?;
+        let set = pool.allocate(&layout, "water textures set")?;
+        let textures = WaterTextures {
+            ctx: ctx.clone(),
+            layout,
+            _pool: pool,
+            set,
+        };
+        textures.resize(targets, dudv, samplers);
+        Ok(textures)
+    }
+
+    /// Points the set at new targets. The caller makes sure no frame in flight uses the set.
+    pub fn resize(&self, targets: &Targets, dudv: vk::ImageView, samplers: &WaterSamplers) {
+        let read = vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL;
+        descriptors::update(
+            &self.ctx,
+            self.set,
+            &[
+                Write::SampledImage {
+                    binding: 0,
+                    view: targets.reflection.colour.view,
+                    sampler: samplers.clamp,
+                    layout: read,
+                },
+                Write::SampledImage {
+                    binding: 1,
+                    view: targets.refraction.colour.view,
+                    sampler: samplers.clamp,
+                    layout: read,
+                },
+                Write::SampledImage {
+                    binding: 2,
+                    view: targets.refraction.depth.view,
+                    sampler: samplers.depth,
+                    layout: read,
+                },
+                Write::SampledImage {
+                    binding: 3,
+                    view: dudv,
+                    sampler: samplers.repeat,
+                    layout: read,
+                },
+            ],
+        );
+    }
+}
+
+pub struct WaterPass {
     layout: PipelineLayout,
     fill: Pipeline,
     /// Line rendering (`--view wireframe`), when the device has fillModeNonSolid.
     wireframe: Option<Pipeline>,
-    /// A texture of the set over the whole main target (debug views).
-    textures_view: Pipeline,
-    _pool: DescriptorPool,
-    set: vk::DescriptorSet,
+    textures: WaterTextures,
 }
 
 impl WaterPass {
@@ -61,19 +132,8 @@ impl WaterPass {
         manual_filter: bool,
     ) -> GpuResult<WaterPass> {
         let target = SceneTarget::Display(targets.display_format());
-        let sampled = vk::DescriptorType::COMBINED_IMAGE_SAMPLER;
-        let fragment = vk::ShaderStageFlags::FRAGMENT;
-        let set_layout = DescriptorSetLayout::new(
-            ctx,
-            "water textures layout",
-            &[
-                (0, sampled, fragment),
-                (1, sampled, fragment),
-                (2, sampled, fragment),
-                (3, sampled, fragment),
-            ],
-        )?;
-        let layout = scene_layout(ctx, "water layout", frame_layout, &[&set_layout])?;
+        let textures = WaterTextures::new(ctx, targets, dudv, samplers)?;
+        let layout = scene_layout(ctx, "water layout", frame_layout, &[&textures.layout])?;
         let stages = [
             (vk::ShaderStageFlags::VERTEX, shaders::SURFACE_WATER_VERT),
             (
@@ -109,72 +169,22 @@ impl WaterPass {
         } else {
             None
         };
-        let textures_view = scene_pipeline(
-            ctx,
-            &layout,
-            GraphicsDesc {
-                name: "water textures view",
-                stages: &[
-                    (
-                        vk::ShaderStageFlags::VERTEX,
-                        shaders::COMMON_FULLSCREEN_VERT,
-                    ),
-                    (vk::ShaderStageFlags::FRAGMENT, shaders::POST_TEXTURES_FRAG),
-                ],
-                ..Default::default()
-            },
-            Depth::None,
-            target,
-        )?;
-        let pool = DescriptorPool::new(ctx, "water descriptors", 1, &[(sampled, 4)])?;
-        let set = pool.allocate(&set_layout, "water textures set")?;
-        let pass = WaterPass {
-            ctx: ctx.clone(),
-            _set_layout: set_layout,
+        Ok(WaterPass {
             layout,
             fill,
             wireframe,
-            textures_view,
-            _pool: pool,
-            set,
-        };
-        pass.resize(targets, dudv, samplers);
-        Ok(pass)
+            textures,
+        })
+    }
+
+    /// The reflection, refraction and DU/DV textures the water samples.
+    pub fn textures(&self) -> &WaterTextures {
+        &self.textures
     }
 
     /// Points the pass at new targets. The caller makes sure no frame in flight uses the set.
     pub fn resize(&self, targets: &Targets, dudv: vk::ImageView, samplers: &WaterSamplers) {
-        let read = vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL;
-        descriptors::update(
-            &self.ctx,
-            self.set,
-            &[
-                Write::SampledImage {
-                    binding: 0,
-                    view: targets.reflection.colour.view,
-                    sampler: samplers.clamp,
-                    layout: read,
-                },
-                Write::SampledImage {
-                    binding: 1,
-                    view: targets.refraction.colour.view,
-                    sampler: samplers.clamp,
-                    layout: read,
-                },
-                Write::SampledImage {
-                    binding: 2,
-                    view: targets.refraction.depth.view,
-                    sampler: samplers.depth,
-                    layout: read,
-                },
-                Write::SampledImage {
-                    binding: 3,
-                    view: dudv,
-                    sampler: samplers.repeat,
-                    layout: read,
-                },
-            ],
-        );
+        self.textures.resize(targets, dudv, samplers);
     }
 
     /// Whether `--view wireframe` can draw lines on this device.
@@ -182,33 +192,21 @@ impl WaterPass {
         self.wireframe.is_some()
     }
 
-    /// Draws the ocean patches inside the main rendering scope.
-    pub fn record(&self, rec: &Recorder, frame_set: vk::DescriptorSet, wireframe: bool) {
-        let pipeline = match (&self.wireframe, wireframe) {
-            (Some(lines), true) => lines,
+    /// Draws the ocean patches inside the main rendering scope: as lines for
+    /// `ViewMode::Wireframe` (where the device draws lines), filled otherwise.
+    pub fn record(&self, rec: &Recorder, frame_set: vk::DescriptorSet, view: ViewMode) {
+        let pipeline = match (&self.wireframe, view) {
+            (Some(lines), ViewMode::Wireframe) => lines,
             _ => &self.fill,
         };
         bind_scene(
             rec,
             pipeline,
             &self.layout,
-            &[frame_set, self.set],
+            &[frame_set, self.textures.set],
             ViewIndex::Main,
         );
         // One instance per row of patches (see water.vert).
         rec.draw(PATCHES * 4, PATCHES);
-    }
-
-    /// Draws `--view reflection|refraction|dudv` over the whole main target, inside a rendering
-    /// scope with the main colour attachment only.
-    pub fn record_textures_view(&self, rec: &Recorder, frame_set: vk::DescriptorSet) {
-        bind_scene(
-            rec,
-            &self.textures_view,
-            &self.layout,
-            &[frame_set, self.set],
-            ViewIndex::Main,
-        );
-        rec.draw(3, 1);
     }
 }

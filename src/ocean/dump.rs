@@ -1,0 +1,93 @@
+//! `--dump DIR`: a frame's simulation as files for outside tools (numpy, tools/plot):
+//! h0.npy (complex64, K×N×N; FFT model only), displacement.npy and normals.npy (float32,
+//! K×N×N×4) and params.json, which says what they hold and how they were made.
+
+use std::sync::Arc;
+
+use serde_json::{json, Value};
+
+use super::gerstner;
+use super::simulation::{Simulation, FOAM_DECAY_S, FOAM_GAIN, FOAM_THRESHOLD};
+use super::spectrum::{self, G};
+use super::stats::npy;
+use crate::gpu::Context;
+
+/// The files of slot `slot` (its frame done on the GPU), at simulation time `t`: (name, bytes).
+pub fn files(
+    sim: &Simulation,
+    ctx: &Arc<Context>,
+    slot: usize,
+    t: f64,
+) -> anyhow::Result<Vec<(&'static str, Vec<u8>)>> {
+    let (n, k) = (sim.settings.fft_size, sim.cascades.len());
+    let (displacement, normals) = sim.read_back(ctx, slot)?;
+    let h0 = sim.download_h0(ctx)?;
+    let mut files = Vec::new();
+    if let Some(h0) = h0 {
+        files.push(("h0.npy", npy("<c8", &[k, n, n], &h0)));
+    }
+    files.push((
+        "displacement.npy",
+        npy("<f4", &[k, n, n, 4], bytemuck::cast_slice(&displacement)),
+    ));
+    files.push((
+        "normals.npy",
+        npy("<f4", &[k, n, n, 4], bytemuck::cast_slice(&normals)),
+    ));
+    let params = params(sim, t);
+    files.push((
+        "params.json",
+        (serde_json::to_string_pretty(&params)? + "\n").into_bytes(),
+    ));
+    Ok(files)
+}
+
+/// params.json: the settings, the cascades' layout and what the arrays' indices mean.
+pub fn params(sim: &Simulation, t: f64) -> Value {
+    let s = &sim.settings;
+    let common = json!({
+        "t": t,
+        "spectrum": s.sea.spectrum.name(),
+        "wind_speed_m_s": s.sea.wind_speed_m_s,
+        "wind_dir_deg": s.sea.wind_dir_deg,
+        "fetch_km": s.sea.fetch_km,
+        "depth_m": s.sea.depth_m,
+        "fft_size": s.fft_size,
+        "cascades": sim.cascades.len(),
+        "patch_sizes_m": sim.cascades.iter().map(|c| c.patch_m).collect::<Vec<_>>(),
+        "k_bands_rad_m": sim.cascades.iter().map(|c| [c.k_min, if c.k_max.is_finite() { c.k_max } else { f64::MAX }]).collect::<Vec<_>>(),
+        "choppiness": s.choppiness,
+        "seed": s.seed,
+        // The surface repeats exactly with this period: every ω is a whole multiple of the
+        // quantum (spectrum::REPEAT_PERIOD_S).
+        "repeat_period_s": spectrum::REPEAT_PERIOD_S,
+        "omega_quantum_rad_s": spectrum::omega_quantum(),
+        "foam": {
+            "threshold": FOAM_THRESHOLD,
+            "decay_s": FOAM_DECAY_S,
+            "gain": FOAM_GAIN,
+        },
+    });
+    let model = match sim.gerstner_waves() {
+        None => json!({
+            "waves": "fft",
+            "g": G,
+            "layout": "h0[c, m, n] has k = (2π(n − N/2), 2π(m − N/2)) / L_c; displacement and normals [c, m, n] are at x = n·L_c/N, z = m·L_c/N",
+        }),
+        Some(waves) => json!({
+            "waves": "gerstner",
+            "g": gerstner::G_SEED,
+            "origin_m": sim.origin_m(),
+            "waves_table": waves
+                .iter()
+                .map(|w| json!({"kx": w.kx, "kz": w.kz, "amplitude": w.amplitude, "phase": w.phase, "steepness": w.steepness}))
+                .collect::<Vec<_>>(),
+            "layout": "displacement and normals [0, m, n] are at (α, β) = origin_m + (n, m)·window/N; displacement = (x − α, y, z − β, 0)",
+        }),
+    };
+    let mut out = common;
+    for (key, value) in model.as_object().into_iter().flatten() {
+        out[key] = value.clone();
+    }
+    out
+}

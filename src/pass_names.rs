@@ -1,0 +1,42 @@
+//! The names of the frame's passes, defined once: `--profile` and `bench frames` report GPU
+//! times under them, debug labels (RenderDoc, validation messages) carry them, and the tests
+//! match on them. `FFT_FRAME` and `GERSTNER_FRAME` give the order a frame runs them in
+//! (`render::record_frame`).
+
+/// The sky cubemap, rendered again when the sun changes (first frames only).
+pub const SKY_CUBE: &str = "sky cube";
+/// The mirrored scene above the water, into the reflection texture.
+pub const REFLECTION: &str = "reflection";
+/// The scene below the water, into the refraction texture.
+pub const REFRACTION: &str = "refraction";
+/// The terrain and objects into the main target.
+pub const SCENE: &str = "scene";
+/// The tessellated ocean into the main target.
+pub const WATER: &str = "water";
+/// The sky into what the scene and the water left.
+pub const SKY: &str = "sky";
+/// `--view reflection|refraction|dudv`: a texture over the whole main target.
+pub const TEXTURES_VIEW: &str = "textures view";
+/// The main target copied or scaled into the output.
+pub const OUTPUT: &str = "output";
+/// FFT model: the spectrum h0 evolved to this frame's time.
+pub const OCEAN_EVOLVE: &str = "ocean evolve";
+/// FFT model: the inverse FFTs of every cascade.
+pub const OCEAN_FFT: &str = "ocean fft";
+/// FFT model: the FFT output written into the displacement and normal images.
+pub const OCEAN_ASSEMBLE: &str = "ocean assemble";
+/// Gerstner model: the wave sum written into the displacement and normal images.
+pub const OCEAN_GERSTNER: &str = "ocean gerstner";
+
+/// The passes of an FFT frame in the order they run (after the first frames, with the final view).
+pub const FFT_FRAME: [&str; 9] = [
+    OCEAN_EVOLVE,
+    OCEAN_FFT,
+    OCEAN_ASSEMBLE,
+    REFLECTION,
+    REFRACTION,
+    SCENE,
+    WATER,
+    SKY,
+    OUTPUT,
+];
