@@ -1,7 +1,7 @@
 //! The names of the frame's passes, defined once: `--profile` and `bench frames` report GPU
 //! times under them, debug labels (RenderDoc, validation messages) carry them, and the tests
-//! match on them. `FFT_FRAME` and `GERSTNER_FRAME` give the order a frame runs them in
-//! (`render::record_frame`).
+//! match on them. `FFT_FRAME` lists an FFT frame's passes in the order `--profile` reports them
+//! (compute first, then graphics; `render::record_frame` submits graphics 1 before the compute).
 
 /// The sky cubemap, rendered again when the sun changes (first frames only).
 pub const SKY_CUBE: &str = "sky cube";
@@ -28,7 +28,8 @@ pub const OCEAN_ASSEMBLE: &str = "ocean assemble";
 /// Gerstner model: the wave sum written into the displacement and normal images.
 pub const OCEAN_GERSTNER: &str = "ocean gerstner";
 
-/// The passes of an FFT frame in the order they run (after the first frames, with the final view).
+/// The passes of an FFT frame with the final view (after the first frames, which also render the
+/// sky cube), in the order `--profile` reports them.
 pub const FFT_FRAME: [&str; 9] = [
     OCEAN_EVOLVE,
     OCEAN_FFT,

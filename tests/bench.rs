@@ -138,11 +138,12 @@ fn bench_frames_reports_passes_frames_and_settings() {
     ]);
     clean_run(&out, "bench");
     let table = String::from_utf8_lossy(&out.stdout);
+    use vkocean::pass_names::{OCEAN_FFT, OUTPUT, REFLECTION, WATER};
     for row in [
-        "ocean fft",
-        "reflection",
-        "water",
-        "output",
+        OCEAN_FFT,
+        REFLECTION,
+        WATER,
+        OUTPUT,
         "frame GPU total",
         "FPS",
     ] {

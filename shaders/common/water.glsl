@@ -1,5 +1,5 @@
 // The tessellated ocean surface (shaders/surface/water.*): a grid of PATCHES² quad patches
-// centred on the camera (snapped to WATER_SNAP_M in src/render/camera.rs, so the patches do not
+// centred on the camera (snapped to WATER_SNAP_M in src/render/uniforms.rs, so the patches do not
 // slide over the waves), their corners spread by a cubic warp from a few metres under the camera
 // to FAR_M at the horizon. Each patch is an axis-aligned rectangle and shares its edges exactly
 // with its neighbours. Positions ("xz") are relative to the grid's centre (camera-relative

@@ -123,7 +123,7 @@ pub fn measure(
     let offscreen = Offscreen::new(ctx, run.size)?;
     let output = offscreen.output();
     let mut session = Session::new(ctx, Offscreen::FORMAT, offscreen.extent, run)?;
-    if !session.profilers.graphics.enabled() {
+    if !session.can_profile() {
         anyhow::bail!(
             "bench: {} has no timestamp queries on its graphics queue",
             ctx.info.name

@@ -57,7 +57,7 @@ fn row(waves: usize, grid: usize, m: &Measured) -> GerstnerRow {
         .compute
         .passes
         .iter()
-        .find(|p| p.0 == "ocean gerstner")
+        .find(|p| p.0 == crate::pass_names::OCEAN_GERSTNER)
         .map_or(f64::NAN, |p| median(&p.1));
     let cpu: Vec<f64> = m.cpu.iter().map(|c| c.1).collect();
     GerstnerRow {

@@ -30,7 +30,7 @@ pub enum BenchCommand {
 pub struct BenchFramesArgs {
     /// Warm-up before measuring (s; at least one frame).
     #[arg(long, value_name = "S", default_value = "2", allow_hyphen_values = true,
-          value_parser = |s: &str| parse_real(s, 0.0, 600.0, true))]
+          value_parser = |s: &str| parse_in(s, 0.0, 600.0))]
     pub warmup: f64,
     /// Measured frames.
     #[arg(long, value_name = "N", default_value = "60", value_parser = parse_frames, allow_hyphen_values = true)]
@@ -59,7 +59,7 @@ pub struct BenchGerstnerArgs {
     pub grid_widths: Vec<usize>,
     /// Warm-up before measuring each configuration (s; at least one frame).
     #[arg(long, value_name = "S", default_value = "1", allow_hyphen_values = true,
-          value_parser = |s: &str| parse_real(s, 0.0, 600.0, true))]
+          value_parser = |s: &str| parse_in(s, 0.0, 600.0))]
     pub warmup: f64,
     /// Measured frames per configuration.
     #[arg(long, value_name = "N", default_value = "20", value_parser = parse_frames, allow_hyphen_values = true)]

@@ -127,23 +127,23 @@ pub struct Cli {
 
     /// Wind speed 10 m above the sea, U10 (m/s, 0 < U <= 100). [default: 10; --preset sets it]
     #[arg(long, global = true, value_name = "M_S", allow_hyphen_values = true,
-          value_parser = |s: &str| parse_real(s, 0.0, 100.0, false), help_heading = "Ocean")]
+          value_parser = |s: &str| parse_above(s, 0.0, 100.0), help_heading = "Ocean")]
     pub wind_speed: Option<f64>,
 
     /// Direction the wind blows toward, degrees from +x toward +z.
     #[arg(long, global = true, value_name = "DEG", default_value = "0", allow_hyphen_values = true,
-          value_parser = |s: &str| parse_real(s, -360.0, 360.0, true), help_heading = "Ocean")]
+          value_parser = |s: &str| parse_in(s, -360.0, 360.0), help_heading = "Ocean")]
     pub wind_dir: f64,
 
     /// Fetch: distance the wind has blown over water (km, JONSWAP; 0 < F <= 10000). [default: 100; --preset sets it]
     #[arg(long, global = true, value_name = "KM", allow_hyphen_values = true,
-          value_parser = |s: &str| parse_real(s, 0.0, 10_000.0, false), help_heading = "Ocean")]
+          value_parser = |s: &str| parse_above(s, 0.0, 10_000.0), help_heading = "Ocean")]
     pub fetch: Option<f64>,
 
     /// Water depth (m, 0 < h <= 11000); default deep water. Finite depth changes the dispersion
     /// and applies the TMA attenuation.
     #[arg(long, global = true, value_name = "M", allow_hyphen_values = true,
-          value_parser = |s: &str| parse_real(s, 0.0, 11_000.0, false), help_heading = "Ocean")]
+          value_parser = |s: &str| parse_above(s, 0.0, 11_000.0), help_heading = "Ocean")]
     pub depth: Option<f64>,
 
     /// FFT size N: a power of two from 64 to 1024. [default: the quality level's: 64 low, 128 medium, 256 high]
@@ -152,12 +152,12 @@ pub struct Cli {
 
     /// Side of the largest cascade's patch (m, 0 < L <= 100000); each further cascade is 4.353x smaller. [default: 400; --preset sets it]
     #[arg(long, global = true, value_name = "M", allow_hyphen_values = true,
-          value_parser = |s: &str| parse_real(s, 0.0, 100_000.0, false), help_heading = "Ocean")]
+          value_parser = |s: &str| parse_above(s, 0.0, 100_000.0), help_heading = "Ocean")]
     pub patch_size: Option<f64>,
 
     /// Horizontal (choppy) displacement scale λ (0 <= λ <= 10). [default: 1; --preset sets it]
     #[arg(long, global = true, value_name = "X", allow_hyphen_values = true,
-          value_parser = |s: &str| parse_real(s, 0.0, 10.0, true), help_heading = "Ocean")]
+          value_parser = |s: &str| parse_in(s, 0.0, 10.0), help_heading = "Ocean")]
     pub choppiness: Option<f64>,
 
     /// Number of cascades, 1 to 4 (disjoint wave-number bands, non-commensurate patches). [default: 3 at every quality level]
@@ -187,12 +187,12 @@ pub struct Cli {
 
     /// Simulation time of the first frame (s); with --dt, pictures are reproducible.
     #[arg(long, global = true, value_name = "T", default_value = "0", allow_hyphen_values = true,
-          value_parser = |s: &str| parse_real(s, 0.0, 1.0e6, true), help_heading = "Scene")]
+          value_parser = |s: &str| parse_in(s, 0.0, 1.0e6), help_heading = "Scene")]
     pub time: f64,
 
     /// Simulation time step per frame (s); default 1/60 headless, wall-clock time in a window.
     #[arg(long, global = true, value_name = "DT", allow_hyphen_values = true,
-          value_parser = |s: &str| parse_real(s, 0.0, 10.0, false), help_heading = "Scene")]
+          value_parser = |s: &str| parse_above(s, 0.0, 10.0), help_heading = "Scene")]
     pub dt: Option<f64>,
 
     /// Camera position in metres (y up, water at y = 0); default 0,12,0.
@@ -213,12 +213,12 @@ pub struct Cli {
 
     /// Size of the reflection and refraction textures relative to the output (window or image; 0.1 to 1). [default: 0.25 low, 0.35 medium, 0.5 high]
     #[arg(long, global = true, value_name = "S", allow_hyphen_values = true,
-          value_parser = |s: &str| parse_real(s, 0.1, 1.0, true), help_heading = "Scene")]
+          value_parser = |s: &str| parse_in(s, 0.1, 1.0), help_heading = "Scene")]
     pub rtt_scale: Option<f64>,
 
     /// Size of the scene (and water) target relative to the output (window or image; 0.25 to 1); a bilinear blit scales it up. [default: 0.5 low, 0.75 medium, 1 high]
     #[arg(long, global = true, value_name = "S", allow_hyphen_values = true,
-          value_parser = |s: &str| parse_real(s, 0.25, 1.0, true), help_heading = "Scene")]
+          value_parser = |s: &str| parse_in(s, 0.25, 1.0), help_heading = "Scene")]
     pub render_scale: Option<f64>,
 
     /// Quads per side of the island's terrain lattice (16 to 512). [default: 64 low, 96 medium, 160 high]
@@ -228,7 +228,7 @@ pub struct Cli {
 
     /// Target length of a tessellated ocean edge in scene-target pixels (2 to 256); smaller is finer. [default: 48 low, 24 medium, 16 high]
     #[arg(long, global = true, value_name = "PX", allow_hyphen_values = true,
-          value_parser = |s: &str| parse_real(s, 2.0, 256.0, true), help_heading = "Scene")]
+          value_parser = |s: &str| parse_in(s, 2.0, 256.0), help_heading = "Scene")]
     pub tess_edge: Option<f64>,
 
     /// Sun direction: azimuth (degrees from +x toward +z) and elevation (degrees above the
@@ -253,7 +253,7 @@ pub struct Cli {
 
     /// Depth of the sea floor around the island (m, 1 to 500).
     #[arg(long, global = true, value_name = "M", default_value = "18", allow_hyphen_values = true,
-          value_parser = |s: &str| parse_real(s, 1.0, 500.0, true), help_heading = "Scene")]
+          value_parser = |s: &str| parse_in(s, 1.0, 500.0), help_heading = "Scene")]
     pub sea_floor: f64,
 
     /// Test only: paint the main view's sky in this solid linear colour (0..1 each).
@@ -466,7 +466,6 @@ impl Cli {
         let scene = self.scene_settings()?;
         let camera = self.camera_setting()?;
         let quality = quality_level(self.quality_in_force());
-        // Without --preset: 10 m/s, 100 km, λ = 1, 400 m (between breeze and moderate).
         let sea = self.preset.map_or(DEFAULT_SEA, sea_preset);
         Ok(RunSettings {
             quality: (self.quality_in_force().name(), self.quality_chosen_by()),

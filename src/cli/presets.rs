@@ -79,7 +79,7 @@ pub struct SeaPreset {
     pub patch_size_m: f64,
 }
 
-/// The sea without `--preset`: a moderate breeze over 100 km of fetch.
+/// The sea without `--preset`: a fresh breeze (Beaufort 5, 8.0–10.7 m/s) over 100 km of fetch.
 pub const DEFAULT_SEA: SeaPreset = SeaPreset {
     wind_speed_m_s: 10.0,
     fetch_km: 100.0,

@@ -28,19 +28,30 @@ pub fn parse_runs(s: &str) -> Result<usize, String> {
     parse_whole(s, 1, 10_000).map(|n| n as usize)
 }
 
-/// A finite real number in (lo, hi], or [lo, hi] when `closed`.
-pub fn parse_real(s: &str, lo: f64, hi: f64, closed: bool) -> Result<f64, String> {
-    let v: f64 = s.trim().parse().map_err(|_| "not a number".to_string())?;
-    let ok = v.is_finite() && v <= hi && (v > lo || (closed && v >= lo));
-    if ok {
+/// A finite real number in [lo, hi].
+pub fn parse_in(s: &str, lo: f64, hi: f64) -> Result<f64, String> {
+    let v = parse_number(s)?;
+    if v.is_finite() && (lo..=hi).contains(&v) {
         Ok(v)
-    } else if closed {
+    } else {
         Err(format!("must be a number from {lo} to {hi}"))
+    }
+}
+
+/// A finite real number in (lo, hi].
+pub fn parse_above(s: &str, lo: f64, hi: f64) -> Result<f64, String> {
+    let v = parse_number(s)?;
+    if v.is_finite() && v > lo && v <= hi {
+        Ok(v)
     } else {
         Err(format!(
             "must be a number greater than {lo} and at most {hi}"
         ))
     }
+}
+
+fn parse_number(s: &str) -> Result<f64, String> {
+    s.trim().parse().map_err(|_| "not a number".to_string())
 }
 
 /// `N,N,...`: exactly `len` finite numbers.

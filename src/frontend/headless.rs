@@ -81,7 +81,7 @@ pub fn run(s: &RunSettings) -> anyhow::Result<Outcome> {
             eprintln!(
                 "vkocean: frame {}/{frames} ({:.1} s)",
                 i + 1,
-                session.started.elapsed().as_secs_f64()
+                session.elapsed_s()
             );
             last_progress = Instant::now();
         }

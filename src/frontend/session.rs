@@ -19,13 +19,17 @@ use crate::render::{
 };
 
 pub struct Session {
+    /// The device, its queues and timelines (the frontends create it).
     pub ctx: Arc<Context>,
+    /// Frames in flight: slots, command buffers, the frame timeline (the frontends wait on it
+    /// and read back through it).
     pub frames: Frames,
     /// GPU timestamps of the graphics and the compute passes.
-    pub profilers: Profilers,
+    profilers: Profilers,
+    /// What the frame draws with (the frontends move its camera and resize it).
     pub renderer: Renderer,
-    /// The FFT ocean on the compute queue.
-    pub simulation: Simulation,
+    /// The wave model (FFT or Gerstner) on the compute queue.
+    simulation: Simulation,
     /// Test-only hazard, recorded once in the first frame.
     hazard: Option<SyncHazard>,
     /// Wall time between consecutive frame starts (ms), after warm-up: (frame index, ms), the
@@ -34,7 +38,8 @@ pub struct Session {
     /// Frames below this index are warm-up (not in the statistics).
     measure_from: u64,
     last_frame_start: Option<Instant>,
-    pub started: Instant,
+    /// When the session was made (the windowed clock, the summary line).
+    started: Instant,
     /// The last submitted frame: (slot, timeline value, simulation time).
     last: Option<(usize, u64, f64)>,
 }
@@ -119,6 +124,16 @@ impl Session {
         let value = record_frame(parts, output, inputs, delivery, self.hazard.take())?;
         self.last = Some((slot, value, inputs.time_s));
         Ok(value)
+    }
+
+    /// Seconds since the session was made.
+    pub fn elapsed_s(&self) -> f64 {
+        self.started.elapsed().as_secs_f64()
+    }
+
+    /// Whether the graphics queue has timestamps (`--profile`, benchmarks).
+    pub fn can_profile(&self) -> bool {
+        self.profilers.graphics.enabled()
     }
 
     /// Measures nothing until [`Session::start_measuring`] (a warm-up of unknown length).

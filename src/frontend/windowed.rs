@@ -274,7 +274,7 @@ impl App {
                 Some(dt) => {
                     self.settings.start_time_s + state.session.frames.submitted() as f64 * dt
                 }
-                None => self.settings.start_time_s + state.session.started.elapsed().as_secs_f64(),
+                None => self.settings.start_time_s + state.session.elapsed_s(),
             },
             ..FrameInputs::default()
         };

@@ -147,11 +147,21 @@ pub enum Use {
     Present,
 }
 
+/// What a [`Use`] needs of a resource.
+struct UseInfo {
+    layout: vk::ImageLayout,
+    /// Stages and accesses.
+    access: Access,
+    /// The use writes.
+    writes: bool,
+    /// The use overwrites everything: the previous contents may be discarded.
+    discards: bool,
+}
+
 impl Use {
-    /// (layout, stages and accesses, writes, discards the previous contents).
-    fn info(self) -> (vk::ImageLayout, Access, bool, bool) {
+    fn info(self) -> UseInfo {
         use vk::ImageLayout as L;
-        match self {
+        let (layout, access, writes, discards) = match self {
             Use::Colour { keep } => (
                 L::COLOR_ATTACHMENT_OPTIMAL,
                 if keep {
@@ -189,6 +199,12 @@ impl Use {
             Use::TransferDst => (L::TRANSFER_DST_OPTIMAL, Access::TRANSFER_WRITE, true, true),
             Use::HostRead => (L::UNDEFINED, Access::HOST_READ, false, false),
             Use::Present => (L::PRESENT_SRC_KHR, Access::NONE, false, false),
+        };
+        UseInfo {
+            layout,
+            access,
+            writes,
+            discards,
         }
     }
 }
@@ -236,7 +252,12 @@ pub type Transition = (vk::ImageLayout, vk::ImageLayout, Access, Access);
 /// The barrier (if any) before `next` on a resource in `state`, and the state after `next`.
 /// `image`: layouts apply (buffers have none).
 pub fn transition(state: State, next: Use, image: bool) -> (Option<Transition>, State) {
-    let (layout, access, writes, discards) = next.info();
+    let UseInfo {
+        layout,
+        access,
+        writes,
+        discards,
+    } = next.info();
     let layout = if image {
         layout
     } else {

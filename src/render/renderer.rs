@@ -84,26 +84,47 @@ pub const SUN_SCALE: f32 = 40.0;
 /// settings are fixed at construction (`new` checks them against the device); the camera moves.
 pub struct Renderer {
     ctx: Arc<Context>,
+    /// The main view's camera (the other two views are derived from it each frame).
     camera: Camera,
+    /// How the scene looks (`--view`, `--fresnel`, scales, sun, ...), checked in `new`.
     pub(super) settings: SceneSettings,
+    /// Main, reflection and refraction colour + depth targets (recreated on resize).
     pub(super) targets: Targets,
+
+    // Frame uniforms: one buffer and set per frame slot.
     /// Layout of the frame-uniform sets; kept alive with them.
     _frame_set_layout: DescriptorSetLayout,
+    /// Pool of the frame sets.
     _pool: DescriptorPool,
     /// Per frame slot: uniform buffer and the set that binds it.
     frame_uniforms: Vec<(Buffer, vk::DescriptorSet)>,
     /// The simulation images the frame sets bind, and the cascade layout.
     ocean: OceanBindings,
+    /// Samples the simulation images (repeating; nearest where RGBA32F does not filter).
     _ocean_sampler: Sampler,
+
+    // Textures the passes sample.
+    /// The sky cubemap (analytic, re-rendered when the sun moves, or `--skybox`).
     pub(super) sky_cube: SkyCube,
+    /// Samples the sky cube.
     _sky_sampler: Sampler,
+    /// The DU/DV distortion map (generated, or `--dudv`).
     dudv: Image,
+    /// Linear, clamped: reflection and refraction colour.
     clamp_sampler: Sampler,
+    /// Nearest, clamped: the refraction depth.
     depth_sampler: Sampler,
+    /// Linear, repeating: the DU/DV map.
     repeat_sampler: Sampler,
+
+    // The passes, in frame order (`frame.rs`).
+    /// The sky: into the cube, and behind everything in each view.
     pub(super) sky: SkyPass,
+    /// The island and the objects, in each view.
     pub(super) terrain: TerrainPass,
+    /// The tessellated ocean and its textures set.
     pub(super) water: WaterPass,
+    /// `--view reflection|refraction|dudv`.
     pub(super) textures_view: TexturesViewPass,
     /// How the output pass scales the main target: linear where its format filters linearly
     /// (optional in Vulkan), else nearest.

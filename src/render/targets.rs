@@ -22,21 +22,17 @@ pub struct ColourDepth {
 }
 
 impl ColourDepth {
-    /// `colour_format` and `colour_usage` beside COLOR_ATTACHMENT.
+    /// `colour_format` and `colour_usage` beside COLOR_ATTACHMENT; `depth_usage` beside
+    /// DEPTH_STENCIL_ATTACHMENT (SAMPLED where a pass reads the depth).
     fn new(
         ctx: &Arc<Context>,
         name: &str,
         extent: vk::Extent2D,
         (colour_format, colour_usage): (vk::Format, vk::ImageUsageFlags),
-        depth_sampled: bool,
+        depth_usage: vk::ImageUsageFlags,
     ) -> GpuResult<ColourDepth> {
         let image = |suffix: &str, format, usage| {
             plain_image(ctx, &format!("{name} {suffix}"), extent, format, usage)
-        };
-        let depth_usage = if depth_sampled {
-            vk::ImageUsageFlags::DEPTH_STENCIL_ATTACHMENT | vk::ImageUsageFlags::SAMPLED
-        } else {
-            vk::ImageUsageFlags::DEPTH_STENCIL_ATTACHMENT
         };
         Ok(ColourDepth {
             colour: image(
@@ -44,7 +40,11 @@ impl ColourDepth {
                 colour_format,
                 vk::ImageUsageFlags::COLOR_ATTACHMENT | colour_usage,
             )?,
-            depth: image("depth", DEPTH_FORMAT, depth_usage)?,
+            depth: image(
+                "depth",
+                DEPTH_FORMAT,
+                vk::ImageUsageFlags::DEPTH_STENCIL_ATTACHMENT | depth_usage,
+            )?,
         })
     }
 
@@ -111,10 +111,12 @@ impl Targets {
         let rtt = scaled(output, rtt_scale);
         let hdr = (HDR_FORMAT, vk::ImageUsageFlags::SAMPLED);
         let display = (display_format, vk::ImageUsageFlags::TRANSFER_SRC);
+        // The refraction depth is sampled by the water; the other depths are attachments only.
+        let (only, sampled) = (vk::ImageUsageFlags::empty(), vk::ImageUsageFlags::SAMPLED);
         Ok(Targets {
-            main: ColourDepth::new(ctx, "main", scaled(output, render_scale), display, false)?,
-            reflection: ColourDepth::new(ctx, "reflection", rtt, hdr, false)?,
-            refraction: ColourDepth::new(ctx, "refraction", rtt, hdr, true)?,
+            main: ColourDepth::new(ctx, "main", scaled(output, render_scale), display, only)?,
+            reflection: ColourDepth::new(ctx, "reflection", rtt, hdr, only)?,
+            refraction: ColourDepth::new(ctx, "refraction", rtt, hdr, sampled)?,
             output,
         })
     }

@@ -117,10 +117,11 @@ pub fn frame_views(camera: &Camera, aspect: f32, hidden_below_m: Option<f32>) ->
     ]
 }
 
-/// Mirrors `shaders/common/frame.glsl` (std140: matrices and vec4s only, so no padding).
+/// Mirrors `shaders/common/frame.glsl` (std140: matrices, vec4s and uvec4s only, so no padding).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct FrameUniforms {
+    /// Indexed by `ViewIndex`: the camera, the mirrored camera (reflection), the refraction view.
     pub views: [ViewUniforms; 3],
     /// x: debug view (`ViewMode`, `VIEW_*`); y: Fresnel model (`FresnelModel`, `FRESNEL_*`);
     /// z: 1 for a bounded ocean window (Gerstner), 0 for repeating cascades; w: 1 to paint the

@@ -92,7 +92,7 @@ pub struct SkyCube {
 impl SkyCube {
     /// A cube the analytic sky is rendered into (`update`).
     pub fn analytic(ctx: &Arc<Context>) -> GpuResult<SkyCube> {
-        let image = cube_image(ctx, "sky cube", CUBE_SIDE, HDR_FORMAT, true)?;
+        let image = cube_image(ctx, "sky cube", CUBE_SIDE, HDR_FORMAT, RENDERED)?;
         let layout = PipelineLayout::new(
             ctx,
             "sky cube layout",
@@ -144,7 +144,7 @@ impl SkyCube {
             side = w;
             texels.extend_from_slice(img.as_raw());
         }
-        let image = cube_image(ctx, "skybox", side, vk::Format::R8G8B8A8_SRGB, false)?;
+        let image = cube_image(ctx, "skybox", side, vk::Format::R8G8B8A8_SRGB, UPLOADED)?;
         upload_image(ctx, &image, &texels)?;
         Ok(SkyCube {
             image,
@@ -194,12 +194,17 @@ impl SkyCube {
     }
 }
 
+/// How a cube's faces are filled: rendered (the analytic sky) or uploaded (`--skybox`).
+const RENDERED: vk::ImageUsageFlags = vk::ImageUsageFlags::COLOR_ATTACHMENT;
+const UPLOADED: vk::ImageUsageFlags = vk::ImageUsageFlags::TRANSFER_DST;
+
+/// A sampled cube image whose faces are filled through `filled_by` (`RENDERED`, `UPLOADED`).
 fn cube_image(
     ctx: &Arc<Context>,
     name: &str,
     side: u32,
     format: vk::Format,
-    render: bool,
+    filled_by: vk::ImageUsageFlags,
 ) -> GpuResult<Image> {
     Image::new(
         ctx,
@@ -210,12 +215,7 @@ fn cube_image(
                 height: side,
             },
             format,
-            usage: vk::ImageUsageFlags::SAMPLED
-                | if render {
-                    vk::ImageUsageFlags::COLOR_ATTACHMENT
-                } else {
-                    vk::ImageUsageFlags::TRANSFER_DST
-                },
+            usage: vk::ImageUsageFlags::SAMPLED | filled_by,
             layers: 6,
             array_view: false,
             shared: false,
