@@ -186,9 +186,50 @@ fn gerstner_dump_from_a_wave_file() {
     assert_eq!(params["waves"], "gerstner");
     assert_eq!(params["waves_table"].as_array().unwrap().len(), 2);
     assert_eq!(params["waves_table"][1]["steepness"], 0.5);
+    assert!(
+        !stderr(&out).contains("steepness"),
+        "Σ Q·k·a = 0.14: no scaling"
+    );
     assert!(params["origin_m"].as_array().is_some_and(|o| o.len() == 2));
     let (header, _) = read_npy_f32(&out_dir.join("displacement.npy"));
     assert!(header.contains("(1, 64, 64, 4)"), "{header}");
+}
+
+/// A table steep enough to fold (Σ Q·k·a > 1) has its Q scaled to the limit, says so on stderr,
+/// and the dump records the Q that ran.
+#[test]
+fn too_steep_gerstner_waves_are_scaled_to_the_fold_limit() {
+    let dir = scratch("dump-gerstner-steep");
+    let table = dir.join("waves.csv");
+    // k = 0.5 rad/m, a = 2 m, Q = 3: Σ Q·k·a = 3.
+    std::fs::write(&table, "0.3,0.4,2.0,0,3\n").unwrap();
+    let out_dir = dir.join("out");
+    let out = run(&[
+        "--headless",
+        "--size",
+        "64x64",
+        "--frames",
+        "1",
+        "--fft-size",
+        "64",
+        "--waves",
+        "gerstner",
+        "--gerstner-waves",
+        table.to_str().unwrap(),
+        "--dump",
+        out_dir.to_str().unwrap(),
+    ]);
+    let err = stderr(&out);
+    assert_eq!(out.status.code(), Some(0), "{err}");
+    assert!(
+        err.contains("steepness Q scaled by 0.333") && err.contains("was 3.000"),
+        "{err}"
+    );
+    let params: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out_dir.join("params.json")).unwrap())
+            .unwrap();
+    let q = params["waves_table"][0]["steepness"].as_f64().unwrap();
+    assert!((q - 1.0).abs() < 1e-12, "Q·k·a = 1 after scaling: Q {q}");
 }
 
 /// Every extreme the command line accepts (wind, fetch, depth, patch size, choppiness, cascades,

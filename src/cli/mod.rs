@@ -436,6 +436,11 @@ impl Cli {
                     }
                     table.truncate(m);
                 }
+                if let Some((factor, sum)) = gerstner::limit_steepness(&mut table) {
+                    eprintln!(
+                        "vkocean: Gerstner steepness Q scaled by {factor:.3}: the table's Σ Q·k·a was {sum:.3}, and above 1 the surface can fold over"
+                    );
+                }
                 Waves::Gerstner(table)
             }
         })

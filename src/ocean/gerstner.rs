@@ -5,7 +5,8 @@
 //! x = α − Σ Q_m (k_x,m/k_m) a_m sin θ_m,   z = β − Σ Q_m (k_z,m/k_m) a_m sin θ_m,   y = Σ a_m cos θ_m,
 //! θ_m = k_x,m α + k_z,m β − ω_m t − φ_m,   ω_m = √(g k_m), g = 9.8 (seed 000's constant).
 //! ```
-//! Q_m = 1 is seed 000's wave, Q_m = 0 a plain sine (seed 004). The normal is the cross product of
+//! Q_m = 1 is seed 000's wave, Q_m = 0 a plain sine (seed 004). [`limit_steepness`] scales the
+//! Q of a table whose Σ Q_m k_m a_m exceeds 1, where the surface could fold over. The normal is the cross product of
 //! the surface tangents; seed 000 writes ∂r/∂α × ∂r/∂β in Direct3D's left-handed (x, z, y) order,
 //! which in our right-handed (x, y, z) is n = ∂r/∂β × ∂r/∂α (pointing up).
 
@@ -218,6 +219,33 @@ pub fn toml_error_line(e: &toml_edit::TomlError) -> String {
     }
 }
 
+/// Σ Q_m k_m a_m over the table: the horizontal displacement's largest possible gradient. The
+/// Jacobian of the map (α, β) → (x, z) is det(I − Σ Q_m k_m a_m cos θ_m k̂_m k̂_mᵀ) ≥ (1 − Σ)²
+/// when Σ ≤ 1, so the surface never folds over, whatever the phases (GPU Gems 1, ch. 1 (Finch
+/// 2004): Q_i = Q / (w_i A_i · numWaves); seed 004: Q_i = 1 / (w_i A_i) is one wave's sharpest
+/// crest). Above 1 the crests of waves in phase loop over themselves.
+pub fn fold_sum(waves: &[Wave]) -> f64 {
+    waves
+        .iter()
+        .map(|w| w.steepness * w.amplitude * (w.kx * w.kx + w.kz * w.kz).sqrt())
+        .sum()
+}
+
+/// Scales every wave's steepness Q by one factor so that [`fold_sum`] is at most 1 (the
+/// surface cannot fold). Returns (factor, the sum before) when it scaled, `None` when the table
+/// was within the limit. Seed 000's table at Q = 1 sums to 1.155, so its Q becomes 0.866.
+pub fn limit_steepness(waves: &mut [Wave]) -> Option<(f64, f64)> {
+    let sum = fold_sum(waves);
+    if sum <= 1.0 {
+        return None;
+    }
+    let factor = 1.0 / sum;
+    for w in waves.iter_mut() {
+        w.steepness *= factor;
+    }
+    Some((factor, sum))
+}
+
 /// Displaced position (x, y, z) and unit normal of the surface point (α, β) at time t.
 pub fn evaluate(waves: &[Wave], alpha: f64, beta: f64, t: f64) -> ([f64; 3], [f64; 3]) {
     let mut p = [alpha, 0.0, beta];
@@ -290,6 +318,61 @@ mod tests {
             }
             assert!(n[1] > 0.0, "normal points up");
         }
+    }
+
+    /// The smallest Jacobian of (α, β) → (x, z) over a grid of the window and a few times
+    /// (central differences of `evaluate`).
+    fn min_jacobian(waves: &[Wave]) -> f64 {
+        let h = 1e-4;
+        let mut min = f64::MAX;
+        for t in [0.0, 3.1, 7.7, 12.9, 40.3] {
+            for i in 0..80 {
+                for j in 0..80 {
+                    let (a, b) = (-60.0 + 1.5 * i as f64, -60.0 + 1.5 * j as f64);
+                    let p = |da: f64, db: f64| evaluate(waves, a + da, b + db, t).0;
+                    let (xa, xb) = (p(h, 0.0), p(-h, 0.0));
+                    let (za, zb) = (p(0.0, h), p(0.0, -h));
+                    let dxda = (xa[0] - xb[0]) / (2.0 * h);
+                    let dzda = (xa[2] - xb[2]) / (2.0 * h);
+                    let dxdb = (za[0] - zb[0]) / (2.0 * h);
+                    let dzdb = (za[2] - zb[2]) / (2.0 * h);
+                    min = min.min(dxda * dzdb - dxdb * dzda);
+                }
+            }
+        }
+        min
+    }
+
+    #[test]
+    fn steepness_is_limited_so_the_surface_cannot_fold() {
+        // Seed 000's table: Σ k·a = 1.155 at Q = 1.
+        let mut waves = default_waves();
+        assert!(
+            (fold_sum(&waves) - 1.155).abs() < 0.001,
+            "{}",
+            fold_sum(&waves)
+        );
+        // Q = 3 folds (the Jacobian goes negative) ...
+        for w in waves.iter_mut() {
+            w.steepness = 3.0;
+        }
+        assert!(min_jacobian(&waves) < 0.0, "Q = 3 should fold");
+        // ... and the limit scales every Q by 1 / Σ, after which it cannot (J ≥ (1 − Σ)² = 0).
+        let (factor, before) = limit_steepness(&mut waves).expect("Q = 3 is over the limit");
+        assert!((before - 3.0 * 1.155).abs() < 0.005 && (factor * before - 1.0).abs() < 1e-12);
+        assert!((fold_sum(&waves) - 1.0).abs() < 1e-12);
+        assert!(waves
+            .iter()
+            .all(|w| (w.steepness - 3.0 * factor).abs() < 1e-12));
+        let min = min_jacobian(&waves);
+        assert!(min > 0.0, "limited table folds: min Jacobian {min}");
+        // A table within the limit is left alone.
+        let mut calm = default_waves();
+        for w in calm.iter_mut() {
+            w.steepness = 0.5;
+        }
+        assert_eq!(limit_steepness(&mut calm), None);
+        assert!(calm.iter().all(|w| w.steepness == 0.5));
     }
 
     #[test]
