@@ -113,6 +113,8 @@ pub struct Cli {
     pub waves: WavesArg,
 
     /// Gerstner wave table: CSV (kx,kz,amplitude,phase[,steepness]) or TOML ([[wave]] tables).
+    /// Steepness defaults to 1; a table with Σ Q·k·a > 1 has every Q scaled down to Σ = 1 (it
+    /// would fold over).
     #[arg(long, global = true, value_name = "FILE", help_heading = "Ocean")]
     pub gerstner_waves: Option<PathBuf>,
 
