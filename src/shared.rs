@@ -73,6 +73,10 @@ shared_constants! {
     /// Absorption of light in the water (1/m, red first): the water's transmission and the
     /// underwater terrain.
     ABSORPTION_PER_M: [f32; 3] = [0.45, 0.09, 0.06];
+    /// The smallest Jacobian the exact normal divides by (shaders/ocean/assemble.comp and
+    /// src/ocean/cpu.rs): where the choppy surface folds (J ≤ 0) its true normal points down,
+    /// and the stored slopes stay those of a steep (J = 0.05) face.
+    NORMAL_MIN_JACOBIAN: f32 = 0.05;
     /// `--view` values the shaders react to (`ViewMode` in src/render/mod.rs).
     VIEW_FINAL: u32 = 0;
     VIEW_REFLECTION: u32 = 1;

@@ -42,7 +42,7 @@ uint debug_view() { return frame.modes.x; }
 float water_level() { return frame.water.z; }
 
 // The ocean simulation's images of this frame's slot, one layer per cascade (GENERAL layout,
-// repeat sampler): (dx, h, dz, 0) and (dh/dx, dh/dz, Jacobian, foam).
+// repeat sampler): (dx, h, dz, 0) and (-n.x/n.y, -n.z/n.y, Jacobian, foam) of the exact normal.
 layout(set = 0, binding = 1) uniform sampler2DArray ocean_displacement;
 layout(set = 0, binding = 2) uniform sampler2DArray ocean_normals;
 // The sky cubemap (rendered when the sun changes, or loaded with --skybox).

@@ -162,7 +162,8 @@ impl CpuOcean {
                 let (dzz, dxz) = (packed[3][idx].re * sign, packed[3][idx].im * sign);
                 let jacobian = (1.0 + lambda * dxx) * (1.0 + lambda * dzz) - (lambda * dxz).powi(2);
                 displacement[idx] = [lambda * dx, h, lambda * dz, 0.0];
-                normals[idx] = [sx, sz, jacobian, 0.0];
+                let [nx, nz] = exact_slopes([sx, sz], [dxx, dzz, dxz], lambda, jacobian);
+                normals[idx] = [nx, nz, jacobian, 0.0];
             }
         }
         CascadeFields {
@@ -206,6 +207,23 @@ impl CpuOcean {
         let [a, b] = self.rest_position(x, z, t);
         self.displaced(a, b, t)[1]
     }
+}
+
+/// Slopes (−n_x/n_y, −n_z/n_y) of the choppy surface's exact normal, from the derivatives of
+/// height (∂h/∂x, ∂h/∂z) and of horizontal displacement (∂Dx/∂x, ∂Dz/∂z, ∂Dx/∂z) at choppiness λ
+/// (shaders/ocean/assemble.comp computes the same). The displaced point is
+/// P = (x + λDx, h, z + λDz), its tangents ∂P/∂x = (1 + λDxx, hx, λDxz) and
+/// ∂P/∂z = (λDxz, hz, 1 + λDzz), and n = ∂P/∂z × ∂P/∂x = (hz·λDxz − hx(1 + λDzz), J,
+/// hx·λDxz − hz(1 + λDxx)) with J the Jacobian (Tessendorf 2001 eq. 45). The undisplaced slopes
+/// (hx, hz) are off by up to 5.6° at λ = 1 (issue 16). J is floored at `NORMAL_MIN_JACOBIAN`.
+pub fn exact_slopes(slope: [f64; 2], d: [f64; 3], lambda: f64, jacobian: f64) -> [f64; 2] {
+    let [hx, hz] = slope;
+    let [dxx, dzz, dxz] = d;
+    let j = jacobian.max(crate::shared::NORMAL_MIN_JACOBIAN as f64);
+    [
+        (hx * (1.0 + lambda * dzz) - hz * lambda * dxz) / j,
+        (hz * (1.0 + lambda * dxx) - hx * lambda * dxz) / j,
+    ]
 }
 
 /// Periodic bilinear interpolation of component `comp` of a `[m][n]` grid over a patch.
@@ -307,6 +325,115 @@ mod tests {
                 );
             }
         }
+    }
+
+    /// The displaced point P(α, β) = (α + λDx, h, β + λDz) of cascade c by direct summation of
+    /// the Fourier series (exact at any point, not only the grid's).
+    fn direct_point(ocean: &CpuOcean, ht: &[Complex64], c: usize, a: f64, b: f64) -> [f64; 3] {
+        let n = ocean.settings.fft_size;
+        let lambda = ocean.settings.choppiness;
+        let i = Complex64::new(0.0, 1.0);
+        let (mut dx, mut h, mut dz) = (0.0, 0.0, 0.0);
+        for m in 0..n {
+            for col in 0..n {
+                let k = wave_vector(col, m, n, ocean.cascades[c].patch_m);
+                let k_len = (k[0] * k[0] + k[1] * k[1]).sqrt();
+                if k_len == 0.0 {
+                    continue;
+                }
+                let e = ht[m * n + col] * Complex64::from_polar(1.0, k[0] * a + k[1] * b);
+                h += e.re;
+                dx += (-i * k[0] / k_len * e).re;
+                dz += (-i * k[1] / k_len * e).re;
+            }
+        }
+        [a + lambda * dx, h, b + lambda * dz]
+    }
+
+    #[test]
+    fn normals_are_exact_for_the_choppy_surface() {
+        // Reference: the normal ∂P/∂β × ∂P/∂α of the displaced surface by central differences
+        // of the directly summed series, at 40 grid points of each cascade, choppiness 1.
+        let s = OceanSettings {
+            fft_size: 64,
+            ..settings(SpectrumKind::Jonswap, 4)
+        };
+        assert_eq!(s.choppiness, 1.0);
+        let ocean = CpuOcean::new(&s);
+        let t = 3.3;
+        let fields = ocean.fields(t);
+        let n = s.fft_size;
+        let (mut exact, mut undisplaced) = (Vec::new(), Vec::new());
+        let mut seed = 12345u64;
+        for (c, f) in fields.iter().enumerate() {
+            let patch = ocean.cascades[c].patch_m;
+            let ht = ocean.spectrum_at(c, t);
+            let eps = 1e-3 * patch / n as f64;
+            for _ in 0..40 {
+                seed = seed
+                    .wrapping_mul(6364136223846793005)
+                    .wrapping_add(1442695040888963407);
+                let (col, m) = ((seed >> 33) as usize % n, (seed >> 45) as usize % n);
+                let (a, b) = (col as f64 * patch / n as f64, m as f64 * patch / n as f64);
+                let p = |da: f64, db: f64| direct_point(&ocean, &ht, c, a + da, b + db);
+                let (pa, qa, pb, qb) = (p(eps, 0.0), p(-eps, 0.0), p(0.0, eps), p(0.0, -eps));
+                let ta: Vec<f64> = (0..3).map(|i| pa[i] - qa[i]).collect();
+                let tb: Vec<f64> = (0..3).map(|i| pb[i] - qb[i]).collect();
+                let r = [
+                    tb[1] * ta[2] - tb[2] * ta[1],
+                    tb[2] * ta[0] - tb[0] * ta[2],
+                    tb[0] * ta[1] - tb[1] * ta[0],
+                ];
+                let angle = |sx: f64, sz: f64| {
+                    let dot = -sx * r[0] + r[1] - sz * r[2];
+                    let len = (sx * sx + 1.0 + sz * sz).sqrt()
+                        * (r[0] * r[0] + r[1] * r[1] + r[2] * r[2]).sqrt();
+                    (dot / len).clamp(-1.0, 1.0).acos().to_degrees()
+                };
+                let g = f.normals[m * n + col];
+                if g[2] <= crate::shared::NORMAL_MIN_JACOBIAN as f64 {
+                    continue; // folded: no upward normal to compare
+                }
+                exact.push(angle(g[0], g[1]));
+                // The undisplaced slopes ∂h/∂x, ∂h/∂z, as stored before issue 16.
+                undisplaced.push(angle_undisplaced(&ocean, &ht, c, a, b, &angle));
+            }
+        }
+        let p99 = |v: &mut Vec<f64>| {
+            v.sort_by(f64::total_cmp);
+            v[(v.len() as f64 * 0.99) as usize - 1]
+        };
+        assert!(exact.len() > 100, "{} samples", exact.len());
+        let (e, u) = (p99(&mut exact), p99(&mut undisplaced));
+        assert!(e < 0.5, "exact normals: p99 {e:.3}° (issue 16: < 0.5°)");
+        // The test can tell: the undisplaced slopes miss by more.
+        assert!(
+            u > 4.0 * e,
+            "undisplaced slopes p99 {u:.3}° vs exact {e:.3}°"
+        );
+    }
+
+    /// The angle (by `angle`) of the undisplaced slopes (∂h/∂x, ∂h/∂z) at (α, β), summed directly.
+    fn angle_undisplaced(
+        ocean: &CpuOcean,
+        ht: &[Complex64],
+        c: usize,
+        a: f64,
+        b: f64,
+        angle: &dyn Fn(f64, f64) -> f64,
+    ) -> f64 {
+        let n = ocean.settings.fft_size;
+        let i = Complex64::new(0.0, 1.0);
+        let (mut hx, mut hz) = (0.0, 0.0);
+        for m in 0..n {
+            for col in 0..n {
+                let k = wave_vector(col, m, n, ocean.cascades[c].patch_m);
+                let e = ht[m * n + col] * Complex64::from_polar(1.0, k[0] * a + k[1] * b);
+                hx += (i * k[0] * e).re;
+                hz += (i * k[1] * e).re;
+            }
+        }
+        angle(hx, hz)
     }
 
     #[test]

@@ -72,7 +72,7 @@ pub fn params(sim: &Simulation, t: f64) -> Value {
         None => json!({
             "waves": "fft",
             "g": G,
-            "layout": "h0[c, m, n] has k = (2π(n − N/2), 2π(m − N/2)) / L_c; displacement and normals [c, m, n] are at x = n·L_c/N, z = m·L_c/N",
+            "layout": "h0[c, m, n] has k = (2π(n − N/2), 2π(m − N/2)) / L_c; displacement and normals [c, m, n] are at x = n·L_c/N, z = m·L_c/N; normals = (−n_x/n_y, −n_z/n_y, J, foam) of the displaced surface's normal",
         }),
         Some(waves) => json!({
             "waves": "gerstner",

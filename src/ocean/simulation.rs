@@ -214,7 +214,8 @@ pub struct Simulation {
     origin_m: [f64; 2],
     /// Per slot: (dx, h, dz, 0), one layer per cascade.
     pub displacement: Vec<Image>,
-    /// Per slot: (∂h/∂x, ∂h/∂z, J, foam), one layer per cascade.
+    /// Per slot: (−n_x/n_y, −n_z/n_y, J, foam) of the choppy surface's exact normal, one layer
+    /// per cascade.
     pub normals: Vec<Image>,
     queue: ComputeQueue,
     /// The images were initialized (the first submission does it).
