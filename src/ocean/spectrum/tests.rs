@@ -1,0 +1,215 @@
+//! Unit tests of `spectrum.rs`: spreading, dispersion, the spectra against their literature values,
+//! the normalization, the RNG, the cascade bands and the time quantization.
+
+use super::*;
+
+#[test]
+fn quantized_time_repeats_exactly_and_keeps_its_precision() {
+    // h(t) = h(t mod T): the same ticks, so the same phase, one period later.
+    for t in [0.0, 1.5, 1e3, 1e6] {
+        assert_eq!(time_ticks(t), time_ticks(t + REPEAT_PERIOD_S), "t = {t}");
+    }
+    // The phase of the finest wave of the default scene (k ≈ 38 rad/m, ω ≈ 19 rad/s) one
+    // frame apart at t = 10^6 s advances by ω·dt, as at t = 0 (an f32 time would step by
+    // 62.5 ms there).
+    let k = 38.0;
+    let steps = omega_steps(k, None);
+    let omega = steps as f64 * omega_quantum();
+    for t in [0.0, 1e6] {
+        let dt = 1.0 / 60.0;
+        let d = phase_turns(steps, time_ticks(t + dt)) - phase_turns(steps, time_ticks(t));
+        let d = (d + 0.5).rem_euclid(1.0) - 0.5;
+        let expected = omega * dt / (2.0 * PI);
+        // Each end's time is rounded to a tick (T / 2^32 = 15 µs): at most ω·tick/2π.
+        let tick_s = REPEAT_PERIOD_S / 4_294_967_296.0;
+        let bound = omega * tick_s / (2.0 * PI);
+        assert!(
+            (d - expected).abs() <= bound,
+            "t = {t}: phase step {d} turns, expected {expected} ± {bound}"
+        );
+    }
+    // The quantized frequency stays within half a quantum of the dispersion relation.
+    for k in [2.0 * PI / 1000.0, 0.1, 1.0, 38.0, 600.0] {
+        let exact = dispersion(k, None).0;
+        let q = omega_steps(k, None) as f64 * omega_quantum();
+        assert!(
+            (q - exact).abs() <= omega_quantum() / 2.0 + 1e-12,
+            "k = {k}"
+        );
+    }
+}
+
+#[test]
+fn donelan_banner_integrates_to_one() {
+    for r in [0.3, 0.8, 1.0, 1.3, 2.0, 5.0] {
+        let n = 20000;
+        let sum: f64 = (0..n)
+            .map(|i| {
+                donelan_banner(r, 1.0, -PI + 2.0 * PI * (i as f64 + 0.5) / n as f64) * 2.0 * PI
+                    / n as f64
+            })
+            .sum();
+        assert!((sum - 1.0).abs() < 1e-6, "ω/ωp = {r}: ∫D = {sum}");
+    }
+}
+
+#[test]
+fn deep_and_shallow_dispersion() {
+    let (w, d) = dispersion(0.1, None);
+    assert!((w - (G * 0.1f64).sqrt()).abs() < 1e-12 && (d - G / (2.0 * w)).abs() < 1e-12);
+    // Deep limit of finite depth, and shallow-water speed √(g h).
+    let (w_deep, _) = dispersion(0.1, Some(1000.0));
+    assert!((w_deep - w).abs() < 1e-9);
+    let (w_shallow, _) = dispersion(1e-3, Some(2.0));
+    assert!((w_shallow / 1e-3 - (G * 2.0f64).sqrt()).abs() < 1e-3);
+    // No NaN at extremes.
+    for k in [0.0, 1e-12, 1e6] {
+        for h in [None, Some(1e-6), Some(1.0), Some(1e9)] {
+            let (w, d) = dispersion(k, h);
+            assert!(w.is_finite() && d.is_finite(), "k {k} h {h:?}");
+        }
+    }
+}
+
+#[test]
+fn pierson_moskowitz_peak_and_height() {
+    // Fully developed sea: Hs ≈ 0.21 U19.5² / g (Pierson–Moskowitz 1964).
+    let sea = SeaState {
+        spectrum: SpectrumKind::PiersonMoskowitz,
+        ..SeaState::default()
+    };
+    let n = 200_000;
+    let (mut var, mut peak) = (0.0, (0.0, 0.0));
+    for i in 1..n {
+        let w = 5.0 * i as f64 / n as f64;
+        let s = frequency_spectrum(&sea, w);
+        var += s * 5.0 / n as f64;
+        if s > peak.1 {
+            peak = (w, s);
+        }
+    }
+    let hs = 4.0 * var.sqrt();
+    let u195 = 1.026 * sea.wind_speed_m_s;
+    assert!(
+        (hs / (0.21 * u195 * u195 / G) - 1.0).abs() < 0.05,
+        "Hs {hs}"
+    );
+    assert!(
+        (peak.0 - peak_omega(&sea)).abs() < 1e-3,
+        "peak at {}",
+        peak.0
+    );
+}
+
+#[test]
+fn frequency_and_wavenumber_spectra_agree() {
+    // ∫ S(k) d²k = ∫ S(ω) dω, since the spreading integrates to 1.
+    for spectrum in [SpectrumKind::Jonswap, SpectrumKind::PiersonMoskowitz] {
+        for depth in [None, Some(20.0)] {
+            let sea = SeaState {
+                spectrum,
+                depth_m: depth,
+                ..SeaState::default()
+            };
+            let n = 100_000;
+            let var_w: f64 = (1..n)
+                .map(|i| frequency_spectrum(&sea, 10.0 * i as f64 / n as f64) * 10.0 / n as f64)
+                .sum();
+            let var_k = integrate_density(&sea, 1e-4, 10.0 * 10.0 / G * 4.0);
+            assert!(
+                (var_k / var_w - 1.0).abs() < 0.01,
+                "{spectrum:?} {depth:?}: {var_k} vs {var_w}"
+            );
+        }
+    }
+}
+
+#[test]
+fn phillips_variance_matches_closed_form() {
+    // ∫ A e^{−1/(kL)²} k^{−4} cos²θ (1 or 0.07) k dk dθ = A (π/2)(1 + 0.07) L²/2 (ℓ-suppression negligible).
+    let sea = SeaState {
+        spectrum: SpectrumKind::Phillips,
+        ..SeaState::default()
+    };
+    let l = sea.wind_speed_m_s.powi(2) / G;
+    let expected = PHILLIPS_A * PI / 2.0 * (1.0 + PHILLIPS_AGAINST_WIND) * l * l / 2.0;
+    let got = integrate_density(&sea, 1e-4, 1e4);
+    assert!((got / expected - 1.0).abs() < 0.01, "{got} vs {expected}");
+}
+
+#[test]
+fn gaussians_are_standard_and_deterministic() {
+    let n = 200_000;
+    let (mut sum, mut sq) = (0.0, 0.0);
+    for i in 0..n {
+        let (a, b) = gaussian_pair(7, 0, i, -i);
+        sum += a + b;
+        sq += a * a + b * b;
+    }
+    let mean = sum / (2 * n) as f64;
+    let var = sq / (2 * n) as f64 - mean * mean;
+    assert!(
+        mean.abs() < 0.01 && (var - 1.0).abs() < 0.01,
+        "mean {mean} var {var}"
+    );
+    assert_eq!(gaussian_pair(1, 2, 3, 4), gaussian_pair(1, 2, 3, 4));
+    assert_ne!(gaussian_pair(1, 2, 3, 4), gaussian_pair(2, 2, 3, 4));
+}
+
+#[test]
+fn no_nan_or_inf_across_sea_states() {
+    // Wind 0.5-40 m/s, depth 1 m to deep, fetch 1-1000 km, k up to the Nyquist limit of the
+    // finest cascade at N = 1024 (and the h0 of a small grid).
+    let patch = 400.0;
+    let finest = cascades(patch, 4)[3].patch_m;
+    let k_max = PI * 1024.0 / finest;
+    for spectrum in [
+        SpectrumKind::Phillips,
+        SpectrumKind::Jonswap,
+        SpectrumKind::PiersonMoskowitz,
+    ] {
+        for wind in [0.5, 3.0, 10.0, 25.0, 40.0] {
+            for depth in [Some(1.0), Some(10.0), Some(200.0), None] {
+                for fetch in [1.0, 30.0, 1000.0] {
+                    let sea = SeaState {
+                        spectrum,
+                        wind_speed_m_s: wind,
+                        wind_dir_deg: 33.0,
+                        fetch_km: fetch,
+                        depth_m: depth,
+                    };
+                    for i in 0..=400 {
+                        let k = k_max * (i as f64 / 400.0).powi(3);
+                        for t in [-2.0f64, 0.0, 0.7, 3.1] {
+                            let s = directional_density(&sea, [k * t.cos(), k * t.sin()]);
+                            assert!(s.is_finite() && s >= 0.0, "{sea:?} k {k}: S = {s}");
+                        }
+                    }
+                    for (c, cascade) in cascades(patch, 2).iter().enumerate() {
+                        let h = h0(&sea, 64, cascade, c as u32, 7);
+                        assert!(
+                            h.iter().all(|v| v[0].is_finite() && v[1].is_finite()),
+                            "{sea:?}"
+                        );
+                    }
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn cascade_bands_are_disjoint_and_resolvable() {
+    let cs = cascades(400.0, 4);
+    for w in cs.windows(2) {
+        assert_eq!(w[0].k_max, w[1].k_min);
+        assert!(
+            w[0].k_max < PI * 64.0 / w[0].patch_m,
+            "boundary below the coarse Nyquist at N = 64"
+        );
+        assert!(
+            w[1].k_min > 2.0 * PI / w[1].patch_m * 5.0,
+            "boundary well above the fine Δk"
+        );
+    }
+}
