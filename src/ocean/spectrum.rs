@@ -161,20 +161,29 @@ pub fn tma_attenuation(omega: f64, depth_m: Option<f64>) -> f64 {
     }
 }
 
-/// Donelan–Banner directional spreading D(ω, θ) (Donelan, Hamilton & Hui 1985 with Banner's 1990
-/// high-frequency extension; Horvath 2015 eq. 38): D = β / (2 tanh(βπ)) · sech²(βθ), θ the angle
-/// between the direction of travel and the wind in (−π, π]. Integrates to exactly 1 over θ.
-pub fn donelan_banner(omega: f64, omega_p: f64, theta: f64) -> f64 {
-    let r = (omega / omega_p.max(1e-6)).max(1e-6);
-    let beta = if r < 0.95 {
+/// Width β of the Donelan–Banner spreading at r = ω/ω_p (Donelan, Hamilton & Hui 1985, Banner 1990;
+/// as in Horvath 2015, eq. 38): β = 2.61 r^1.3 for r < 0.95 (Donelan et al. fit 0.56 < r < 0.95; the
+/// same power law is kept below 0.56), 2.28 r^−1.3 for 0.95 ≤ r < 1.6, and above it Banner's
+/// β = 10^ε, ε = −0.4 + 0.8393 exp(−0.567 ln(r²)) = −0.4 + 0.8393 r^−1.134. Continuous at r = 1.6
+/// (1.2376 from both sides).
+pub fn donelan_banner_beta(r: f64) -> f64 {
+    if r < 0.95 {
         2.61 * r.powf(1.3)
     } else if r < 1.6 {
         2.28 * r.powf(-1.3)
     } else {
-        let eps = -0.4 + 0.8393 * (-0.567 * (r * r).ln().powi(2)).exp();
+        let eps = -0.4 + 0.8393 * (-0.567 * (r * r).ln()).exp();
         10f64.powf(eps)
-    };
-    let beta = beta.max(1e-3); // β → 0 would be isotropic; keep tanh(βπ) away from 0
+    }
+}
+
+/// Donelan–Banner directional spreading D(ω, θ) (Donelan, Hamilton & Hui 1985 with Banner's 1990
+/// high-frequency extension; Horvath 2015 eq. 38): D = β / (2 tanh(βπ)) · sech²(βθ), β from
+/// [`donelan_banner_beta`], θ the angle between the direction of travel and the wind in (−π, π].
+/// Integrates to exactly 1 over θ.
+pub fn donelan_banner(omega: f64, omega_p: f64, theta: f64) -> f64 {
+    let r = (omega / omega_p.max(1e-6)).max(1e-6);
+    let beta = donelan_banner_beta(r).max(1e-3); // β → 0 would be isotropic; keep tanh(βπ) away from 0
     let sech = 1.0 / (beta * theta).cosh();
     beta / (2.0 * (beta * PI).tanh()) * sech * sech
 }

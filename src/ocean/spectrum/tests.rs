@@ -41,7 +41,7 @@ fn quantized_time_repeats_exactly_and_keeps_its_precision() {
 
 #[test]
 fn donelan_banner_integrates_to_one() {
-    for r in [0.3, 0.8, 1.0, 1.3, 2.0, 5.0] {
+    for r in [0.3, 0.8, 1.0, 1.3, 1.6, 2.0, 2.5, 4.0, 5.0] {
         let n = 20000;
         let sum: f64 = (0..n)
             .map(|i| {
@@ -51,6 +51,94 @@ fn donelan_banner_integrates_to_one() {
             .sum();
         assert!((sum - 1.0).abs() < 1e-6, "ω/ωp = {r}: ∫D = {sum}");
     }
+}
+
+/// Banner's (1990) β written independently of the code: 10^(−0.4 + 0.8393 r^−1.134), since
+/// exp(−0.567 ln r²) = r^−1.134 (REFERENCES.md, Donelan et al. 1985 with Banner 1990).
+fn banner_beta(r: f64) -> f64 {
+    10f64.powf(-0.4 + 0.8393 * r.powf(-1.134))
+}
+
+#[test]
+fn donelan_banner_width_follows_donelan_and_banner() {
+    // (r = ω/ω_p, β from the paper's formula, β as a number to 3 digits)
+    let cases = [
+        (0.6, 2.61 * 0.6f64.powf(1.3), 1.343),
+        (1.0, 2.28, 2.28),
+        (1.3, 2.28 * 1.3f64.powf(-1.3), 1.621),
+        (1.6, banner_beta(1.6), 1.238),
+        (2.5, banner_beta(2.5), 0.789),
+        (4.0, banner_beta(4.0), 0.595),
+    ];
+    for (r, formula, literature) in cases {
+        let beta = donelan_banner_beta(r);
+        assert!(
+            (beta / formula - 1.0).abs() < 1e-3,
+            "r = {r}: β = {beta}, Donelan et al. (1985) / Banner (1990) give {formula}"
+        );
+        assert!(
+            (beta / literature - 1.0).abs() < 2e-3,
+            "r = {r}: β = {beta}, REFERENCES.md's formula gives {literature}"
+        );
+        // D(θ) = β / (2 tanh(βπ)) sech²(βθ) at a few angles, with the formula's β.
+        for theta in [0.0, 0.4, -1.2, 2.5, PI] {
+            let expected =
+                formula / (2.0 * (formula * PI).tanh()) / (formula * theta).cosh().powi(2);
+            let d = donelan_banner(r * 0.9, 0.9, theta);
+            assert!(
+                (d / expected - 1.0).abs() < 1e-3,
+                "r = {r}, θ = {theta}: D = {d}, Donelan–Banner's sech² gives {expected}"
+            );
+        }
+    }
+    // Continuity where Banner's law takes over: 2.28·1.6^−1.3 = 1.2376 (Donelan et al.) against
+    // 10^(−0.4 + 0.8393·1.6^−1.134) = 1.2375 (Banner).
+    let (below, above) = (donelan_banner_beta(1.6 - 1e-9), donelan_banner_beta(1.6));
+    assert!(
+        (above / below - 1.0).abs() < 0.01,
+        "β jumps at r = 1.6: {below} below, {above} above (Donelan's and Banner's laws meet at 1.2376)"
+    );
+}
+
+#[test]
+fn donelan_banner_high_frequencies_travel_mostly_downwind() {
+    // Downwind share: the fraction of the energy of the band 2.5 ≤ ω/ω_p ≤ 4 of the
+    // Pierson–Moskowitz spectrum travelling within 90° of the wind (|θ| < π/2). For one ω the share
+    // is tanh(βπ/2)/tanh(βπ) (the integral of the sech² spreading); the expected value weights it
+    // with the PM shape ω⁻⁵ exp(−5/4 (ω_p/ω)⁴), using Banner's β written out in this test.
+    let sea = SeaState {
+        spectrum: SpectrumKind::PiersonMoskowitz,
+        ..SeaState::default()
+    };
+    let wp = peak_omega(&sea);
+    let (nw, nt) = (300, 2000);
+    let (mut down, mut total, mut expected_down, mut expected_total) = (0.0, 0.0, 0.0, 0.0);
+    for i in 0..nw {
+        let r = 2.5 + 1.5 * (i as f64 + 0.5) / nw as f64;
+        let s = frequency_spectrum(&sea, r * wp);
+        // The code's D integrated over the downwind half-plane (midpoint rule).
+        let half: f64 = (0..nt)
+            .map(|j| {
+                let theta = -PI / 2.0 + PI * (j as f64 + 0.5) / nt as f64;
+                donelan_banner(r * wp, wp, theta) * PI / nt as f64
+            })
+            .sum();
+        down += s * half;
+        total += s;
+        let beta = banner_beta(r);
+        let weight = r.powi(-5) * (-1.25 / r.powi(4)).exp();
+        expected_down += weight * (beta * PI / 2.0).tanh() / (beta * PI).tanh();
+        expected_total += weight;
+    }
+    let (share, expected) = (down / total, expected_down / expected_total);
+    assert!(
+        (share / expected - 1.0).abs() < 0.005,
+        "downwind share {share}, Banner's β gives {expected}"
+    );
+    assert!(
+        (share / 0.82 - 1.0).abs() < 0.02,
+        "downwind share {share} at ω/ω_p 2.5–4, Banner (1990) via Horvath (2015): about 0.82"
+    );
 }
 
 #[test]
