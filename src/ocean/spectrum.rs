@@ -118,9 +118,23 @@ pub fn peak_omega(sea: &SeaState) -> f64 {
     match sea.spectrum {
         // JONSWAP: ω_p = 22 (g² / (U F))^(1/3), F in metres (Horvath 2015, eq. 28).
         SpectrumKind::Jonswap => 22.0 * (G * G / (u * sea.fetch_km.max(1e-3) * 1000.0)).cbrt(),
-        // Pierson–Moskowitz: ω_p = 0.855 g / U_19.5 with U_19.5 ≈ 1.026 U10 (Horvath 2015, §5.1).
-        SpectrumKind::PiersonMoskowitz | SpectrumKind::Phillips => 0.855 * G / (1.026 * u),
+        SpectrumKind::PiersonMoskowitz | SpectrumKind::Phillips => pierson_moskowitz_peak(u),
     }
+}
+
+/// Pierson & Moskowitz (1964): S(ω) = α g² ω⁻⁵ exp(−β (ω0/ω)⁴), ω0 = g/U19.5, with α = 8.1·10⁻³ ...
+const PM_ALPHA: f64 = 8.1e-3;
+/// ... and β = 0.74 (Pierson & Moskowitz 1964).
+const PM_BETA: f64 = 0.74;
+/// U19.5 ≈ 1.026 U10: Pierson & Moskowitz's winds were measured 19.5 m above the sea (Pierson &
+/// Moskowitz 1964; Horvath 2015).
+const U19_5_PER_U10: f64 = 1.026;
+
+/// Peak of the Pierson–Moskowitz spectrum (rad/s) for U10 = `u10`: where ω⁻⁵ exp(−β (ω0/ω)⁴) is
+/// largest, ω_p = (4β/5)^¼ ω0 = 0.877 g/U19.5 = 0.855 g/U10 (Pierson & Moskowitz 1964). 0.855 is
+/// the coefficient on U10: the 1.026 conversion is applied once.
+pub fn pierson_moskowitz_peak(u10: f64) -> f64 {
+    (0.8 * PM_BETA).powf(0.25) * G / (U19_5_PER_U10 * u10)
 }
 
 /// One-dimensional frequency spectrum S(ω) (m²·s) of the physical spectra, TMA-attenuated at
@@ -133,7 +147,7 @@ pub fn frequency_spectrum(sea: &SeaState, omega: f64) -> f64 {
     let ratio4 = (wp / omega).powi(4);
     let base = |alpha: f64| alpha * G * G / omega.powi(5) * (-1.25 * ratio4).exp();
     let s = match sea.spectrum {
-        SpectrumKind::PiersonMoskowitz | SpectrumKind::Phillips => base(8.1e-3),
+        SpectrumKind::PiersonMoskowitz | SpectrumKind::Phillips => base(PM_ALPHA),
         SpectrumKind::Jonswap => {
             let u = sea.wind_speed_m_s.max(1e-3);
             let fetch_m = sea.fetch_km.max(1e-3) * 1000.0;

@@ -159,34 +159,50 @@ fn deep_and_shallow_dispersion() {
     }
 }
 
-#[test]
-fn pierson_moskowitz_peak_and_height() {
-    // Fully developed sea: Hs ≈ 0.21 U19.5² / g (Pierson–Moskowitz 1964).
-    let sea = SeaState {
-        spectrum: SpectrumKind::PiersonMoskowitz,
-        ..SeaState::default()
-    };
-    let n = 200_000;
-    let (mut var, mut peak) = (0.0, (0.0, 0.0));
-    for i in 1..n {
-        let w = 5.0 * i as f64 / n as f64;
-        let s = frequency_spectrum(&sea, w);
-        var += s * 5.0 / n as f64;
+/// Significant wave height 4√m0 (m) and peak period 2π/ω_p (s) of `sea`'s frequency spectrum,
+/// from a midpoint sum over 0 < ω < 20 rad/s (the tail above holds < 0.1 % of m0 for U10 ≥ 3 m/s)
+/// and the largest sample.
+fn height_and_peak_period(sea: &SeaState) -> (f64, f64) {
+    let (n, top) = (400_000, 20.0);
+    let dw = top / n as f64;
+    let (mut m0, mut peak) = (0.0, (0.0, 0.0));
+    for i in 0..n {
+        let w = (i as f64 + 0.5) * dw;
+        let s = frequency_spectrum(sea, w);
+        m0 += s * dw;
         if s > peak.1 {
             peak = (w, s);
         }
     }
-    let hs = 4.0 * var.sqrt();
-    let u195 = 1.026 * sea.wind_speed_m_s;
-    assert!(
-        (hs / (0.21 * u195 * u195 / G) - 1.0).abs() < 0.05,
-        "Hs {hs}"
-    );
-    assert!(
-        (peak.0 - peak_omega(&sea)).abs() < 1e-3,
-        "peak at {}",
-        peak.0
-    );
+    (4.0 * m0.sqrt(), 2.0 * PI / peak.0)
+}
+
+#[test]
+fn pierson_moskowitz_peak_and_height() {
+    // Fully developed sea (Pierson & Moskowitz 1964): Hs = 0.21 U19.5²/g, ω_p = 0.877 g/U19.5,
+    // U19.5 = 1.026 U10 (2.25 m and 7.49 s at U10 = 10 m/s).
+    for u10 in [5.0, 10.0, 20.0] {
+        let sea = SeaState {
+            spectrum: SpectrumKind::PiersonMoskowitz,
+            wind_speed_m_s: u10,
+            ..SeaState::default()
+        };
+        let (hs, tp) = height_and_peak_period(&sea);
+        let u195 = 1.026 * u10;
+        let (hs_pm, tp_pm) = (0.21 * u195 * u195 / G, 2.0 * PI * u195 / (0.877 * G));
+        assert!(
+            (hs / hs_pm - 1.0).abs() < 0.02,
+            "U10 {u10}: Hs {hs} m, Pierson & Moskowitz (1964): 0.21 U19.5²/g = {hs_pm} m"
+        );
+        assert!(
+            (tp / tp_pm - 1.0).abs() < 0.02,
+            "U10 {u10}: Tp {tp} s, Pierson & Moskowitz (1964): 2π U19.5/(0.877 g) = {tp_pm} s"
+        );
+        assert!(
+            (2.0 * PI / peak_omega(&sea) / tp - 1.0).abs() < 1e-3,
+            "peak_omega is the spectrum's peak"
+        );
+    }
 }
 
 #[test]
