@@ -41,7 +41,8 @@ pub const G: f64 = 9.81;
 pub enum SpectrumKind {
     /// Tessendorf's graphics spectrum (2001), from wind speed and direction only.
     Phillips,
-    /// Fetch-limited sea (Hasselmann et al. 1973), from wind speed and fetch.
+    /// Fetch-limited sea (Hasselmann et al. 1973), from wind speed and fetch; Pierson–Moskowitz's
+    /// once fully developed (see [`spectrum_shape`]).
     Jonswap,
     /// Fully developed sea (Pierson & Moskowitz 1964), from wind speed.
     PiersonMoskowitz,
@@ -73,7 +74,7 @@ pub struct SeaState {
 }
 
 impl Default for SeaState {
-    /// A moderate breeze over 100 km of fetch: about 1.6 m significant wave height.
+    /// A moderate breeze over 100 km of fetch: Hs 1.62 m, T_p 6.2 s (JONSWAP, [`spectrum_shape`]).
     fn default() -> Self {
         SeaState {
             spectrum: SpectrumKind::Jonswap,
@@ -112,16 +113,6 @@ pub fn dispersion(k: f64, depth_m: Option<f64>) -> (f64, f64) {
     }
 }
 
-/// Peak angular frequency ω_p (rad/s) of the physical spectra.
-pub fn peak_omega(sea: &SeaState) -> f64 {
-    let u = sea.wind_speed_m_s.max(1e-3);
-    match sea.spectrum {
-        // JONSWAP: ω_p = 22 (g² / (U F))^(1/3), F in metres (Horvath 2015, eq. 28).
-        SpectrumKind::Jonswap => 22.0 * (G * G / (u * sea.fetch_km.max(1e-3) * 1000.0)).cbrt(),
-        SpectrumKind::PiersonMoskowitz | SpectrumKind::Phillips => pierson_moskowitz_peak(u),
-    }
-}
-
 /// Pierson & Moskowitz (1964): S(ω) = α g² ω⁻⁵ exp(−β (ω0/ω)⁴), ω0 = g/U19.5, with α = 8.1·10⁻³ ...
 const PM_ALPHA: f64 = 8.1e-3;
 /// ... and β = 0.74 (Pierson & Moskowitz 1964).
@@ -130,11 +121,128 @@ const PM_BETA: f64 = 0.74;
 /// Moskowitz 1964; Horvath 2015).
 const U19_5_PER_U10: f64 = 1.026;
 
+/// JONSWAP peak enhancement γ = 3.3 (Hasselmann et al. 1973, mean of the JONSWAP spectra).
+const JONSWAP_GAMMA: f64 = 3.3;
+/// JONSWAP peak widths σ = 0.07 below the peak and 0.09 above (Hasselmann et al. 1973).
+const JONSWAP_SIGMA: [f64; 2] = [0.07, 0.09];
+/// JONSWAP peak law ω_p = 22 (g²/(U10 F))^⅓ (Hasselmann et al. 1973; Horvath 2015, eq. 28).
+const JONSWAP_PEAK: f64 = 22.0;
+/// JONSWAP energy growth law m0 = 1.6·10⁻⁷ X (U10²/g)², X = gF/U10², i.e. Hs = 1.6·10⁻³ X^½ U10²/g
+/// (Hasselmann et al. 1973): 1.62 m at U10 = 10 m/s over 100 km.
+const JONSWAP_ENERGY_GROWTH: f64 = 1.6e-7;
+
 /// Peak of the Pierson–Moskowitz spectrum (rad/s) for U10 = `u10`: where ω⁻⁵ exp(−β (ω0/ω)⁴) is
 /// largest, ω_p = (4β/5)^¼ ω0 = 0.877 g/U19.5 = 0.855 g/U10 (Pierson & Moskowitz 1964). 0.855 is
 /// the coefficient on U10: the 1.026 conversion is applied once.
 pub fn pierson_moskowitz_peak(u10: f64) -> f64 {
     (0.8 * PM_BETA).powf(0.25) * G / (U19_5_PER_U10 * u10)
+}
+
+/// The form both physical spectra take (Hasselmann et al. 1973, with Pierson–Moskowitz as γ = 1):
+/// S(ω) = α g² ω⁻⁵ exp(−5/4 (ω_p/ω)⁴) γ^exp(−(ω − ω_p)²/(2σ²ω_p²)), σ from `JONSWAP_SIGMA`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SpectrumShape {
+    /// Level of the ω⁻⁵ tail (the Phillips constant of the spectrum), α.
+    pub alpha: f64,
+    /// Peak angular frequency ω_p (rad/s).
+    pub omega_p: f64,
+    /// Peak enhancement γ (1: Pierson–Moskowitz).
+    pub gamma: f64,
+}
+
+impl SpectrumShape {
+    /// The fully developed sea of wind `u10` (Pierson & Moskowitz 1964).
+    pub fn pierson_moskowitz(u10: f64) -> SpectrumShape {
+        SpectrumShape {
+            alpha: PM_ALPHA,
+            omega_p: pierson_moskowitz_peak(u10),
+            gamma: 1.0,
+        }
+    }
+
+    /// Deep-water S(ω) (m²·s).
+    pub fn density(&self, omega: f64) -> f64 {
+        let wp = self.omega_p;
+        let sigma = JONSWAP_SIGMA[usize::from(omega > wp)];
+        let peak = (-(omega - wp).powi(2) / (2.0 * sigma * sigma * wp * wp)).exp();
+        self.alpha * G * G / omega.powi(5)
+            * (-1.25 * (wp / omega).powi(4)).exp()
+            * self.gamma.powf(peak)
+    }
+
+    /// Deep-water variance m0 = ∫ S dω = α g² ω_p⁻⁴ J(γ) (m²), J from [`shape_integral`].
+    pub fn variance(&self) -> f64 {
+        let j = if self.gamma == 1.0 {
+            0.2 // ∫₀^∞ x⁻⁵ exp(−5/4 x⁻⁴) dx = 1/5
+        } else if self.gamma == JONSWAP_GAMMA {
+            jonswap_shape_integral()
+        } else {
+            shape_integral(self.gamma)
+        };
+        self.alpha * G * G / self.omega_p.powi(4) * j
+    }
+}
+
+/// J(γ) = ∫₀^∞ x⁻⁵ exp(−5/4 x⁻⁴) γ^exp(−(x − 1)²/(2σ²)) dx, the variance of the shape with α = 1
+/// in units of g² ω_p⁻⁴: midpoint rule over 0.3 ≤ x ≤ 10 and the closed form
+/// ∫ x⁻⁵ exp(−c x⁻⁴) dx = exp(−c x⁻⁴)/(4c) outside, where γ's factor is 1 to f64 precision.
+/// J(1) = 1/5 exactly; J(3.3) = 0.3050.
+pub fn shape_integral(gamma: f64) -> f64 {
+    let (lo, hi, n) = (0.3f64, 10.0f64, 100_000);
+    let ends = ((-1.25 / lo.powi(4)).exp() + 1.0 - (-1.25 / hi.powi(4)).exp()) / 5.0;
+    let unit = SpectrumShape {
+        alpha: 1.0 / (G * G),
+        omega_p: 1.0,
+        gamma,
+    };
+    let dx = (hi - lo) / n as f64;
+    ends + (0..n)
+        .map(|i| unit.density(lo + (i as f64 + 0.5) * dx) * dx)
+        .sum::<f64>()
+}
+
+/// J(3.3), computed once.
+fn jonswap_shape_integral() -> f64 {
+    static J: std::sync::OnceLock<f64> = std::sync::OnceLock::new();
+    *J.get_or_init(|| shape_integral(JONSWAP_GAMMA))
+}
+
+/// The deep-water spectrum of a sea state.
+///
+/// Pierson–Moskowitz (and Phillips' frequency spectrum): [`SpectrumShape::pierson_moskowitz`].
+///
+/// JONSWAP keeps Hasselmann et al.'s (1973) peak law, γ and σ, but takes α from their energy
+/// growth law (m0 = 1.6·10⁻⁷ X (U10²/g)²) instead of their α fit 0.076 X^−0.22: the shape with the
+/// fitted α integrates to about 1.75× the energy law (Hs 2.14 m instead of 1.62 m at 10 m/s over
+/// 100 km); the two fits disagree, and the variance is the measured quantity that sets the wave
+/// height. So α = m0 ω_p⁴/(g² J(3.3)) = 0.123 X^−⅓, 0.91× the fitted α at X = 160, 0.74× at 10³,
+/// 0.54× at 1.7·10⁴. No sea grows beyond the fully developed one: ω_p stays at or above the
+/// Pierson–Moskowitz peak (reached at X = 1.70·10⁴) and once the growth law's m0 reaches the
+/// Pierson–Moskowitz variance (X = 1.90·10⁴) the spectrum is Pierson–Moskowitz's. Hs and ω_p are
+/// continuous in the fetch; γ drops to 1 at X = 1.90·10⁴.
+pub fn spectrum_shape(sea: &SeaState) -> SpectrumShape {
+    let u = sea.wind_speed_m_s.max(1e-3);
+    let developed = SpectrumShape::pierson_moskowitz(u);
+    if sea.spectrum != SpectrumKind::Jonswap {
+        return developed;
+    }
+    let fetch_m = sea.fetch_km.max(1e-3) * 1000.0;
+    let x = G * fetch_m / (u * u);
+    let variance = JONSWAP_ENERGY_GROWTH * x * (u * u / G).powi(2);
+    if variance >= developed.variance() {
+        return developed;
+    }
+    let omega_p = (JONSWAP_PEAK * (G * G / (u * fetch_m)).cbrt()).max(developed.omega_p);
+    SpectrumShape {
+        alpha: variance * omega_p.powi(4) / (G * G * jonswap_shape_integral()),
+        omega_p,
+        gamma: JONSWAP_GAMMA,
+    }
+}
+
+/// Peak angular frequency ω_p (rad/s) of the physical spectra.
+pub fn peak_omega(sea: &SeaState) -> f64 {
+    spectrum_shape(sea).omega_p
 }
 
 /// One-dimensional frequency spectrum S(ω) (m²·s) of the physical spectra, TMA-attenuated at
@@ -143,22 +251,7 @@ pub fn frequency_spectrum(sea: &SeaState, omega: f64) -> f64 {
     if omega <= 1e-6 {
         return 0.0;
     }
-    let wp = peak_omega(sea);
-    let ratio4 = (wp / omega).powi(4);
-    let base = |alpha: f64| alpha * G * G / omega.powi(5) * (-1.25 * ratio4).exp();
-    let s = match sea.spectrum {
-        SpectrumKind::PiersonMoskowitz | SpectrumKind::Phillips => base(PM_ALPHA),
-        SpectrumKind::Jonswap => {
-            let u = sea.wind_speed_m_s.max(1e-3);
-            let fetch_m = sea.fetch_km.max(1e-3) * 1000.0;
-            // α = 0.076 (U² / (F g))^0.22, γ = 3.3, σ = 0.07 below the peak, 0.09 above.
-            let alpha = 0.076 * (u * u / (fetch_m * G)).powf(0.22);
-            let sigma = if omega <= wp { 0.07 } else { 0.09 };
-            let r = (-(omega - wp).powi(2) / (2.0 * sigma * sigma * wp * wp)).exp();
-            base(alpha) * 3.3f64.powf(r)
-        }
-    };
-    s * tma_attenuation(omega, sea.depth_m)
+    spectrum_shape(sea).density(omega) * tma_attenuation(omega, sea.depth_m)
 }
 
 /// Kitaigorodskii depth attenuation Φ(ω, h) of the TMA spectrum (Bouws et al. 1985; Horvath 2015
@@ -250,7 +343,15 @@ pub fn directional_density(sea: &SeaState, k_travel: [f64; 2]) -> f64 {
     let (omega, domega_dk) = dispersion(k, sea.depth_m);
     let theta =
         (k_travel[1].atan2(k_travel[0]) - wind[1].atan2(wind[0]) + PI).rem_euclid(2.0 * PI) - PI;
-    frequency_spectrum(sea, omega) * donelan_banner(omega, peak_omega(sea), theta) * domega_dk / k
+    if omega <= 1e-6 {
+        return 0.0;
+    }
+    let shape = spectrum_shape(sea);
+    shape.density(omega)
+        * tma_attenuation(omega, sea.depth_m)
+        * donelan_banner(omega, shape.omega_p, theta)
+        * domega_dk
+        / k
 }
 
 /// Numerical ∫∫ S(k) d²k over the annulus k_min ≤ |k| ≤ k_max (polar midpoint rule, log-spaced

@@ -206,6 +206,150 @@ fn pierson_moskowitz_peak_and_height() {
 }
 
 #[test]
+fn jonswap_peak_enhancement_adds_half_the_energy() {
+    // ∫ x⁻⁵ exp(−5/4 x⁻⁴) dx = 1/5 exactly; the JONSWAP peak (γ = 3.3) multiplies the variance by
+    // 1/(1 − 0.287 ln γ) = 1.521 (Goda's normalising factor, as in DNV-RP-C205, §3.5.5).
+    let j1 = shape_integral(1.0);
+    assert!((j1 - 0.2).abs() < 1e-6, "J(1) = {j1}, exactly 1/5");
+    let ratio = shape_integral(3.3) / j1;
+    let goda = 1.0 / (1.0 - 0.287 * 3.3f64.ln());
+    assert!(
+        (ratio / goda - 1.0).abs() < 0.02,
+        "JONSWAP/PM variance at the same α and ω_p: {ratio}, Goda: 1/(1 − 0.287 ln 3.3) = {goda}"
+    );
+}
+
+/// JONSWAP (Hasselmann et al. 1973) written out for the tests: Hs = 1.6·10⁻³ X^½ U10²/g and
+/// ω_p = 22 (g²/(U10 F))^⅓, capped by the fully developed sea of Pierson & Moskowitz (1964):
+/// Hs ≤ 0.21 U19.5²/g, ω_p ≥ 0.877 g/U19.5, U19.5 = 1.026 U10. Returns (Hs m, T_p s).
+fn jonswap_literature(u10: f64, fetch_km: f64) -> (f64, f64) {
+    let (f, u195) = (fetch_km * 1000.0, 1.026 * u10);
+    let x = G * f / (u10 * u10);
+    let hs = (1.6e-3 * x.sqrt() * u10 * u10 / G).min(0.21 * u195 * u195 / G);
+    let wp = (22.0 * (G * G / (u10 * f)).cbrt()).max(0.877 * G / u195);
+    (hs, 2.0 * PI / wp)
+}
+
+fn jonswap(u10: f64, fetch_km: f64) -> SeaState {
+    SeaState {
+        spectrum: SpectrumKind::Jonswap,
+        wind_speed_m_s: u10,
+        fetch_km,
+        ..SeaState::default()
+    }
+}
+
+#[test]
+fn jonswap_height_follows_the_growth_law_until_fully_developed() {
+    // Hs within 2 % of min(growth law, PM) and T_p of the peak law (or PM's) over the grid.
+    for u10 in [5.0, 10.0, 15.0, 25.0] {
+        for fetch_km in [10.0, 30.0, 100.0, 300.0, 1000.0] {
+            let (hs, tp) = height_and_peak_period(&jonswap(u10, fetch_km));
+            let (hs_lit, tp_lit) = jonswap_literature(u10, fetch_km);
+            assert!(
+                (hs / hs_lit - 1.0).abs() < 0.02,
+                "U10 {u10}, F {fetch_km} km: Hs {hs} m, Hasselmann et al. (1973) growth law \
+                 1.6e-3 X^½ U²/g capped at Pierson–Moskowitz's 0.21 U19.5²/g: {hs_lit} m"
+            );
+            assert!(
+                (tp / tp_lit - 1.0).abs() < 0.02,
+                "U10 {u10}, F {fetch_km} km: Tp {tp} s, Hasselmann et al. (1973) \
+                 ω_p = 22 (g²/(U F))^⅓, at most Pierson–Moskowitz's: {tp_lit} s"
+            );
+        }
+    }
+}
+
+#[test]
+fn jonswap_grows_continuously_into_pierson_moskowitz() {
+    // Through the fully developed limit (X = gF/U² ≈ 1.7–1.9·10⁴, 17–19 km at 10 m/s): Hs within
+    // 2 % of min(growth law, PM) at every fetch, and never more than PM's.
+    for i in 0..=24 {
+        let fetch_km = 10.0 * 1.1f64.powi(i);
+        let (hs, _) = height_and_peak_period(&jonswap(10.0, fetch_km));
+        let (hs_lit, _) = jonswap_literature(10.0, fetch_km);
+        assert!(
+            (hs / hs_lit - 1.0).abs() < 0.02,
+            "F {fetch_km} km: Hs {hs} m, Hasselmann et al. (1973) / Pierson–Moskowitz: {hs_lit} m"
+        );
+    }
+    // Very long fetch: the Pierson–Moskowitz sea itself (2.25 m and 7.49 s at 10 m/s).
+    for u10 in [10.0, 25.0] {
+        let sea = jonswap(u10, 10_000.0);
+        let pm = SpectrumShape::pierson_moskowitz(u10);
+        assert_eq!(spectrum_shape(&sea), pm, "U10 {u10}: fully developed");
+        let (hs, tp) = height_and_peak_period(&sea);
+        let u195 = 1.026 * u10;
+        let (hs_pm, tp_pm) = (0.21 * u195 * u195 / G, 2.0 * PI * u195 / (0.877 * G));
+        assert!(
+            (hs / hs_pm - 1.0).abs() < 0.02 && (tp / tp_pm - 1.0).abs() < 0.02,
+            "U10 {u10}, 10⁴ km: Hs {hs} m, Tp {tp} s; Pierson & Moskowitz (1964): {hs_pm} m, {tp_pm} s"
+        );
+    }
+}
+
+/// Kitaigorodskii's depth factor as Bouws et al. (1985) give it (Thompson & Vincent's fit):
+/// ω_h = ω √(h/g); Φ = ω_h²/2 (ω_h ≤ 1), 1 − (2 − ω_h)²/2 (1 < ω_h < 2), 1 (ω_h ≥ 2).
+fn bouws_phi(omega: f64, depth_m: f64) -> f64 {
+    let wh = omega * (depth_m / G).sqrt();
+    match wh {
+        w if w <= 1.0 => w * w / 2.0,
+        w if w < 2.0 => 1.0 - (2.0 - w) * (2.0 - w) / 2.0,
+        _ => 1.0,
+    }
+}
+
+#[test]
+fn tma_attenuates_the_default_sea_in_shallow_water() {
+    // Φ at the ends of its pieces (Bouws et al. 1985): 1/8 at ω_h = ½, ½ at 1, 7/8 at 1.5, 1 at 2.
+    for (wh, phi) in [
+        (0.5, 0.125),
+        (1.0, 0.5),
+        (1.5, 0.875),
+        (2.0, 1.0),
+        (3.0, 1.0),
+    ] {
+        let depth = 7.0;
+        let got = tma_attenuation(wh / (depth / G).sqrt(), Some(depth));
+        assert!(
+            (got - phi).abs() < 1e-9,
+            "Φ(ω_h = {wh}) = {got}, Bouws et al.: {phi}"
+        );
+    }
+    // Hs of the default sea (JONSWAP, 10 m/s, 100 km; deep Hs 1.62 m) at 10 m and 5 m over its
+    // deep-water Hs, against the deep spectrum times Φ integrated here, and against the ratios an
+    // independent Python integration of the same formulas gives: 0.789 (1.27 m) and 0.605 (0.98 m).
+    let (deep, _) = height_and_peak_period(&SeaState::default());
+    for (depth, ratio_expected) in [(10.0, 0.789), (5.0, 0.605)] {
+        let sea = SeaState {
+            depth_m: Some(depth),
+            ..SeaState::default()
+        };
+        let (shallow, _) = height_and_peak_period(&sea);
+        let (n, top) = (400_000, 20.0);
+        let dw = top / n as f64;
+        let m0: f64 = (0..n)
+            .map(|i| {
+                let w = (i as f64 + 0.5) * dw;
+                frequency_spectrum(&SeaState::default(), w) * bouws_phi(w, depth) * dw
+            })
+            .sum();
+        let expected = 4.0 * m0.sqrt() / deep;
+        let ratio = shallow / deep;
+        assert!(
+            (ratio / expected - 1.0).abs() < 0.005,
+            "h = {depth} m: TMA Hs / deep Hs = {ratio}, the JONSWAP spectrum times Bouws et al.'s \
+             (1985) Φ gives {expected}"
+        );
+        assert!(
+            (ratio / ratio_expected - 1.0).abs() < 0.02,
+            "h = {depth} m: TMA Hs / deep Hs = {ratio}, Bouws et al. (1985) Φ on the JONSWAP spectrum \
+             (Python): {ratio_expected}"
+        );
+    }
+}
+
+#[test]
 fn frequency_and_wavenumber_spectra_agree() {
     // ∫ S(k) d²k = ∫ S(ω) dω, since the spreading integrates to 1.
     for spectrum in [SpectrumKind::Jonswap, SpectrumKind::PiersonMoskowitz] {
