@@ -89,8 +89,10 @@ pub const DEFAULT_SEA: SeaPreset = SeaPreset {
 
 /// The sea of a `--preset`. Wind speeds are mid-range of their Beaufort force (WMO: force 2
 /// light breeze 1.6–3.3 m/s, 4 moderate breeze 5.5–7.9, 6 strong breeze 10.8–13.8, 10 storm
-/// 24.5–28.4); fetches grow with the force, the storm's patch holds its ~570 m peak wavelength
-/// (2πg/ω_p², ω_p = 0.877 g/U).
+/// 24.5–28.4); fetches grow with the force. All four seas are fetch-limited JONSWAP
+/// (X = gF/U² = 1.1–1.6·10⁴, below full development at 1.9·10⁴): Hs from Hasselmann et al.'s
+/// (1973) growth law 0.13, 0.77, 2.81 and 13.5 m, T_p 1.8, 4.3, 8.4 and 18.6 s; the storm's
+/// 1000 m patch holds its 540 m peak wavelength (2πg/ω_p², ω_p = 22 (g²/(U F))^⅓).
 pub fn sea_preset(p: PresetArg) -> SeaPreset {
     let sea = |wind_speed_m_s, fetch_km, choppiness, patch_size_m| SeaPreset {
         wind_speed_m_s,
@@ -103,5 +105,54 @@ pub fn sea_preset(p: PresetArg) -> SeaPreset {
         PresetArg::Breeze => sea(6.7, 50.0, 0.8, 400.0),
         PresetArg::Moderate => sea(12.3, 200.0, 1.0, 400.0),
         PresetArg::Storm => sea(26.5, 1000.0, 1.2, 1000.0),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::ocean::spectrum::{peak_omega, spectrum_shape, G};
+    use crate::ocean::SeaState;
+
+    #[test]
+    fn presets_have_the_wave_heights_their_comment_quotes() {
+        // (preset, Hs m, T_p s) as quoted above: Hs = 1.6·10⁻³ (gF/U²)^½ U²/g (Hasselmann et al.
+        // 1973), T_p = 2π/ω_p, ω_p = 22 (g²/(U F))^⅓.
+        let quoted = [
+            (PresetArg::Calm, 0.13, 1.8),
+            (PresetArg::Breeze, 0.77, 4.3),
+            (PresetArg::Moderate, 2.81, 8.4),
+            (PresetArg::Storm, 13.5, 18.6),
+        ];
+        for (preset, hs_quoted, tp_quoted) in quoted {
+            let SeaPreset {
+                wind_speed_m_s: wind,
+                fetch_km: fetch,
+                patch_size_m: patch,
+                ..
+            } = sea_preset(preset);
+            let sea = SeaState {
+                wind_speed_m_s: wind,
+                fetch_km: fetch,
+                ..SeaState::default()
+            };
+            let hs = 4.0 * spectrum_shape(&sea).variance().sqrt();
+            let hs_growth = 1.6e-3 * (G * fetch * 1000.0 / (wind * wind)).sqrt() * wind * wind / G;
+            let wp = peak_omega(&sea);
+            let tp = 2.0 * std::f64::consts::PI / wp;
+            assert!(
+                (hs / hs_quoted - 1.0).abs() < 0.02 && (hs / hs_growth - 1.0).abs() < 0.02,
+                "{preset:?}: Hs {hs} m, quoted {hs_quoted} m, Hasselmann et al. growth law {hs_growth} m"
+            );
+            assert!(
+                (tp / tp_quoted - 1.0).abs() < 0.02,
+                "{preset:?}: Tp {tp} s, quoted {tp_quoted} s"
+            );
+            let wavelength = 2.0 * std::f64::consts::PI * G / (wp * wp);
+            assert!(
+                wavelength < patch,
+                "{preset:?}: peak wavelength {wavelength} m, patch {patch} m"
+            );
+        }
     }
 }

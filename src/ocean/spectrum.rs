@@ -42,7 +42,8 @@ pub const G: f64 = 9.81;
 pub enum SpectrumKind {
     /// Tessendorf's graphics spectrum (2001), from wind speed and direction only.
     Phillips,
-    /// Fetch-limited sea (Hasselmann et al. 1973), from wind speed and fetch.
+    /// Fetch-limited sea (Hasselmann et al. 1973), from wind speed and fetch; Pierson–Moskowitz's
+    /// once fully developed (see [`spectrum_shape`]).
     Jonswap,
     /// Fully developed sea (Pierson & Moskowitz 1964), from wind speed.
     PiersonMoskowitz,
@@ -74,7 +75,7 @@ pub struct SeaState {
 }
 
 impl Default for SeaState {
-    /// A moderate breeze over 100 km of fetch: about 1.6 m significant wave height.
+    /// A moderate breeze over 100 km of fetch: Hs 1.62 m, T_p 6.2 s (JONSWAP, [`spectrum_shape`]).
     fn default() -> Self {
         SeaState {
             spectrum: SpectrumKind::Jonswap,
@@ -113,15 +114,136 @@ pub fn dispersion(k: f64, depth_m: Option<f64>) -> (f64, f64) {
     }
 }
 
+/// Pierson & Moskowitz (1964): S(ω) = α g² ω⁻⁵ exp(−β (ω0/ω)⁴), ω0 = g/U19.5, with α = 8.1·10⁻³ ...
+const PM_ALPHA: f64 = 8.1e-3;
+/// ... and β = 0.74 (Pierson & Moskowitz 1964).
+const PM_BETA: f64 = 0.74;
+/// U19.5 ≈ 1.026 U10: Pierson & Moskowitz's winds were measured 19.5 m above the sea (Pierson &
+/// Moskowitz 1964; Horvath 2015).
+const U19_5_PER_U10: f64 = 1.026;
+
+/// JONSWAP peak enhancement γ = 3.3 (Hasselmann et al. 1973, mean of the JONSWAP spectra).
+const JONSWAP_GAMMA: f64 = 3.3;
+/// JONSWAP peak widths σ = 0.07 below the peak and 0.09 above (Hasselmann et al. 1973).
+const JONSWAP_SIGMA: [f64; 2] = [0.07, 0.09];
+/// JONSWAP peak law ω_p = 22 (g²/(U10 F))^⅓ (Hasselmann et al. 1973; Horvath 2015, eq. 28).
+const JONSWAP_PEAK: f64 = 22.0;
+/// JONSWAP energy growth law m0 = 1.6·10⁻⁷ X (U10²/g)², X = gF/U10², i.e. Hs = 1.6·10⁻³ X^½ U10²/g
+/// (Hasselmann et al. 1973): 1.62 m at U10 = 10 m/s over 100 km.
+const JONSWAP_ENERGY_GROWTH: f64 = 1.6e-7;
+
+/// Peak of the Pierson–Moskowitz spectrum (rad/s) for U10 = `u10`: where ω⁻⁵ exp(−β (ω0/ω)⁴) is
+/// largest, ω_p = (4β/5)^¼ ω0 = 0.877 g/U19.5 = 0.855 g/U10 (Pierson & Moskowitz 1964). 0.855 is
+/// the coefficient on U10: the 1.026 conversion is applied once.
+pub fn pierson_moskowitz_peak(u10: f64) -> f64 {
+    (0.8 * PM_BETA).powf(0.25) * G / (U19_5_PER_U10 * u10)
+}
+
+/// The form both physical spectra take (Hasselmann et al. 1973, with Pierson–Moskowitz as γ = 1):
+/// S(ω) = α g² ω⁻⁵ exp(−5/4 (ω_p/ω)⁴) γ^exp(−(ω − ω_p)²/(2σ²ω_p²)), σ from `JONSWAP_SIGMA`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SpectrumShape {
+    /// Level of the ω⁻⁵ tail (the Phillips constant of the spectrum), α.
+    pub alpha: f64,
+    /// Peak angular frequency ω_p (rad/s).
+    pub omega_p: f64,
+    /// Peak enhancement γ (1: Pierson–Moskowitz).
+    pub gamma: f64,
+}
+
+impl SpectrumShape {
+    /// The fully developed sea of wind `u10` (Pierson & Moskowitz 1964).
+    pub fn pierson_moskowitz(u10: f64) -> SpectrumShape {
+        SpectrumShape {
+            alpha: PM_ALPHA,
+            omega_p: pierson_moskowitz_peak(u10),
+            gamma: 1.0,
+        }
+    }
+
+    /// Deep-water S(ω) (m²·s).
+    pub fn density(&self, omega: f64) -> f64 {
+        let wp = self.omega_p;
+        let sigma = JONSWAP_SIGMA[usize::from(omega > wp)];
+        let peak = (-(omega - wp).powi(2) / (2.0 * sigma * sigma * wp * wp)).exp();
+        self.alpha * G * G / omega.powi(5)
+            * (-1.25 * (wp / omega).powi(4)).exp()
+            * self.gamma.powf(peak)
+    }
+
+    /// Deep-water variance m0 = ∫ S dω = α g² ω_p⁻⁴ J(γ) (m²), J from [`shape_integral`].
+    pub fn variance(&self) -> f64 {
+        let j = if self.gamma == 1.0 {
+            0.2 // ∫₀^∞ x⁻⁵ exp(−5/4 x⁻⁴) dx = 1/5
+        } else if self.gamma == JONSWAP_GAMMA {
+            jonswap_shape_integral()
+        } else {
+            shape_integral(self.gamma)
+        };
+        self.alpha * G * G / self.omega_p.powi(4) * j
+    }
+}
+
+/// J(γ) = ∫₀^∞ x⁻⁵ exp(−5/4 x⁻⁴) γ^exp(−(x − 1)²/(2σ²)) dx, the variance of the shape with α = 1
+/// in units of g² ω_p⁻⁴: midpoint rule over 0.3 ≤ x ≤ 10 and the closed form
+/// ∫ x⁻⁵ exp(−c x⁻⁴) dx = exp(−c x⁻⁴)/(4c) outside, where γ's factor is 1 to f64 precision.
+/// J(1) = 1/5 exactly; J(3.3) = 0.3050.
+pub fn shape_integral(gamma: f64) -> f64 {
+    let (lo, hi, n) = (0.3f64, 10.0f64, 100_000);
+    let ends = ((-1.25 / lo.powi(4)).exp() + 1.0 - (-1.25 / hi.powi(4)).exp()) / 5.0;
+    let unit = SpectrumShape {
+        alpha: 1.0 / (G * G),
+        omega_p: 1.0,
+        gamma,
+    };
+    let dx = (hi - lo) / n as f64;
+    ends + (0..n)
+        .map(|i| unit.density(lo + (i as f64 + 0.5) * dx) * dx)
+        .sum::<f64>()
+}
+
+/// J(3.3), computed once.
+fn jonswap_shape_integral() -> f64 {
+    static J: std::sync::OnceLock<f64> = std::sync::OnceLock::new();
+    *J.get_or_init(|| shape_integral(JONSWAP_GAMMA))
+}
+
+/// The deep-water spectrum of a sea state.
+///
+/// Pierson–Moskowitz (and Phillips' frequency spectrum): [`SpectrumShape::pierson_moskowitz`].
+///
+/// JONSWAP keeps Hasselmann et al.'s (1973) peak law, γ and σ, but takes α from their energy
+/// growth law (m0 = 1.6·10⁻⁷ X (U10²/g)²) instead of their α fit 0.076 X^−0.22: the shape with the
+/// fitted α integrates to about 1.75× the energy law (Hs 2.14 m instead of 1.62 m at 10 m/s over
+/// 100 km); the two fits disagree, and the variance is the measured quantity that sets the wave
+/// height. So α = m0 ω_p⁴/(g² J(3.3)) = 0.123 X^−⅓, 0.91× the fitted α at X = 160, 0.74× at 10³,
+/// 0.54× at 1.7·10⁴. No sea grows beyond the fully developed one: ω_p stays at or above the
+/// Pierson–Moskowitz peak (reached at X = 1.70·10⁴) and once the growth law's m0 reaches the
+/// Pierson–Moskowitz variance (X = 1.90·10⁴) the spectrum is Pierson–Moskowitz's. Hs and ω_p are
+/// continuous in the fetch; γ drops to 1 at X = 1.90·10⁴.
+pub fn spectrum_shape(sea: &SeaState) -> SpectrumShape {
+    let u = sea.wind_speed_m_s.max(1e-3);
+    let developed = SpectrumShape::pierson_moskowitz(u);
+    if sea.spectrum != SpectrumKind::Jonswap {
+        return developed;
+    }
+    let fetch_m = sea.fetch_km.max(1e-3) * 1000.0;
+    let x = G * fetch_m / (u * u);
+    let variance = JONSWAP_ENERGY_GROWTH * x * (u * u / G).powi(2);
+    if variance >= developed.variance() {
+        return developed;
+    }
+    let omega_p = (JONSWAP_PEAK * (G * G / (u * fetch_m)).cbrt()).max(developed.omega_p);
+    SpectrumShape {
+        alpha: variance * omega_p.powi(4) / (G * G * jonswap_shape_integral()),
+        omega_p,
+        gamma: JONSWAP_GAMMA,
+    }
+}
+
 /// Peak angular frequency ω_p (rad/s) of the physical spectra.
 pub fn peak_omega(sea: &SeaState) -> f64 {
-    let u = sea.wind_speed_m_s.max(1e-3);
-    match sea.spectrum {
-        // JONSWAP: ω_p = 22 (g² / (U F))^(1/3), F in metres (Horvath 2015, eq. 28).
-        SpectrumKind::Jonswap => 22.0 * (G * G / (u * sea.fetch_km.max(1e-3) * 1000.0)).cbrt(),
-        // Pierson–Moskowitz: ω_p = 0.855 g / U_19.5 with U_19.5 ≈ 1.026 U10 (Horvath 2015, §5.1).
-        SpectrumKind::PiersonMoskowitz | SpectrumKind::Phillips => 0.855 * G / (1.026 * u),
-    }
+    spectrum_shape(sea).omega_p
 }
 
 /// One-dimensional frequency spectrum S(ω) (m²·s) of the physical spectra, TMA-attenuated at
@@ -130,22 +252,7 @@ pub fn frequency_spectrum(sea: &SeaState, omega: f64) -> f64 {
     if omega <= 1e-6 {
         return 0.0;
     }
-    let wp = peak_omega(sea);
-    let ratio4 = (wp / omega).powi(4);
-    let base = |alpha: f64| alpha * G * G / omega.powi(5) * (-1.25 * ratio4).exp();
-    let s = match sea.spectrum {
-        SpectrumKind::PiersonMoskowitz | SpectrumKind::Phillips => base(8.1e-3),
-        SpectrumKind::Jonswap => {
-            let u = sea.wind_speed_m_s.max(1e-3);
-            let fetch_m = sea.fetch_km.max(1e-3) * 1000.0;
-            // α = 0.076 (U² / (F g))^0.22, γ = 3.3, σ = 0.07 below the peak, 0.09 above.
-            let alpha = 0.076 * (u * u / (fetch_m * G)).powf(0.22);
-            let sigma = if omega <= wp { 0.07 } else { 0.09 };
-            let r = (-(omega - wp).powi(2) / (2.0 * sigma * sigma * wp * wp)).exp();
-            base(alpha) * 3.3f64.powf(r)
-        }
-    };
-    s * tma_attenuation(omega, sea.depth_m)
+    spectrum_shape(sea).density(omega) * tma_attenuation(omega, sea.depth_m)
 }
 
 /// Kitaigorodskii depth attenuation Φ(ω, h) of the TMA spectrum (Bouws et al. 1985; Horvath 2015
@@ -162,27 +269,39 @@ pub fn tma_attenuation(omega: f64, depth_m: Option<f64>) -> f64 {
     }
 }
 
-/// Donelan–Banner directional spreading D(ω, θ) (Donelan, Hamilton & Hui 1985 with Banner's 1990
-/// high-frequency extension; Horvath 2015 eq. 38): D = β / (2 tanh(βπ)) · sech²(βθ), θ the angle
-/// between the direction of travel and the wind in (−π, π]. Integrates to exactly 1 over θ.
-pub fn donelan_banner(omega: f64, omega_p: f64, theta: f64) -> f64 {
-    let r = (omega / omega_p.max(1e-6)).max(1e-6);
-    let beta = if r < 0.95 {
+/// Width β of the Donelan–Banner spreading at r = ω/ω_p (Donelan, Hamilton & Hui 1985, Banner 1990;
+/// as in Horvath 2015, eq. 38): β = 2.61 r^1.3 for r < 0.95 (Donelan et al. fit 0.56 < r < 0.95; the
+/// same power law is kept below 0.56), 2.28 r^−1.3 for 0.95 ≤ r < 1.6, and above it Banner's
+/// β = 10^ε, ε = −0.4 + 0.8393 exp(−0.567 ln(r²)) = −0.4 + 0.8393 r^−1.134. Continuous at r = 1.6
+/// (1.2376 from both sides).
+pub fn donelan_banner_beta(r: f64) -> f64 {
+    if r < 0.95 {
         2.61 * r.powf(1.3)
     } else if r < 1.6 {
         2.28 * r.powf(-1.3)
     } else {
-        let eps = -0.4 + 0.8393 * (-0.567 * (r * r).ln().powi(2)).exp();
+        let eps = -0.4 + 0.8393 * (-0.567 * (r * r).ln()).exp();
         10f64.powf(eps)
-    };
-    let beta = beta.max(1e-3); // β → 0 would be isotropic; keep tanh(βπ) away from 0
+    }
+}
+
+/// Donelan–Banner directional spreading D(ω, θ) (Donelan, Hamilton & Hui 1985 with Banner's 1990
+/// high-frequency extension; Horvath 2015 eq. 38): D = β / (2 tanh(βπ)) · sech²(βθ), β from
+/// [`donelan_banner_beta`], θ the angle between the direction of travel and the wind in (−π, π].
+/// Integrates to exactly 1 over θ.
+pub fn donelan_banner(omega: f64, omega_p: f64, theta: f64) -> f64 {
+    let r = (omega / omega_p.max(1e-6)).max(1e-6);
+    let beta = donelan_banner_beta(r).max(1e-3); // β → 0 would be isotropic; keep tanh(βπ) away from 0
     let sech = 1.0 / (beta * theta).cosh();
     beta / (2.0 * (beta * PI).tanh()) * sech * sech
 }
 
-/// Tessendorf's amplitude constant for the Phillips spectrum. With A = α/π, α = 0.0081 (the
-/// Phillips constant of the saturation range), ∫ S d²k = α L_w²/2 (L_w = U²/g), close to the
-/// Pierson–Moskowitz variance of the same wind.
+/// Tessendorf's amplitude constant for the Phillips spectrum, A = α/π with α = 0.0081 (Phillips'
+/// constant of the saturation range, as in Pierson & Moskowitz 1964). The variance is
+/// ∫ S d²k = A (π/2)(1 + 0.07) L_w²/2 = 1.07 α L_w²/4 = 2.17·10⁻³ L_w² (L_w = U²/g; the e^{−k²ℓ²}
+/// cut-off changes it by < 0.1 %): Hs = 0.186 U²/g, 1.90 m at 10 m/s, 0.71× the
+/// Pierson–Moskowitz variance of the same U10 (Hs 0.85×). `phillips_variance_matches_closed_form`
+/// checks it.
 pub const PHILLIPS_A: f64 = 8.1e-3 / PI;
 /// Factor on waves travelling against the wind (seed 003 `dirDepend`; NVIDIA's sample uses 0.07).
 pub const PHILLIPS_AGAINST_WIND: f64 = 0.07;
@@ -228,7 +347,15 @@ pub fn directional_density(sea: &SeaState, k_travel: [f64; 2]) -> f64 {
     let (omega, domega_dk) = dispersion(k, sea.depth_m);
     let theta =
         (k_travel[1].atan2(k_travel[0]) - wind[1].atan2(wind[0]) + PI).rem_euclid(2.0 * PI) - PI;
-    frequency_spectrum(sea, omega) * donelan_banner(omega, peak_omega(sea), theta) * domega_dk / k
+    if omega <= 1e-6 {
+        return 0.0;
+    }
+    let shape = spectrum_shape(sea);
+    shape.density(omega)
+        * tma_attenuation(omega, sea.depth_m)
+        * donelan_banner(omega, shape.omega_p, theta)
+        * domega_dk
+        / k
 }
 
 /// Numerical ∫∫ S(k) d²k over the annulus k_min ≤ |k| ≤ k_max (polar midpoint rule, log-spaced
@@ -398,217 +525,4 @@ pub fn h0(
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn quantized_time_repeats_exactly_and_keeps_its_precision() {
-        // h(t) = h(t mod T): the same ticks, so the same phase, one period later.
-        for t in [0.0, 1.5, 1e3, 1e6] {
-            assert_eq!(time_ticks(t), time_ticks(t + REPEAT_PERIOD_S), "t = {t}");
-        }
-        // The phase of the finest wave of the default scene (k ≈ 38 rad/m, ω ≈ 19 rad/s) one
-        // frame apart at t = 10^6 s advances by ω·dt, as at t = 0 (an f32 time would step by
-        // 62.5 ms there).
-        let k = 38.0;
-        let steps = omega_steps(k, None);
-        let omega = steps as f64 * omega_quantum();
-        for t in [0.0, 1e6] {
-            let dt = 1.0 / 60.0;
-            let d = phase_turns(steps, time_ticks(t + dt)) - phase_turns(steps, time_ticks(t));
-            let d = (d + 0.5).rem_euclid(1.0) - 0.5;
-            let expected = omega * dt / (2.0 * PI);
-            // Each end's time is rounded to a tick (T / 2^32 = 15 µs): at most ω·tick/2π.
-            let tick_s = REPEAT_PERIOD_S / 4_294_967_296.0;
-            let bound = omega * tick_s / (2.0 * PI);
-            assert!(
-                (d - expected).abs() <= bound,
-                "t = {t}: phase step {d} turns, expected {expected} ± {bound}"
-            );
-        }
-        // The quantized frequency stays within half a quantum of the dispersion relation.
-        for k in [2.0 * PI / 1000.0, 0.1, 1.0, 38.0, 600.0] {
-            let exact = dispersion(k, None).0;
-            let q = omega_steps(k, None) as f64 * omega_quantum();
-            assert!(
-                (q - exact).abs() <= omega_quantum() / 2.0 + 1e-12,
-                "k = {k}"
-            );
-        }
-    }
-
-    #[test]
-    fn donelan_banner_integrates_to_one() {
-        for r in [0.3, 0.8, 1.0, 1.3, 2.0, 5.0] {
-            let n = 20000;
-            let sum: f64 = (0..n)
-                .map(|i| {
-                    donelan_banner(r, 1.0, -PI + 2.0 * PI * (i as f64 + 0.5) / n as f64) * 2.0 * PI
-                        / n as f64
-                })
-                .sum();
-            assert!((sum - 1.0).abs() < 1e-6, "ω/ωp = {r}: ∫D = {sum}");
-        }
-    }
-
-    #[test]
-    fn deep_and_shallow_dispersion() {
-        let (w, d) = dispersion(0.1, None);
-        assert!((w - (G * 0.1f64).sqrt()).abs() < 1e-12 && (d - G / (2.0 * w)).abs() < 1e-12);
-        // Deep limit of finite depth, and shallow-water speed √(g h).
-        let (w_deep, _) = dispersion(0.1, Some(1000.0));
-        assert!((w_deep - w).abs() < 1e-9);
-        let (w_shallow, _) = dispersion(1e-3, Some(2.0));
-        assert!((w_shallow / 1e-3 - (G * 2.0f64).sqrt()).abs() < 1e-3);
-        // No NaN at extremes.
-        for k in [0.0, 1e-12, 1e6] {
-            for h in [None, Some(1e-6), Some(1.0), Some(1e9)] {
-                let (w, d) = dispersion(k, h);
-                assert!(w.is_finite() && d.is_finite(), "k {k} h {h:?}");
-            }
-        }
-    }
-
-    #[test]
-    fn pierson_moskowitz_peak_and_height() {
-        // Fully developed sea: Hs ≈ 0.21 U19.5² / g (Pierson–Moskowitz 1964).
-        let sea = SeaState {
-            spectrum: SpectrumKind::PiersonMoskowitz,
-            ..SeaState::default()
-        };
-        let n = 200_000;
-        let (mut var, mut peak) = (0.0, (0.0, 0.0));
-        for i in 1..n {
-            let w = 5.0 * i as f64 / n as f64;
-            let s = frequency_spectrum(&sea, w);
-            var += s * 5.0 / n as f64;
-            if s > peak.1 {
-                peak = (w, s);
-            }
-        }
-        let hs = 4.0 * var.sqrt();
-        let u195 = 1.026 * sea.wind_speed_m_s;
-        assert!(
-            (hs / (0.21 * u195 * u195 / G) - 1.0).abs() < 0.05,
-            "Hs {hs}"
-        );
-        assert!(
-            (peak.0 - peak_omega(&sea)).abs() < 1e-3,
-            "peak at {}",
-            peak.0
-        );
-    }
-
-    #[test]
-    fn frequency_and_wavenumber_spectra_agree() {
-        // ∫ S(k) d²k = ∫ S(ω) dω, since the spreading integrates to 1.
-        for spectrum in [SpectrumKind::Jonswap, SpectrumKind::PiersonMoskowitz] {
-            for depth in [None, Some(20.0)] {
-                let sea = SeaState {
-                    spectrum,
-                    depth_m: depth,
-                    ..SeaState::default()
-                };
-                let n = 100_000;
-                let var_w: f64 = (1..n)
-                    .map(|i| frequency_spectrum(&sea, 10.0 * i as f64 / n as f64) * 10.0 / n as f64)
-                    .sum();
-                let var_k = integrate_density(&sea, 1e-4, 10.0 * 10.0 / G * 4.0);
-                assert!(
-                    (var_k / var_w - 1.0).abs() < 0.01,
-                    "{spectrum:?} {depth:?}: {var_k} vs {var_w}"
-                );
-            }
-        }
-    }
-
-    #[test]
-    fn phillips_variance_matches_closed_form() {
-        // ∫ A e^{−1/(kL)²} k^{−4} cos²θ (1 or 0.07) k dk dθ = A (π/2)(1 + 0.07) L²/2 (ℓ-suppression negligible).
-        let sea = SeaState {
-            spectrum: SpectrumKind::Phillips,
-            ..SeaState::default()
-        };
-        let l = sea.wind_speed_m_s.powi(2) / G;
-        let expected = PHILLIPS_A * PI / 2.0 * (1.0 + PHILLIPS_AGAINST_WIND) * l * l / 2.0;
-        let got = integrate_density(&sea, 1e-4, 1e4);
-        assert!((got / expected - 1.0).abs() < 0.01, "{got} vs {expected}");
-    }
-
-    #[test]
-    fn gaussians_are_standard_and_deterministic() {
-        let n = 200_000;
-        let (mut sum, mut sq) = (0.0, 0.0);
-        for i in 0..n {
-            let (a, b) = gaussian_pair(7, 0, i, -i);
-            sum += a + b;
-            sq += a * a + b * b;
-        }
-        let mean = sum / (2 * n) as f64;
-        let var = sq / (2 * n) as f64 - mean * mean;
-        assert!(
-            mean.abs() < 0.01 && (var - 1.0).abs() < 0.01,
-            "mean {mean} var {var}"
-        );
-        assert_eq!(gaussian_pair(1, 2, 3, 4), gaussian_pair(1, 2, 3, 4));
-        assert_ne!(gaussian_pair(1, 2, 3, 4), gaussian_pair(2, 2, 3, 4));
-    }
-
-    #[test]
-    fn no_nan_or_inf_across_sea_states() {
-        // Wind 0.5-40 m/s, depth 1 m to deep, fetch 1-1000 km, k up to the Nyquist limit of the
-        // finest cascade at N = 1024 (and the h0 of a small grid).
-        let patch = 400.0;
-        let finest = cascades(patch, 4)[3].patch_m;
-        let k_max = PI * 1024.0 / finest;
-        for spectrum in [
-            SpectrumKind::Phillips,
-            SpectrumKind::Jonswap,
-            SpectrumKind::PiersonMoskowitz,
-        ] {
-            for wind in [0.5, 3.0, 10.0, 25.0, 40.0] {
-                for depth in [Some(1.0), Some(10.0), Some(200.0), None] {
-                    for fetch in [1.0, 30.0, 1000.0] {
-                        let sea = SeaState {
-                            spectrum,
-                            wind_speed_m_s: wind,
-                            wind_dir_deg: 33.0,
-                            fetch_km: fetch,
-                            depth_m: depth,
-                        };
-                        for i in 0..=400 {
-                            let k = k_max * (i as f64 / 400.0).powi(3);
-                            for t in [-2.0f64, 0.0, 0.7, 3.1] {
-                                let s = directional_density(&sea, [k * t.cos(), k * t.sin()]);
-                                assert!(s.is_finite() && s >= 0.0, "{sea:?} k {k}: S = {s}");
-                            }
-                        }
-                        for (c, cascade) in cascades(patch, 2).iter().enumerate() {
-                            let h = h0(&sea, 64, cascade, c as u32, 7);
-                            assert!(
-                                h.iter().all(|v| v[0].is_finite() && v[1].is_finite()),
-                                "{sea:?}"
-                            );
-                        }
-                    }
-                }
-            }
-        }
-    }
-
-    #[test]
-    fn cascade_bands_are_disjoint_and_resolvable() {
-        let cs = cascades(400.0, 4);
-        for w in cs.windows(2) {
-            assert_eq!(w[0].k_max, w[1].k_min);
-            assert!(
-                w[0].k_max < PI * 64.0 / w[0].patch_m,
-                "boundary below the coarse Nyquist at N = 64"
-            );
-            assert!(
-                w[1].k_min > 2.0 * PI / w[1].patch_m * 5.0,
-                "boundary well above the fine Δk"
-            );
-        }
-    }
-}
+mod tests;
