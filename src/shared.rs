@@ -77,6 +77,11 @@ shared_constants! {
     /// src/ocean/cpu.rs): where the choppy surface folds (J ≤ 0) its true normal points down,
     /// and the stored slopes stay those of a steep (J = 0.05) face.
     NORMAL_MIN_JACOBIAN: f32 = 0.05;
+    /// The buoy (src/ocean/buoy.rs, shaders/terrain/objects.vert): waterline radius (m), depth
+    /// of its bottom below the waterline (m) and height of its top above it (m).
+    BUOY_RADIUS_M: f32 = 0.8;
+    BUOY_DRAFT_M: f32 = 1.2;
+    BUOY_FREEBOARD_M: f32 = 3.5;
     /// `--view` values the shaders react to (`ViewMode` in src/render/mod.rs).
     VIEW_FINAL: u32 = 0;
     VIEW_REFLECTION: u32 = 1;

@@ -1,6 +1,8 @@
 //! The ocean: sea state and spectra ([`spectrum`]), the CPU reference simulation with rustfft
-//! ([`cpu`]), and analytic Gerstner waves ([`gerstner`]).
+//! ([`cpu`]), analytic Gerstner waves ([`gerstner`]), per-frame height queries of the drawn
+//! surface ([`surface`]) and the floating buoy ([`buoy`]).
 
+pub mod buoy;
 pub mod cpu;
 pub mod dump;
 pub mod fft;
@@ -9,6 +11,7 @@ pub mod params;
 pub mod simulation;
 pub mod spectrum;
 pub mod stats;
+pub mod surface;
 
 pub use params::{OceanSettings, Waves};
 pub use spectrum::{SeaState, SpectrumKind};
