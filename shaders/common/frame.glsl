@@ -17,16 +17,19 @@ layout(set = 0, binding = 0, std140) uniform FrameUniforms {
     vec4 patch_m;        // side of each ocean cascade's patch (m), cascades 0..3
     vec4 lod;            // x: focal length (px); y: target edge (px); z: max displacement (m)
     vec4 terrain;        // xy: island centre (m); z: sea floor depth (m); w: island radius (m)
-    vec4 objects[4];     // (x, z, radius, top height) of the objects in the water; 0 height = none
+    vec4 objects[4];     // (x, z, radius, top height) of the objects in the water; 0 height = none;
+                         // 0 is the buoy (top height: above its waterline, see `buoy`)
     vec4 background;     // xyz: the solid test background (modes.w = 1)
     // Camera-relative water (WaterFrame in src/render/uniforms.rs): the water's vertices are
     // measured from a centre near the camera; what depends on absolute position is reduced on
     // the CPU in f64, so precision holds however far from the origin and however late.
     vec4 water;          // xy: camera xz relative to the water grid centre (m); z: water level (m);
                          // w: the camera's near plane (m; depth = near / view distance)
-    vec4 cascade_uv[2];  // ocean image coordinates of the grid centre: cascade c in [c/2].xy / .zw
+    vec4 cascade_uv[2];  // ocean image coordinates of the grid centre (plus half a texel: texel i
+                         // holds the node at i·L/N): cascade c in [c/2].xy / .zw
     vec4 dudv_origin;    // DU/DV tile coordinates of the grid centre (mod 1): xy sample 1, zw sample 2
     vec4 dudv;           // x: tiles per metre; y: sample 2's scale; z: scroll phase (turns)
+    vec4 buoy;           // the floating buoy (object 0): xyz its unit axis; w: its heave (m)
 } frame;
 
 // Which view a draw renders (ViewIndex in src/render/uniforms.rs).

@@ -1,8 +1,11 @@
 #version 460
-// Objects standing in the water: one instance per `frame.objects` entry, each a capped cylinder
-// from the sea floor to its top height (SEGMENTS around; 6 side + 3 cap vertices per segment).
-// Object 0 is the buoy (painted in stripes by terrain.frag). Absent objects (height 0)
-// collapse to a degenerate point.
+// Objects in the water: one instance per `frame.objects` entry, each a capped cylinder
+// (SEGMENTS around; 6 side + 3 cap vertices per segment). Absent objects (height 0) collapse to
+// a degenerate point.
+// - Objects 1–3, stone pillars: from the sea floor to their top height, upright.
+// - Object 0, the buoy (src/ocean/buoy.rs; painted in stripes by terrain.frag): floating, from
+//   BUOY_DRAFT_M below its waterline to `top height` above it, its axis frame.buoy.xyz (the
+//   fitted surface normal), its waterline centre at (x, frame.buoy.w, z).
 #include "common/frame.glsl"
 
 layout(location = 0) out vec3 out_rel_pos;
@@ -13,13 +16,24 @@ layout(location = 3) flat out int out_object;
 const uint SEGMENTS = 20u;
 const float TAU = 6.28318530718;
 
+// The rotation taking +y to the unit vector u (uy > -1), the shortest one (about y × u): its
+// columns are the images of x, y and z (Rodrigues' formula with cos = uy, sin·k = y × u).
+mat3 rotation_from_up(vec3 u) {
+    float s = 1.0 / (1.0 + u.y);
+    return mat3(vec3(1.0 - u.x * u.x * s, -u.x, -u.x * u.z * s),
+                u,
+                vec3(-u.x * u.z * s, -u.z, 1.0 - u.z * u.z * s));
+}
+
 void main() {
     vec4 obj = frame.objects[gl_InstanceIndex];
+    bool buoy = gl_InstanceIndex == 0;
     uint v = uint(gl_VertexIndex);
     uint seg = v / 9u;
     uint k = v % 9u;
-    float bottom = -frame.terrain.z - 2.0;
-    vec3 world;
+    // In the object's own frame: y along its axis, from `bottom` to `top`.
+    float bottom = buoy ? -BUOY_DRAFT_M : -frame.terrain.z - 2.0;
+    vec3 local;
     vec3 normal;
     if (k < 6u) {
         // Side quad of segment `seg`: two triangles.
@@ -27,15 +41,19 @@ void main() {
         uvec2 c = SIDE[k];
         float a = float(seg + c.x) / float(SEGMENTS) * TAU;
         vec2 dir = vec2(cos(a), sin(a));
-        world = vec3(obj.x + dir.x * obj.z, c.y == 1u ? obj.w : bottom, obj.y + dir.y * obj.z);
+        local = vec3(dir.x * obj.z, c.y == 1u ? obj.w : bottom, dir.y * obj.z);
         normal = vec3(dir.x, 0.0, dir.y);
     } else {
         // Top cap: a fan triangle (centre, two rim points).
         float a = float(seg + (k == 8u ? 1u : 0u)) / float(SEGMENTS) * TAU;
         float r = k == 6u ? 0.0 : obj.z;
-        world = vec3(obj.x + cos(a) * r, obj.w, obj.y + sin(a) * r);
+        local = vec3(cos(a) * r, obj.w, sin(a) * r);
         normal = vec3(0.0, 1.0, 0.0);
     }
+    mat3 rotation = buoy ? rotation_from_up(frame.buoy.xyz) : mat3(1.0);
+    vec3 origin = vec3(obj.x, buoy ? frame.buoy.w : 0.0, obj.y);
+    vec3 world = origin + rotation * local;
+    normal = rotation * normal;
     if (obj.w <= 0.0) {
         world = vec3(obj.x, bottom, obj.y);
     }

@@ -19,8 +19,11 @@ void main() {
     vec3 albedo;
     if (in_object >= 0) {
         if (in_object == 0) {
-            // Buoy: red and white bands 0.7 m high.
-            albedo = fract(in_world.y / 1.4) < 0.5 ? vec3(0.75, 0.08, 0.05) : vec3(0.85);
+            // Buoy: red and white bands 0.7 m high along its axis from its waterline (it floats:
+            // objects.vert), so the bands move with it.
+            vec3 waterline = vec3(frame.objects[0].x, frame.buoy.w, frame.objects[0].y);
+            float along = dot(in_world - waterline, frame.buoy.xyz);
+            albedo = fract(along / 1.4) < 0.5 ? vec3(0.75, 0.08, 0.05) : vec3(0.85);
         } else {
             albedo = vec3(0.45, 0.42, 0.38);
         }

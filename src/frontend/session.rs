@@ -9,6 +9,7 @@ use ash::vk;
 use super::RunSettings;
 use crate::gpu::selftest::SyncHazard;
 use crate::gpu::{Buffer, Context, Frames, GpuResult, GpuTimings, MemoryLocation, Profilers};
+use crate::ocean::buoy::Buoy;
 use crate::ocean::dump;
 use crate::ocean::simulation::Simulation;
 use crate::ocean::stats::stats_line;
@@ -30,6 +31,8 @@ pub struct Session {
     pub renderer: Renderer,
     /// The wave model (FFT or Gerstner) on the compute queue.
     simulation: Simulation,
+    /// The floating buoy: its pose at each frame's time, from CPU height queries.
+    buoy: Buoy,
     /// Test-only hazard, recorded once in the first frame.
     hazard: Option<SyncHazard>,
     /// Wall time between consecutive frame starts (ms), after warm-up: (frame index, ms), the
@@ -69,8 +72,11 @@ impl Session {
             normals: simulation.normals.iter().map(|i| i.view).collect(),
             patch_m: simulation.patch_sizes(),
             cascades: simulation.cascades.len() as u32,
+            texels: simulation.settings.fft_size as u32,
             max_displacement_m: simulation.max_displacement_m as f32,
         };
+        let [bx, bz] = s.scene.layout.buoy_xz;
+        let buoy = Buoy::on(&s.ocean, [bx as f64, bz as f64]);
         let camera = s.camera.unwrap_or_default();
         let renderer = Renderer::new(ctx, output_format, extent, ocean, &s.scene, camera)?;
         let mut session = Session {
@@ -79,6 +85,7 @@ impl Session {
             profilers,
             renderer,
             simulation,
+            buoy,
             hazard,
             cpu_frame_ms: Vec::new(),
             measure_from: WARMUP_FRAMES,
@@ -114,6 +121,10 @@ impl Session {
         }
         self.last_frame_start = Some(now);
         let slot = self.frames.next_slot();
+        let inputs = &FrameInputs {
+            buoy: self.buoy.pose(inputs.time_s),
+            ..*inputs
+        };
         let parts = FrameParts {
             ctx: &self.ctx,
             frames: &mut self.frames,

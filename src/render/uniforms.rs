@@ -6,6 +6,8 @@ use glam::{Mat4, Vec3, Vec4};
 
 use super::camera::Camera;
 use super::{FresnelModel, ViewMode};
+use crate::ocean::buoy::BuoyPose;
+use crate::shared::{BUOY_FREEBOARD_M, BUOY_RADIUS_M};
 
 /// Per-frame inputs.
 #[derive(Clone, Copy, Debug, Default)]
@@ -16,6 +18,8 @@ pub struct FrameInputs {
     pub ocean_origin_m: [f64; 2],
     /// The images cover one bounded window (Gerstner) rather than repeating tiles.
     pub ocean_window: bool,
+    /// The buoy's heave and axis at `time_s` (`ocean::buoy`; the session fills it in).
+    pub buoy: BuoyPose,
 }
 
 /// What the scene passes sample of the ocean simulation.
@@ -27,6 +31,8 @@ pub struct OceanBindings {
     /// Patch side of each cascade (m), padded to four.
     pub patch_m: [f32; 4],
     pub cascades: u32,
+    /// Texels per side of the images (N).
+    pub texels: u32,
     /// Bound on the surface's displacement from its rest position (m): patch culling, and how
     /// deep the main view can see under the water (`frame_views`).
     pub max_displacement_m: f32,
@@ -138,7 +144,7 @@ pub struct FrameUniforms {
     /// xy: island centre (m); z: sea floor depth (m); w: island radius (m).
     pub terrain: [f32; 4],
     /// Objects standing in the water: (x, z, radius, top height), height 0 = none. Object 0 is
-    /// the buoy.
+    /// the buoy, whose top is `BUOY_FREEBOARD_M` above its waterline (`buoy`).
     pub objects: [[f32; 4]; 4],
     /// xyz: solid background colour (`--view` tests); w: unused.
     pub background: [f32; 4],
@@ -154,6 +160,8 @@ pub struct FrameUniforms {
     /// x: DU/DV tiles per metre; y: the second sample's scale; z: scroll phase (turns, mod 1);
     /// w: unused.
     pub dudv: [f32; 4],
+    /// The buoy (object 0, `ocean::buoy`): xyz its unit axis, w its heave (m).
+    pub buoy: [f32; 4],
 }
 
 /// Side of a DU/DV tile on the water (m).
@@ -227,7 +235,12 @@ impl SceneLayout {
         let [ix, iz] = self.island_xz;
         let r = self.island_radius_m;
         [
-            [self.buoy_xz[0], self.buoy_xz[1], 0.8, 3.5],
+            [
+                self.buoy_xz[0],
+                self.buoy_xz[1],
+                BUOY_RADIUS_M,
+                BUOY_FREEBOARD_M,
+            ],
             [ix + 0.95 * r, iz + 0.55 * r, 6.0, 28.0],
             [ix + 1.05 * r, iz + 0.15 * r, 4.0, 20.0],
             [ix + 0.70 * r, iz + 0.95 * r, 5.0, 34.0],
@@ -297,12 +310,18 @@ impl FrameUniforms {
                 camera.near_m,
             ],
             cascade_uv: [0, 1].map(|half| {
+                // Plus half a texel: texel i holds the node at i·L/N, and a sampler puts texel
+                // i's centre at u = (i + ½)/N. Without it the drawn waves sat half a texel (0.8 m
+                // of the 400 m cascade at N = 256) off the simulated ones (the buoy, stats).
+                let half_texel = 0.5 / p.ocean.texels.max(1) as f32;
                 let uv = |c: usize| {
-                    water.ocean_uv(
-                        p.inputs.ocean_origin_m,
-                        p.ocean.patch_m[c] as f64,
-                        p.inputs.ocean_window,
-                    )
+                    water
+                        .ocean_uv(
+                            p.inputs.ocean_origin_m,
+                            p.ocean.patch_m[c] as f64,
+                            p.inputs.ocean_window,
+                        )
+                        .map(|u| u + half_texel)
                 };
                 let (a, b) = (uv(2 * half), uv(2 * half + 1));
                 [a[0], a[1], b[0], b[1]]
@@ -317,6 +336,10 @@ impl FrameUniforms {
                 (p.time_s * DUDV_SPEED_TILES_S).rem_euclid(1.0) as f32,
                 0.0,
             ],
+            buoy: {
+                let b = &p.inputs.buoy;
+                [b.axis[0], b.axis[1], b.axis[2], b.heave_m].map(|v| v as f32)
+            },
         }
     }
 }
