@@ -12,7 +12,7 @@ use vkocean::ocean::{OceanSettings, Waves};
 
 /// The GPU's images as a lattice: texel (i, j) of cascade c is node (i, j), periodic (FFT) or
 /// offset by the window's origin (Gerstner).
-struct Texels2 {
+struct GpuImages {
     texels: Texels,
     n: usize,
     steps: Vec<f64>,
@@ -20,7 +20,7 @@ struct Texels2 {
     origin: Option<[i64; 2]>,
 }
 
-impl Lattice for Texels2 {
+impl Lattice for GpuImages {
     fn steps(&self) -> Vec<f64> {
         self.steps.clone()
     }
@@ -60,7 +60,7 @@ fn max_heave_error(settings: &OceanSettings, times: &[f64]) -> f64 {
             let origin = sim
                 .is_window()
                 .then(|| sim.origin_m().map(|o| (o / steps[0]).round() as i64));
-            let gpu = SurfaceQuery::new(Box::new(Texels2 {
+            let gpu = SurfaceQuery::new(Box::new(GpuImages {
                 texels,
                 n,
                 steps,
