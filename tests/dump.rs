@@ -4,7 +4,8 @@
 
 mod common;
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
+use std::process::Output;
 
 use common::{clean_run, run, scratch, stderr};
 use vkocean::ocean::cpu::CpuOcean;
@@ -152,22 +153,15 @@ fn dump_needs_headless_and_a_writable_dir() {
     assert_eq!(stderr(&out).lines().count(), 1);
 }
 
-#[test]
-fn gerstner_dump_from_a_wave_file() {
-    let dir = scratch("dump-gerstner");
+/// A headless Gerstner run (64² images) of the wave table `csv`, dumped: (run output, dump
+/// directory, params.json). `extra` flags are added.
+fn gerstner_dump(name: &str, csv: &str, extra: &[&str]) -> (Output, PathBuf, serde_json::Value) {
+    let dir = scratch(name);
     let table = dir.join("waves.csv");
-    std::fs::write(
-        &table,
-        "kx,kz,amplitude,phase,steepness\n0.3,-0.46,0.2,0,1\n-0.33,0.4,0.12,0.5,0.5\n",
-    )
-    .unwrap();
+    std::fs::write(&table, csv).unwrap();
     let out_dir = dir.join("out");
-    let out = run(&[
+    let mut args = vec![
         "--headless",
-        "--size",
-        "320x180",
-        "--frames",
-        "2",
         "--fft-size",
         "64",
         "--waves",
@@ -176,13 +170,24 @@ fn gerstner_dump_from_a_wave_file() {
         table.to_str().unwrap(),
         "--dump",
         out_dir.to_str().unwrap(),
-        "--validation",
-    ]);
+    ];
+    args.extend_from_slice(extra);
+    let out = run(&args);
     assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
-    assert!(!out_dir.join("h0.npy").exists(), "Gerstner mode has no h0");
-    let params: serde_json::Value =
+    let params =
         serde_json::from_str(&std::fs::read_to_string(out_dir.join("params.json")).unwrap())
             .unwrap();
+    (out, out_dir, params)
+}
+
+#[test]
+fn gerstner_dump_from_a_wave_file() {
+    let (out, out_dir, params) = gerstner_dump(
+        "dump-gerstner",
+        "kx,kz,amplitude,phase,steepness\n0.3,-0.46,0.2,0,1\n-0.33,0.4,0.12,0.5,0.5\n",
+        &["--size", "320x180", "--frames", "2", "--validation"],
+    );
+    assert!(!out_dir.join("h0.npy").exists(), "Gerstner mode has no h0");
     assert_eq!(params["waves"], "gerstner");
     assert_eq!(params["waves_table"].as_array().unwrap().len(), 2);
     assert_eq!(params["waves_table"][1]["steepness"], 0.5);
@@ -199,35 +204,17 @@ fn gerstner_dump_from_a_wave_file() {
 /// and the dump records the Q that ran.
 #[test]
 fn too_steep_gerstner_waves_are_scaled_to_the_fold_limit() {
-    let dir = scratch("dump-gerstner-steep");
-    let table = dir.join("waves.csv");
     // k = 0.5 rad/m, a = 2 m, Q = 3: Σ Q·k·a = 3.
-    std::fs::write(&table, "0.3,0.4,2.0,0,3\n").unwrap();
-    let out_dir = dir.join("out");
-    let out = run(&[
-        "--headless",
-        "--size",
-        "64x64",
-        "--frames",
-        "1",
-        "--fft-size",
-        "64",
-        "--waves",
-        "gerstner",
-        "--gerstner-waves",
-        table.to_str().unwrap(),
-        "--dump",
-        out_dir.to_str().unwrap(),
-    ]);
+    let (out, _, params) = gerstner_dump(
+        "dump-gerstner-steep",
+        "0.3,0.4,2.0,0,3\n",
+        &["--size", "64x64", "--frames", "1"],
+    );
     let err = stderr(&out);
-    assert_eq!(out.status.code(), Some(0), "{err}");
     assert!(
         err.contains("steepness Q scaled by 0.333") && err.contains("was 3.000"),
         "{err}"
     );
-    let params: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(out_dir.join("params.json")).unwrap())
-            .unwrap();
     let q = params["waves_table"][0]["steepness"].as_f64().unwrap();
     assert!((q - 1.0).abs() < 1e-12, "Q·k·a = 1 after scaling: Q {q}");
 }
