@@ -27,6 +27,8 @@ pub const OCEAN_FFT: &str = "ocean fft";
 pub const OCEAN_ASSEMBLE: &str = "ocean assemble";
 /// Gerstner model: the wave sum written into the displacement and normal images.
 pub const OCEAN_GERSTNER: &str = "ocean gerstner";
+/// The first frame's foam warm-up steps (a debug label only, never timed).
+pub const OCEAN_WARMUP: &str = "ocean foam warm-up";
 
 /// The passes of an FFT frame with the final view (after the first frames, which also render the
 /// sky cube), in the order `--profile` reports them.

@@ -4,10 +4,14 @@
 // with the sign correction (-1)^(m+n) (element n holds wave number n - N/2), the Jacobian
 // J = (1 + λ ∂Dx/∂x)(1 + λ ∂Dz/∂z) - (λ ∂Dx/∂z)² (Tessendorf 2001, eq. 45), the exact normal n
 // of the displaced surface P = (x + λDx, h, z + λDz), n = ∂P/∂z × ∂P/∂x (n.y = J, floored at
-// NORMAL_MIN_JACOBIAN; `exact_slopes` in src/ocean/cpu.rs), and persistent foam:
-//   foam = foam_prev · exp(-dt / decay) + clamp((threshold - J) · gain, 0, 1), clamped to [0, 1],
-// read from the previous slot's normal image (foam grows where the surface folds, J < threshold,
-// and fades exponentially).
+// NORMAL_MIN_JACOBIAN; `exact_slopes` in src/ocean/cpu.rs), and, in layer 0 only, persistent
+// foam (src/ocean/foam.rs) from the Jacobian of the whole surface the renderer shows, every
+// cascade summed at the rest position x = (n, m)·L_0/N:
+//   J_s = (1 + Σ λDxx)(1 + Σ λDzz) − (Σ λDxz)²   (cascade c read at x mod L_c, bilinear)
+//   foam = max(foam_prev · exp(−dt / decay), clamp((threshold − J_s) · gain, 0, 1))
+// foam_prev is the previous slot's layer 0 at the same texel: foam lives at rest positions, so it
+// rides the choppy displacement with the water it formed in. `surface_jacobian` in
+// src/ocean/cpu.rs is the CPU reference.
 #include "common/ocean.glsl"
 #include "shared.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -17,13 +21,36 @@ layout(set = 0, binding = 1, rgba32f) uniform writeonly image2DArray displacemen
 layout(set = 0, binding = 2, rgba32f) uniform writeonly image2DArray normals;
 layout(set = 0, binding = 3, rgba32f) uniform readonly image2DArray previous_normals;
 layout(push_constant) uniform Params {
+    vec4 patch_m; // side of each cascade's patch (m)
     float choppiness;
     float dt_s;
     float foam_threshold;
     float foam_decay_s;
     float foam_gain;
     uint n;
+    uint cascades;
 } params;
+
+// (∂Dx/∂x, ∂Dz/∂z, ∂Dx/∂z) of cascade c at texel `at` (sign-corrected).
+vec3 derivatives(uint c, uvec2 texel) {
+    uint n = params.n;
+    uint plane = n * n;
+    uint at = texel.y * n + texel.x;
+    float sign = ((texel.x + texel.y) & 1u) == 1u ? -1.0 : 1.0;
+    vec2 p2 = fields[(c * 4u + 2u) * plane + at];
+    vec2 p3 = fields[(c * 4u + 3u) * plane + at];
+    return sign * vec3(p2.y, p3.x, p3.y);
+}
+
+// The same at a fractional texel position p of cascade c (periodic bilinear).
+vec3 derivatives_at(uint c, vec2 p) {
+    uint n = params.n;
+    vec2 f = fract(p);
+    uvec2 a = uvec2(floor(p)) % n;
+    uvec2 b = (a + 1u) % n;
+    return mix(mix(derivatives(c, a), derivatives(c, uvec2(b.x, a.y)), f.x),
+               mix(derivatives(c, uvec2(a.x, b.y)), derivatives(c, b), f.x), f.y);
+}
 
 void main() {
     uint n = params.n;
@@ -43,8 +70,17 @@ void main() {
     float jacobian = (1.0 + l * p2.y) * (1.0 + l * p3.x) - (l * p3.y) * (l * p3.y);
 
     ivec3 texel = ivec3(id.xy, c);
-    float foam = imageLoad(previous_normals, texel).w * exp(-params.dt_s / params.foam_decay_s);
-    foam = clamp(foam + clamp((params.foam_threshold - jacobian) * params.foam_gain, 0.0, 1.0), 0.0, 1.0);
+    float foam = 0.0;
+    if (c == 0u) {
+        vec3 d = vec3(p2.y, p3.x, p3.y);
+        for (uint o = 1u; o < params.cascades; ++o) {
+            d += derivatives_at(o, vec2(id.xy) * (params.patch_m.x / params.patch_m[o]));
+        }
+        d *= l;
+        float surface_j = (1.0 + d.x) * (1.0 + d.y) - d.z * d.z;
+        float source = clamp((params.foam_threshold - surface_j) * params.foam_gain, 0.0, 1.0);
+        foam = max(imageLoad(previous_normals, texel).w * exp(-params.dt_s / params.foam_decay_s), source);
+    }
 
     imageStore(displacement, texel, vec4(l * p0.x, p0.y, l * p1.x, 0.0));
     // p1.y = ∂h/∂x, p2.x = ∂h/∂z, p2.y = ∂Dx/∂x, p3.x = ∂Dz/∂z, p3.y = ∂Dx/∂z.

@@ -6,7 +6,9 @@
 //   θ = kx α + kz β − ω t − φ,  ω = √(g k), g = 9.8 (seed 000's constant),
 // with the normal n = ∂r/∂β × ∂r/∂α (seed 000 writes ∂r/∂α × ∂r/∂β in left-handed (x, z, y)).
 // Outputs: displacement (x − α, y, z − β, 0); normals (slopes −n.x/n.y, −n.z/n.y, the Jacobian of
-// the horizontal map, foam as in assemble.comp). Mirrors src/ocean/gerstner.rs `evaluate`.
+// the horizontal map, foam as in assemble.comp from that Jacobian, the previous frame's read at
+// the same world texel: the window moved `shift` texels since). Mirrors src/ocean/gerstner.rs
+// `evaluate`.
 layout(local_size_x = 8, local_size_y = 8) in;
 
 struct Wave {
@@ -25,6 +27,8 @@ layout(push_constant) uniform Params {
     float foam_gain;
     uint n;
     uint count;
+    int shift_x; // whole texels the window moved since the previous frame
+    int shift_z;
 } params;
 
 void main() {
@@ -58,8 +62,13 @@ void main() {
     float ny = max(nrm.y, 1e-6);
     float jacobian = ta.x * tb.z - tb.x * ta.z;
     ivec3 texel = ivec3(id.xy, 0);
-    float foam = imageLoad(previous_normals, texel).w * exp(-params.dt_s / params.foam_decay_s);
-    foam = clamp(foam + clamp((params.foam_threshold - jacobian) * params.foam_gain, 0.0, 1.0), 0.0, 1.0);
+    ivec2 previous = texel.xy + ivec2(params.shift_x, params.shift_z);
+    float kept = 0.0;
+    if (all(greaterThanEqual(previous, ivec2(0))) && all(lessThan(previous, ivec2(params.n)))) {
+        kept = imageLoad(previous_normals, ivec3(previous, 0)).w * exp(-params.dt_s / params.foam_decay_s);
+    }
+    float source = clamp((params.foam_threshold - jacobian) * params.foam_gain, 0.0, 1.0);
+    float foam = max(kept, source);
     imageStore(displacement, texel, vec4(d, 0.0));
     imageStore(normals, texel, vec4(-nrm.x / ny, -nrm.z / ny, jacobian, foam));
 }

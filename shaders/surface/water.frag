@@ -33,6 +33,8 @@ const float DUDV_STRENGTH = 0.012;   // screen-space offset at full strength
 const float SLOPE_STRENGTH = 0.05;   // screen-space offset per unit slope
 const float SHININESS = 720.0;
 
+// The summed normal and the whitecap field (layer 0's foam: the whole surface's, see
+// src/ocean/foam.rs), faded with the largest cascade.
 vec4 ocean_normal_foam(vec2 xz, float dist) {
     vec2 slope = vec2(0.0);
     float foam = 0.0;
@@ -41,9 +43,58 @@ vec4 ocean_normal_foam(vec2 xz, float dist) {
         vec3 uv = ocean_uv(xz, c, dist, weight);
         vec4 s = ocean_texture(ocean_normals, uv);
         slope += weight * s.xy;
-        foam = max(foam, weight * s.w);
+        foam += c == 0 ? weight * s.w : 0.0;
     }
     return vec4(normalize(vec3(-slope.x, 1.0, -slope.y)), foam);
+}
+
+// Value noise in [0, 1] on a lattice that repeats every `cells` cells (hash of the lattice
+// corners, smooth interpolation).
+float hash12(vec2 p) {
+    vec3 q = fract(vec3(p.xyx) * 0.1031);
+    q += dot(q, q.yzx + 33.33);
+    return fract((q.x + q.y) * q.z);
+}
+float periodic_noise(vec2 q, float cells) {
+    vec2 i = floor(q);
+    vec2 f = q - i;
+    vec2 u = f * f * (3.0 - 2.0 * f);
+    vec2 a = mod(i, cells);
+    vec2 b = mod(i + 1.0, cells);
+    return mix(mix(hash12(a), hash12(vec2(b.x, a.y)), u.x),
+               mix(hash12(vec2(a.x, b.y)), hash12(b), u.x), u.y);
+}
+
+// One octave of foam texture at about `per_m` cells per metre over the largest cascade's patch
+// (`uv` its image coordinates): a whole number of cells per patch, so the texture repeats with
+// the waves and stays put on the water however far the camera goes.
+float foam_octave(vec2 uv, float per_m, float seed) {
+    float cells = max(1.0, round(frame.patch_m.x * per_m));
+    return periodic_noise(uv * cells + seed, cells);
+}
+
+// How much of this pixel the foam covers, given the whitecap field `field` (0–1) at the rest
+// position whose largest-cascade image coordinates are `uv` (so the texture rides with the
+// water). A whitecap is where the field is ≥ 0.5 (`--stats`' whitecap fraction), so the share
+// the foam covers is `share`, a ramp from 0 at field 0.3 to 1 at 0.7: averaged over an area it
+// is the whitecap fraction, and the faint tail of fading foam draws nothing. A bubbly texture t
+// in [0, 1] (octaves from 2.5 m patches to 0.2 m bubbles) shows foam where t < share.
+// `pixel_m` is the pixel's footprint on the water (m): each octave fades to its mean before it
+// would alias, and where even the coarsest would, `share` itself is the coverage.
+float foam_cover(float field, vec2 uv, float pixel_m) {
+    float share = clamp((field - 0.5) * 2.5 + 0.5, 0.0, 1.0);
+    float coarse = clamp(1.5 - pixel_m * 0.4, 0.0, 1.0);
+    float mid = clamp(1.5 - pixel_m * 1.6, 0.0, 1.0);
+    float fine = clamp(1.5 - pixel_m * 5.0, 0.0, 1.0);
+    // Ridged octaves (|n − ½| folded) draw the lace of bubbles and streaks inside the patches.
+    float t = 0.45 * coarse * (foam_octave(uv, 0.4, 0.0) - 0.5)
+            + 0.35 * mid * (0.25 - abs(foam_octave(uv, 1.6, 17.0) - 0.5)) * 2.0
+            + 0.2 * fine * (0.25 - abs(foam_octave(uv, 5.0, 31.0) - 0.5)) * 2.0;
+    // The sum of value noises bunches around its mean: stretch it back toward [0, 1].
+    // (Kept within the filter's half-width of 0 and 1: no foam at share 0, all of it at 1.)
+    t = clamp(t * 2.4 + 0.5, 0.04, 0.96);
+    float textured = smoothstep(t - 0.04, t + 0.04, share);
+    return mix(share, textured, coarse);
 }
 
 // Fraction of light reflected at incidence cos θ (θ between normal and view).
@@ -126,11 +177,18 @@ void main() {
     float f = fresnel(cos_theta);
     vec3 colour = mix(transmitted, c_reflect, f);
 
-    // Foam: white, lit by the sun and sky.
-    colour = mix(colour, vec3(0.85, 0.9, 0.92) * (0.6 + 0.4 * max(sun.y, 0.0)), nf.w * 0.8);
-    // c_h: Blinn-Phong sun highlight (seed 003).
+    // Whitecaps: white, lit by the sun and sky, covering what the texture shows.
+    // The pixel's footprint: dist / focal length across the view, stretched by 1/sin(elevation)
+    // along it (the geometric mean of the two).
+    float pixel_m = dist / (frame.lod.x * sqrt(max(v.y, 0.01)));
+    float unused_weight;
+    float cover = foam_cover(nf.w, ocean_uv(in_xz, 0, dist, unused_weight).xy, pixel_m);
+    // Fresh foam (field near 1) is dense and white, fading foam thinner.
+    float opacity = cover * mix(0.55, 0.95, nf.w);
+    colour = mix(colour, vec3(0.85, 0.9, 0.92) * (0.6 + 0.4 * max(sun.y, 0.0)), opacity);
+    // c_h: Blinn-Phong sun highlight (seed 003), none on the foam.
     vec3 h = normalize(v + sun);
-    float spec = pow(max(dot(n, h), 0.0), SHININESS) * frame.sun_dir.w * 0.05;
+    float spec = pow(max(dot(n, h), 0.0), SHININESS) * frame.sun_dir.w * 0.05 * (1.0 - opacity);
     colour += vec3(1.0, 0.9, 0.72) * spec;
 
     vec3 horizon = sky_lookup(normalize(vec3(-v.x, 0.0, -v.z) + vec3(0.0, 0.002, 0.0)));

@@ -169,14 +169,14 @@ impl Session {
     }
 
     /// `--stats`: waits for the last frame (compute and graphics) and prints the height
-    /// statistics of its simulation images as one JSON line on stdout.
+    /// statistics and whitecap fraction of its simulation images as one JSON line on stdout.
     pub fn print_stats(&mut self) -> anyhow::Result<()> {
         let Some((slot, value, t)) = self.last else {
             return Ok(());
         };
         // Graphics sampled the images: wait for it before the readback changes their layout.
         self.frames.wait_for(value)?;
-        let (displacement, _) = self.simulation.read_back(&self.ctx, slot)?;
+        let (displacement, normals) = self.simulation.read_back(&self.ctx, slot)?;
         let patches: Vec<f64> = self.simulation.cascades.iter().map(|c| c.patch_m).collect();
         let index = self.frames.submitted() - 1;
         crate::outln!(
@@ -184,7 +184,7 @@ impl Session {
             stats_line(
                 index,
                 t,
-                &displacement,
+                (&displacement, &normals),
                 self.simulation.settings.fft_size,
                 &patches
             )

@@ -29,6 +29,8 @@ use super::spectrum::{h0, omega_steps, phase_turns, time_ticks, wave_vector, Cas
 pub struct CascadeFields {
     pub displacement: Vec<[f64; 4]>,
     pub normals: Vec<[f64; 4]>,
+    /// (λ ∂D_x/∂x, λ ∂D_z/∂z, λ ∂D_x/∂z, 0): what the cascade adds to the surface's Jacobian.
+    pub derivatives: Vec<[f64; 4]>,
 }
 
 /// The reference simulation.
@@ -152,6 +154,7 @@ impl CpuOcean {
         }
         let mut displacement = vec![[0.0; 4]; n * n];
         let mut normals = vec![[0.0; 4]; n * n];
+        let mut derivatives = vec![[0.0; 4]; n * n];
         for m in 0..n {
             for col in 0..n {
                 let idx = m * n + col;
@@ -164,11 +167,13 @@ impl CpuOcean {
                 displacement[idx] = [lambda * dx, h, lambda * dz, 0.0];
                 let [nx, nz] = exact_slopes([sx, sz], [dxx, dzz, dxz], lambda, jacobian);
                 normals[idx] = [nx, nz, jacobian, 0.0];
+                derivatives[idx] = [lambda * dxx, lambda * dzz, lambda * dxz, 0.0];
             }
         }
         CascadeFields {
             displacement,
             normals,
+            derivatives,
         }
     }
 
@@ -224,6 +229,26 @@ pub fn exact_slopes(slope: [f64; 2], d: [f64; 3], lambda: f64, jacobian: f64) ->
         (hx * (1.0 + lambda * dzz) - hz * lambda * dxz) / j,
         (hz * (1.0 + lambda * dxx) - hx * lambda * dxz) / j,
     ]
+}
+
+/// The Jacobian of the whole surface (every cascade summed) on the largest cascade's grid,
+/// `[m][n]` at x = n·L_0/N, z = m·L_0/N: J = (1 + Σ λD_xx)(1 + Σ λD_zz) − (Σ λD_xz)², each
+/// cascade's derivatives read at x mod L_c by bilinear interpolation, as assemble.comp reads
+/// them for the foam.
+pub fn surface_jacobian(fields: &[CascadeFields], patch_m: &[f64], n: usize) -> Vec<f64> {
+    let step = patch_m[0] / n as f64;
+    (0..n * n)
+        .map(|i| {
+            let (x, z) = ((i % n) as f64 * step, (i / n) as f64 * step);
+            let mut d = [0.0; 3];
+            for (f, &patch) in fields.iter().zip(patch_m) {
+                for (k, v) in d.iter_mut().enumerate() {
+                    *v += bilinear(&f.derivatives, n, patch, x, z, k);
+                }
+            }
+            (1.0 + d[0]) * (1.0 + d[1]) - d[2] * d[2]
+        })
+        .collect()
 }
 
 /// Periodic bilinear interpolation of component `comp` of a `[m][n]` grid over a patch.

@@ -6,8 +6,9 @@ use std::sync::Arc;
 
 use serde_json::{json, Value};
 
+use super::foam;
 use super::gerstner;
-use super::simulation::{Simulation, FOAM_DECAY_S, FOAM_GAIN, FOAM_THRESHOLD};
+use super::simulation::Simulation;
 use super::spectrum::{self, G};
 use super::stats::npy;
 use crate::gpu::Context;
@@ -62,17 +63,21 @@ pub fn params(sim: &Simulation, t: f64) -> Value {
         // quantum (spectrum::REPEAT_PERIOD_S).
         "repeat_period_s": spectrum::REPEAT_PERIOD_S,
         "omega_quantum_rad_s": spectrum::omega_quantum(),
+        // foam = max(foam_prev·exp(−dt/decay), clamp((threshold − J_s)·gain, 0, 1)) in layer 0,
+        // J_s the whole surface's Jacobian (src/ocean/foam.rs).
         "foam": {
-            "threshold": FOAM_THRESHOLD,
-            "decay_s": FOAM_DECAY_S,
-            "gain": FOAM_GAIN,
+            "threshold": sim.foam_threshold,
+            "decay_s": foam::DECAY_S,
+            "gain": foam::GAIN,
+            "persistence": foam::PERSISTENCE,
+            "monahan_fraction": foam::monahan_fraction(s.sea.wind_speed_m_s),
         },
     });
     let model = match sim.gerstner_waves() {
         None => json!({
             "waves": "fft",
             "g": G,
-            "layout": "h0[c, m, n] has k = (2π(n − N/2), 2π(m − N/2)) / L_c; displacement and normals [c, m, n] are at x = n·L_c/N, z = m·L_c/N; normals = (−n_x/n_y, −n_z/n_y, J, foam) of the displaced surface's normal",
+            "layout": "h0[c, m, n] has k = (2π(n − N/2), 2π(m − N/2)) / L_c; displacement and normals [c, m, n] are at x = n·L_c/N, z = m·L_c/N; normals = (−n_x/n_y, −n_z/n_y, J, foam) of the displaced surface's normal, J the cascade's own; foam in layer 0 only, from the whole surface's Jacobian",
         }),
         Some(waves) => json!({
             "waves": "gerstner",

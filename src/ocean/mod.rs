@@ -1,11 +1,13 @@
 //! The ocean: sea state and spectra ([`spectrum`]), the CPU reference simulation with rustfft
 //! ([`cpu`]), analytic Gerstner waves ([`gerstner`]), per-frame height queries of the drawn
-//! surface ([`surface`]) and the floating buoy ([`buoy`]).
+//! surface ([`surface`]), the floating buoy ([`buoy`]) and whitecaps ([`foam`]).
 
+pub mod accuracy;
 pub mod buoy;
 pub mod cpu;
 pub mod dump;
 pub mod fft;
+pub mod foam;
 pub mod gerstner;
 pub mod params;
 pub mod simulation;

@@ -23,6 +23,7 @@ mod readback;
 use fft_model::FftModel;
 use gerstner_model::GerstnerModel;
 
+use super::foam;
 use super::gerstner::Wave;
 use super::params::{OceanSettings, Waves};
 use super::spectrum::Cascade;
@@ -32,6 +33,7 @@ use crate::gpu::{
     Buffer, Context, DescriptorPool, DescriptorSetLayout, FormatUse, Frame, GpuResult, Image,
     ImageDesc, Pipeline, PipelineLayout, Profiler, Recorder, Tracked, Use, FRAMES_IN_FLIGHT,
 };
+use crate::pass_names as names;
 
 /// A named compute pass: timestamps when a profiler is given, a debug label always.
 fn scope(timer: &mut Timer, rec: &Recorder, name: &'static str, body: impl FnOnce()) {
@@ -73,12 +75,6 @@ pub type Texels = Vec<[f32; 4]>;
 
 /// Most cascades the shaders take (a vec4 of patch sizes).
 pub const MAX_CASCADES: usize = 4;
-/// Foam grows where J < this.
-pub const FOAM_THRESHOLD: f32 = 0.4;
-/// Foam fades with this time constant (s).
-pub const FOAM_DECAY_S: f32 = 2.5;
-/// Foam added per frame per unit of (threshold − J).
-pub const FOAM_GAIN: f32 = 0.8;
 /// Format of the simulation images: fp32, as displacement and slopes need it. Linear filtering
 /// of it is optional in Vulkan: where the device lacks it, the water shaders filter by hand
 /// (`OCEAN_MANUAL_FILTER` in shaders/common/water.glsl).
@@ -160,12 +156,18 @@ impl Kernel {
 }
 
 /// One frame as a wave model sees it.
+#[derive(Clone, Copy)]
 pub(super) struct ModelFrame {
     pub slot: usize,
     /// Simulation time (s).
     pub time_s: f64,
     /// Time since the previous frame (s; foam decay).
     pub dt_s: f32,
+    /// J below which foam forms (`foam::threshold`).
+    pub foam_threshold: f32,
+    /// Whole texels the Gerstner window moved since the previous frame (the previous foam is
+    /// read that far over).
+    pub window_shift: [i32; 2],
     /// World position of the images' texel (0, 0) (the Gerstner window's corner).
     pub origin_m: [f64; 2],
     /// Grid size N and cascades (image layers).
@@ -215,8 +217,12 @@ pub struct Simulation {
     /// Per slot: (dx, h, dz, 0), one layer per cascade.
     pub displacement: Vec<Image>,
     /// Per slot: (−n_x/n_y, −n_z/n_y, J, foam) of the choppy surface's exact normal, one layer
-    /// per cascade.
+    /// per cascade; J is the cascade's own, the foam (layer 0 only) the whole surface's.
     pub normals: Vec<Image>,
+    /// J below which foam forms (`foam::threshold`, calibrated at startup).
+    pub foam_threshold: f32,
+    /// The Gerstner window's origin at the previous submission (foam follows it).
+    previous_origin_m: Option<[f64; 2]>,
     queue: ComputeQueue,
     /// The images were initialized (the first submission does it).
     initialized: bool,
@@ -311,6 +317,8 @@ impl Simulation {
             }
         };
         Ok(Simulation {
+            foam_threshold: foam::threshold(settings),
+            previous_origin_m: None,
             max_displacement_m,
             settings: settings.clone(),
             cascades,
@@ -371,7 +379,10 @@ impl Simulation {
             .map(|t| (time_s - t).max(0.0) as f32)
             .unwrap_or(0.0);
         self.last_time_s = Some(time_s);
+        let window_shift = self.window_shift();
         let frame = ModelFrame {
+            foam_threshold: self.foam_threshold,
+            window_shift,
             slot,
             time_s,
             dt_s,
@@ -382,21 +393,37 @@ impl Simulation {
             patch_m: patch_sizes(&self.cascades),
             window_m: self.settings.patch_size_m,
         };
-        let init: Vec<&Image> = if self.initialized {
-            Vec::new()
-        } else {
+        let first = !self.initialized;
+        let init: Vec<&Image> = if first {
             self.displacement.iter().chain(&self.normals).collect()
+        } else {
+            Vec::new()
         };
         self.initialized = true;
-        // The kernel that writes the slot's images reads the previous frame's normals (foam
+        let warmup = if first {
+            self.warmup_steps(&frame)
+        } else {
+            Vec::new()
+        };
+        let frame = if warmup.is_empty() {
+            frame
+        } else {
+            ModelFrame {
+                dt_s: foam::WARMUP_STEP_S,
+                ..frame
+            }
+        };
+        // The kernel that writes a slot's images reads the previous frame's normals (foam
         // decays and is advected from there). The graphics queue samples the images through the
         // compute timeline and declares nothing (`gpu::track`).
-        let previous = &self.normals[(slot + FRAMES_IN_FLIGHT - 1) % FRAMES_IN_FLIGHT];
-        let images: [(&dyn Tracked, Use); 3] = [
-            (previous, Use::ComputeRead),
-            (&self.displacement[slot], Use::ComputeWrite),
-            (&self.normals[slot], Use::ComputeWrite),
-        ];
+        let uses = |slot: usize| -> [(&dyn Tracked, Use); 3] {
+            let previous = &self.normals[(slot + FRAMES_IN_FLIGHT - 1) % FRAMES_IN_FLIGHT];
+            [
+                (previous, Use::ComputeRead),
+                (&self.displacement[slot], Use::ComputeWrite),
+                (&self.normals[slot], Use::ComputeWrite),
+            ]
+        };
         // The slot's previous compute work (two frames ago) must be done before the host
         // rewrites its inputs.
         self.queue.wait_for_slot(value)?;
@@ -410,12 +437,54 @@ impl Simulation {
             if !init.is_empty() {
                 record_images_init(rec, &init);
             }
-            model.record(rec, &mut timer, &frame, &images);
+            if !warmup.is_empty() {
+                rec.begin_label(names::OCEAN_WARMUP);
+                for step in &warmup {
+                    model.record(rec, &mut None, step, &uses(step.slot));
+                }
+                rec.end_label();
+            }
+            model.record(rec, &mut timer, &frame, &uses(slot));
             if let Some((profiler, _)) = timer.as_mut() {
                 profiler.end_frame(rec);
             }
             Ok(())
         })
+    }
+
+    /// Whole texels the Gerstner window moved since the previous submission (0 for the FFT
+    /// cascades), and remembers where it is now.
+    fn window_shift(&mut self) -> [i32; 2] {
+        let step = self.settings.patch_size_m / self.settings.fft_size as f64;
+        let shift = match self.previous_origin_m {
+            Some(previous) if self.is_window() => {
+                [0, 1].map(|i| ((self.origin_m[i] - previous[i]) / step).round() as i32)
+            }
+            _ => [0, 0],
+        };
+        self.previous_origin_m = Some(self.origin_m);
+        shift
+    }
+
+    /// The steps run before the first FFT frame `frame`: foam::WARMUP_STEPS over the seconds
+    /// before it, alternating slots and ending in the other one, so its foam is already in
+    /// steady state (a single screenshot shows the whitecaps a running sea has). Both slots are
+    /// unused by graphics so far. Gerstner: none (its per-slot wave buffers are written by the
+    /// host for one time each).
+    fn warmup_steps(&self, frame: &ModelFrame) -> Vec<ModelFrame> {
+        if self.model.h0().is_none() {
+            return Vec::new();
+        }
+        let step_s = foam::WARMUP_STEP_S;
+        (1..=foam::WARMUP_STEPS)
+            .rev()
+            .map(|i| ModelFrame {
+                slot: (frame.slot + i) % FRAMES_IN_FLIGHT,
+                time_s: frame.time_s - i as f64 * step_s as f64,
+                dt_s: step_s,
+                ..*frame
+            })
+            .collect()
     }
 
     /// The wait a graphics submission adds before sampling frame `value`'s images.

@@ -21,9 +21,27 @@ pub fn height_stats(heights: impl Iterator<Item = f64>) -> Value {
     json!({"mean": mean, "std": std, "hs": 4.0 * std, "min": min, "max": max})
 }
 
-/// One `--stats` line: per cascade, and for the surface (all cascades summed) sampled on the
-/// largest cascade's grid, each cascade read at x mod L_c by bilinear interpolation.
-pub fn stats_line(frame: u64, t: f64, displacement: &Texels, n: usize, patch_m: &[f64]) -> String {
+/// Share of the sea the whitecaps cover: the texels of layer 0 (the whole surface's foam,
+/// `ocean::foam`) with foam ≥ `foam::WHITECAP_FOAM`, by area at rest.
+pub fn whitecap_fraction(normals: &Texels, n: usize) -> f64 {
+    let layer = &normals[..n * n];
+    let covered = layer
+        .iter()
+        .filter(|t| t[3] >= super::foam::WHITECAP_FOAM)
+        .count();
+    covered as f64 / layer.len() as f64
+}
+
+/// One `--stats` line: height statistics per cascade, and for the surface (all cascades summed)
+/// sampled on the largest cascade's grid, each cascade read at x mod L_c by bilinear
+/// interpolation, with the surface's whitecap fraction.
+pub fn stats_line(
+    frame: u64,
+    t: f64,
+    (displacement, normals): (&Texels, &Texels),
+    n: usize,
+    patch_m: &[f64],
+) -> String {
     let plane = n * n;
     let cascades: Vec<Value> = (0..patch_m.len())
         .map(|c| {
@@ -45,10 +63,11 @@ pub fn stats_line(frame: u64, t: f64, displacement: &Texels, n: usize, patch_m: 
         )
     };
     let step = patch_m[0] / n as f64;
-    let surface = height_stats((0..plane).map(|i| {
+    let mut surface = height_stats((0..plane).map(|i| {
         let (x, z) = ((i % n) as f64 * step, (i / n) as f64 * step);
         (0..patch_m.len()).map(|c| height(c, x, z)).sum()
     }));
+    surface["whitecap_fraction"] = json!(whitecap_fraction(normals, n));
     json!({"frame": frame, "t": t, "cascades": cascades, "surface": surface}).to_string()
 }
 

@@ -1,16 +1,17 @@
 //! The FFT wave model (Tessendorf 2001): h0 and each element's ω quantum uploaded once; per
 //! frame evolve (shaders/ocean/evolve.comp) → inverse FFT (`ocean::fft`) → assemble
-//! (assemble.comp: sign correction, Jacobian, foam) into the slot's images.
+//! (assemble.comp: sign correction, Jacobian, exact normal, the surface's foam) into the slot's images.
 
 use std::sync::Arc;
 
 use ash::vk;
 
-use super::{scope, Kernel, ModelFrame, Timer, WaveModel, FOAM_DECAY_S, FOAM_GAIN, FOAM_THRESHOLD};
+use super::{scope, Kernel, ModelFrame, Timer, WaveModel};
 use crate::gpu::descriptors::{self, Write};
 use crate::gpu::oneshot::upload_on;
 use crate::gpu::{Buffer, Context, DescriptorPool, MemoryLocation, Recorder, Tracked, Use};
 use crate::ocean::fft::{Direction, GpuFft};
+use crate::ocean::foam;
 use crate::ocean::params::OceanSettings;
 use crate::ocean::spectrum::{h0, omega_steps_grid, time_ticks, Cascade};
 use crate::pass_names as names;
@@ -28,12 +29,14 @@ struct EvolveParams {
 #[repr(C)]
 #[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
 struct AssembleParams {
+    patch_m: [f32; 4],
     choppiness: f32,
     dt_s: f32,
     foam_threshold: f32,
     foam_decay_s: f32,
     foam_gain: f32,
     n: u32,
+    cascades: u32,
 }
 
 pub(super) struct FftModel {
@@ -175,12 +178,14 @@ impl WaveModel for FftModel {
             n: f.n,
         };
         let assemble_params = AssembleParams {
+            patch_m: f.patch_m,
             choppiness: f.choppiness,
             dt_s: f.dt_s,
-            foam_threshold: FOAM_THRESHOLD,
-            foam_decay_s: FOAM_DECAY_S,
-            foam_gain: FOAM_GAIN,
+            foam_threshold: f.foam_threshold,
+            foam_decay_s: foam::DECAY_S,
+            foam_gain: foam::GAIN,
             n: f.n,
+            cascades: f.layers,
         };
         let (evolve, assemble) = (&self.evolve, &self.assemble);
         scope(timer, rec, names::OCEAN_EVOLVE, || {

@@ -6,9 +6,10 @@ use std::sync::Arc;
 
 use ash::vk;
 
-use super::{scope, Kernel, ModelFrame, Timer, WaveModel, FOAM_DECAY_S, FOAM_GAIN, FOAM_THRESHOLD};
+use super::{scope, Kernel, ModelFrame, Timer, WaveModel};
 use crate::gpu::descriptors::Write;
 use crate::gpu::{Buffer, Context, DescriptorPool, MemoryLocation, Recorder, Tracked, Use};
+use crate::ocean::foam;
 use crate::ocean::gerstner::{Wave, G_SEED};
 use crate::pass_names as names;
 use crate::shaders;
@@ -31,6 +32,8 @@ struct GerstnerParams {
     foam_gain: f32,
     n: u32,
     count: u32,
+    /// Whole texels the window moved since the previous frame.
+    shift: [i32; 2],
 }
 
 pub(super) struct GerstnerModel {
@@ -124,11 +127,12 @@ impl WaveModel for GerstnerModel {
         let params = GerstnerParams {
             window_m: f.window_m as f32,
             dt_s: f.dt_s,
-            foam_threshold: FOAM_THRESHOLD,
-            foam_decay_s: FOAM_DECAY_S,
-            foam_gain: FOAM_GAIN,
+            foam_threshold: f.foam_threshold,
+            foam_decay_s: foam::DECAY_S,
+            foam_gain: foam::GAIN,
             n: f.n,
             count: self.waves.len() as u32,
+            shift: f.window_shift,
         };
         let kernel = &self.kernel;
         scope(timer, rec, names::OCEAN_GERSTNER, || {

@@ -2,6 +2,9 @@
 //! the normalization, the RNG, the cascade bands and the time quantization.
 
 use super::*;
+use crate::ocean::accuracy::{
+    banner_beta, bouws_phi, downwind_share, height_and_peak_period, jonswap_literature,
+};
 
 #[test]
 fn quantized_time_repeats_exactly_and_keeps_its_precision() {
@@ -53,12 +56,6 @@ fn donelan_banner_integrates_to_one() {
     }
 }
 
-/// Banner's (1990) β written independently of the code: 10^(−0.4 + 0.8393 r^−1.134), since
-/// exp(−0.567 ln r²) = r^−1.134 (REFERENCES.md, Donelan et al. 1985 with Banner 1990).
-fn banner_beta(r: f64) -> f64 {
-    10f64.powf(-0.4 + 0.8393 * r.powf(-1.134))
-}
-
 #[test]
 fn donelan_banner_width_follows_donelan_and_banner() {
     // (r = ω/ω_p, β from the paper's formula, β as a number to 3 digits)
@@ -103,34 +100,9 @@ fn donelan_banner_width_follows_donelan_and_banner() {
 #[test]
 fn donelan_banner_high_frequencies_travel_mostly_downwind() {
     // Downwind share: the fraction of the energy of the band 2.5 ≤ ω/ω_p ≤ 4 of the
-    // Pierson–Moskowitz spectrum travelling within 90° of the wind (|θ| < π/2). For one ω the share
-    // is tanh(βπ/2)/tanh(βπ) (the integral of the sech² spreading); the expected value weights it
-    // with the PM shape ω⁻⁵ exp(−5/4 (ω_p/ω)⁴), using Banner's β written out in this test.
-    let sea = SeaState {
-        spectrum: SpectrumKind::PiersonMoskowitz,
-        ..SeaState::default()
-    };
-    let wp = peak_omega(&sea);
-    let (nw, nt) = (300, 2000);
-    let (mut down, mut total, mut expected_down, mut expected_total) = (0.0, 0.0, 0.0, 0.0);
-    for i in 0..nw {
-        let r = 2.5 + 1.5 * (i as f64 + 0.5) / nw as f64;
-        let s = frequency_spectrum(&sea, r * wp);
-        // The code's D integrated over the downwind half-plane (midpoint rule).
-        let half: f64 = (0..nt)
-            .map(|j| {
-                let theta = -PI / 2.0 + PI * (j as f64 + 0.5) / nt as f64;
-                donelan_banner(r * wp, wp, theta) * PI / nt as f64
-            })
-            .sum();
-        down += s * half;
-        total += s;
-        let beta = banner_beta(r);
-        let weight = r.powi(-5) * (-1.25 / r.powi(4)).exp();
-        expected_down += weight * (beta * PI / 2.0).tanh() / (beta * PI).tanh();
-        expected_total += weight;
-    }
-    let (share, expected) = (down / total, expected_down / expected_total);
+    // Pierson–Moskowitz spectrum travelling within 90° of the wind (|θ| < π/2), from the code's
+    // spreading against the PM-weighted tanh(βπ/2)/tanh(βπ) of Banner's β (`accuracy`).
+    let (share, expected) = downwind_share();
     assert!(
         (share / expected - 1.0).abs() < 0.005,
         "downwind share {share}, Banner's β gives {expected}"
@@ -157,24 +129,6 @@ fn deep_and_shallow_dispersion() {
             assert!(w.is_finite() && d.is_finite(), "k {k} h {h:?}");
         }
     }
-}
-
-/// Significant wave height 4√m0 (m) and peak period 2π/ω_p (s) of `sea`'s frequency spectrum,
-/// from a midpoint sum over 0 < ω < 20 rad/s (the tail above holds < 0.1 % of m0 for U10 ≥ 3 m/s)
-/// and the largest sample.
-fn height_and_peak_period(sea: &SeaState) -> (f64, f64) {
-    let (n, top) = (400_000, 20.0);
-    let dw = top / n as f64;
-    let (mut m0, mut peak) = (0.0, (0.0, 0.0));
-    for i in 0..n {
-        let w = (i as f64 + 0.5) * dw;
-        let s = frequency_spectrum(sea, w);
-        m0 += s * dw;
-        if s > peak.1 {
-            peak = (w, s);
-        }
-    }
-    (4.0 * m0.sqrt(), 2.0 * PI / peak.0)
 }
 
 #[test]
@@ -217,17 +171,6 @@ fn jonswap_peak_enhancement_adds_half_the_energy() {
         (ratio / goda - 1.0).abs() < 0.02,
         "JONSWAP/PM variance at the same α and ω_p: {ratio}, Goda: 1/(1 − 0.287 ln 3.3) = {goda}"
     );
-}
-
-/// JONSWAP (Hasselmann et al. 1973) written out for the tests: Hs = 1.6·10⁻³ X^½ U10²/g and
-/// ω_p = 22 (g²/(U10 F))^⅓, capped by the fully developed sea of Pierson & Moskowitz (1964):
-/// Hs ≤ 0.21 U19.5²/g, ω_p ≥ 0.877 g/U19.5, U19.5 = 1.026 U10. Returns (Hs m, T_p s).
-fn jonswap_literature(u10: f64, fetch_km: f64) -> (f64, f64) {
-    let (f, u195) = (fetch_km * 1000.0, 1.026 * u10);
-    let x = G * f / (u10 * u10);
-    let hs = (1.6e-3 * x.sqrt() * u10 * u10 / G).min(0.21 * u195 * u195 / G);
-    let wp = (22.0 * (G * G / (u10 * f)).cbrt()).max(0.877 * G / u195);
-    (hs, 2.0 * PI / wp)
 }
 
 fn jonswap(u10: f64, fetch_km: f64) -> SeaState {
@@ -285,17 +228,6 @@ fn jonswap_grows_continuously_into_pierson_moskowitz() {
             (hs / hs_pm - 1.0).abs() < 0.02 && (tp / tp_pm - 1.0).abs() < 0.02,
             "U10 {u10}, 10⁴ km: Hs {hs} m, Tp {tp} s; Pierson & Moskowitz (1964): {hs_pm} m, {tp_pm} s"
         );
-    }
-}
-
-/// Kitaigorodskii's depth factor as Bouws et al. (1985) give it (Thompson & Vincent's fit):
-/// ω_h = ω √(h/g); Φ = ω_h²/2 (ω_h ≤ 1), 1 − (2 − ω_h)²/2 (1 < ω_h < 2), 1 (ω_h ≥ 2).
-fn bouws_phi(omega: f64, depth_m: f64) -> f64 {
-    let wh = omega * (depth_m / G).sqrt();
-    match wh {
-        w if w <= 1.0 => w * w / 2.0,
-        w if w < 2.0 => 1.0 - (2.0 - w) * (2.0 - w) / 2.0,
-        _ => 1.0,
     }
 }
 
