@@ -67,6 +67,19 @@ shared_constants! {
     /// Height of the island's peak above the water (m): `terrain_height` in
     /// shaders/common/terrain.glsl and src/render/scene.rs.
     PEAK_M: f32 = 48.0;
+    /// The sea floor around the island (`terrain_height`): `--sea-floor` deep on the shelf out
+    /// to SHELF_EDGE_R island radii from its centre, then sloping down to the open sea's floor
+    /// (`frame.open_sea.x`) at SHELF_FOOT_R, flat from there to the horizon.
+    SHELF_EDGE_R: f32 = 1.8;
+    SHELF_FOOT_R: f32 = 4.0;
+    /// Terrain deeper than this under the water is not drawn (shaders/terrain/terrain.vert):
+    /// the bluest light, absorbed at 0.06/m (`ABSORPTION_PER_M`), keeps e^−9.6 ≈ 10⁻⁴ of
+    /// itself on the way down and back up, so a deep sea's floor shows nothing but costs a
+    /// full-screen draw in the refraction view.
+    VISIBLE_DEPTH_M: f32 = 80.0;
+    /// Depth-limited breaking: the local significant wave height stays ≤ BREAKER_INDEX times
+    /// the depth (McCowan 1894's H/d = 0.78; src/ocean/shore.rs, shaders/common/shore.glsl).
+    BREAKER_INDEX: f32 = 0.78;
     /// Linear colour of deep water seen through nothing (c_o of the water's transmission; the
     /// refraction texture's clear colour).
     WATER_COLOUR: [f32; 3] = [0.004, 0.045, 0.075];

@@ -5,7 +5,7 @@
 mod common;
 
 use common::{run, stderr};
-use vkocean::ocean::accuracy::{spectrum_rows, Row, Tolerance};
+use vkocean::ocean::accuracy::{shore_rows, spectrum_rows, Row, Tolerance};
 use vkocean::ocean::foam::monahan_fraction;
 
 /// Mean `surface.whitecap_fraction` (%) of frames 51–100 at 0.1 s steps: 5 s of sea after the
@@ -42,6 +42,7 @@ fn whitecap_percent(preset: &str, quality: &str) -> f64 {
 #[test]
 fn physical_accuracy_table() {
     let mut rows = spectrum_rows();
+    rows.extend(shore_rows());
     // Monahan & O'Muircheartaigh (1980), W = 3.84·10⁻⁶ U10^3.41: within a factor of 2 (the
     // issue's tolerance; the field data scatter about as much) at the breeze and above, at the
     // default quality on lavapipe (`low`) and the one on a GPU (`high`); under 0.1 % when calm.

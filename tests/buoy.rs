@@ -67,7 +67,7 @@ fn max_heave_error(settings: &OceanSettings, times: &[f64]) -> f64 {
                 origin,
             }))
             .height_at(xz[0], xz[1], t);
-            let heave = Buoy::on(settings, xz).pose(t).heave_m;
+            let heave = Buoy::on(settings, xz, Box::new(|_, _| 1.0)).pose(t).heave_m;
             worst = worst.max((heave - gpu).abs());
         }
     }
@@ -152,7 +152,7 @@ fn the_buoy_moves_in_the_picture() {
         fft_size: 64,
         ..OceanSettings::default()
     };
-    let mut buoy = Buoy::on(&settings, [9.0, -55.0]);
+    let mut buoy = Buoy::on(&settings, [9.0, -55.0], Box::new(|_, _| 1.0));
     let heave = (buoy.pose(2.0).heave_m, buoy.pose(4.0).heave_m);
     let ((na, ra), (nb, rb)) = (red_rows(&a, w), red_rows(&b, w));
     assert!(

@@ -97,6 +97,14 @@ fn dump_matches_the_cpu_reference_and_is_deterministic() {
         h0 == h0_cpu,
         "h0.npy holds the h0 the CPU reference generates"
     );
+    // The shore's Hs is the rendered sea's, 4√m₀ with m₀ = Σ 2|h0|² (Parseval).
+    let m0: f64 = h0.iter().map(|v| 2.0 * (*v as f64).powi(2)).sum();
+    let hs = params["shore"]["hs_m"].as_f64().unwrap();
+    assert!(
+        (hs / (4.0 * m0.sqrt()) - 1.0).abs() < 1e-9,
+        "shore Hs {hs} vs 4√m₀ = {}",
+        4.0 * m0.sqrt()
+    );
     let fields = cpu.fields(t);
     let (mut err, mut norm) = (0.0, 0.0);
     for (c, f) in fields.iter().enumerate() {
@@ -196,6 +204,16 @@ fn gerstner_dump_from_a_wave_file() {
         "Σ Q·k·a = 0.14: no scaling"
     );
     assert!(params["origin_m"].as_array().is_some_and(|o| o.len() == 2));
+    // The shore's sea: Hs = 4√(Σ a²/2) and the mean of ω = √(g k) weighted by a²/2.
+    let waves = [(0.3f64, -0.46f64, 0.2f64), (-0.33, 0.4, 0.12)];
+    let m0: f64 = waves.iter().map(|w| w.2 * w.2 / 2.0).sum();
+    let m1: f64 = waves
+        .iter()
+        .map(|w| w.2 * w.2 / 2.0 * (9.8 * w.0.hypot(w.1)).sqrt())
+        .sum();
+    let shore = &params["shore"];
+    assert!((shore["hs_m"].as_f64().unwrap() - 4.0 * m0.sqrt()).abs() < 1e-9);
+    assert!((shore["mean_omega_rad_s"].as_f64().unwrap() - m1 / m0).abs() < 1e-9);
     let (header, _) = read_npy_f32(&out_dir.join("displacement.npy"));
     assert!(header.contains("(1, 64, 64, 4)"), "{header}");
 }

@@ -183,6 +183,70 @@ fn calm_water_seen_from_above_shows_the_terrain() {
     );
 }
 
+/// Share of the water pixels of a `--view foam` picture (exactly grey; the terrain is not)
+/// whose foam field is at least 0.3 (where the foam texture starts to cover the water), and
+/// how many water pixels there are.
+fn foam_share(p: &[u8]) -> (f64, usize) {
+    let srgb_to_linear = |v: u8| {
+        let v = v as f64 / 255.0;
+        if v <= 0.04045 {
+            v / 12.92
+        } else {
+            ((v + 0.055) / 1.055).powf(2.4)
+        }
+    };
+    let water: Vec<f64> = p
+        .chunks(4)
+        .filter(|c| c[0] == c[1] && c[1] == c[2])
+        .map(|c| srgb_to_linear(c[0]))
+        .collect();
+    let foamy = water.iter().filter(|&&f| f >= 0.3).count();
+    (foamy as f64 / water.len().max(1) as f64, water.len())
+}
+
+#[test]
+fn waves_break_into_surf_where_they_reach_0_78_of_the_depth() {
+    // Looking down from 30 m on the shore where the water is 0.8 m deep, and on the shelf where
+    // it is 15 m deep. The moderate sea's Hs (2.5 m) breaks on the first (Hs > 0.78·0.8 m,
+    // McCowan 1894) but not on the second (Hs < 0.78·15 m); the calm sea's (0.13 m) on neither
+    // but the last few centimetres at the waterline.
+    let above = |preset: &str, depth: f32| {
+        let [x, z] = shore_point(depth);
+        let camera = format!("--camera={x},30,{z}");
+        let look = format!("--look-at={},0,{}", x + 4.0, z);
+        let args = [
+            "--preset",
+            preset,
+            &camera,
+            &look,
+            "--time",
+            "5",
+            "--fft-size",
+            "128",
+            "--view",
+            "foam",
+        ];
+        foam_share(&shot(&format!("surf-{preset}-{depth}"), &args))
+    };
+    let (surf, water) = above("moderate", 0.8);
+    assert!(water > (W * H / 2) as usize, "mostly water: {water} pixels");
+    assert!(
+        surf > 0.3,
+        "surf covers {surf:.3} of the 0.8 m shallows (expected > 0.3)"
+    );
+    let (shelf, _) = above("moderate", 15.0);
+    // Only the whitecaps out there (about 2 % at 12.3 m/s, Monahan & O'Muircheartaigh 1980).
+    assert!(
+        shelf < 0.1,
+        "foam covers {shelf:.3} of the 15 m shelf (expected < 0.1)"
+    );
+    let (calm, _) = above("calm", 0.8);
+    assert!(
+        calm < 0.1,
+        "a calm sea foams over {calm:.3} of the shallows (expected < 0.1)"
+    );
+}
+
 /// Pixels of the solid magenta test background (linear (1, 0, 1), tone-mapped and sRGB-encoded).
 fn background_pixels(p: &[u8]) -> usize {
     p.chunks(4)

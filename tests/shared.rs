@@ -1,7 +1,9 @@
 //! What Rust and the shaders both know agrees. Constants have one definition (src/shared.rs,
-//! written into `shared.glsl` by build.rs); the terrain height is a function in both languages
-//! (Rust places cameras and the buoy with it), so it is compared here on the GPU, at points over
-//! the island, its shore and the sea floor, for the default layout and a moved, smaller one.
+//! written into `shared.glsl` by build.rs); the terrain height and the waves over the shallows
+//! are functions in both languages (Rust places cameras and floats the buoy with them), so they
+//! are compared here on the GPU, at points over the island, its shore, its shelf, the slope and
+//! the open sea's floor, for the default layout and a moved, smaller one, under a deep and a
+//! finite-depth sea.
 
 mod common;
 
@@ -11,6 +13,7 @@ use vkocean::gpu::oneshot::{download, run_once, upload};
 use vkocean::gpu::{
     vk, Buffer, DescriptorPool, DescriptorSetLayout, MemoryLocation, Pipeline, PipelineLayout, Use,
 };
+use vkocean::ocean::shore::{shoaling, shore_waves, SeaHeight, SHORE_DEEP_M};
 use vkocean::render::scene::terrain_height;
 use vkocean::render::SceneLayout;
 
@@ -18,16 +21,20 @@ use vkocean::render::SceneLayout;
 #[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
 struct Push {
     terrain: [f32; 4],
+    shore: [f32; 4],
+    open_sea: [f32; 4],
     count: u32,
     _pad: [u32; 3],
 }
 
-/// `terrain_height` of terrain.glsl at `points`, run on the GPU.
-fn gpu_heights(
+/// At `points`, run on the GPU: `terrain_height` of terrain.glsl and `shore_waves` of
+/// shore.glsl over the depth there (height, scale, breaking, local Hs).
+fn gpu_terrain(
     ctx: &std::sync::Arc<vkocean::gpu::Context>,
     layout: &SceneLayout,
+    sea: &SeaHeight,
     points: &[[f32; 2]],
-) -> Vec<f32> {
+) -> Vec<[f32; 4]> {
     let storage = vk::BufferUsageFlags::STORAGE_BUFFER
         | vk::BufferUsageFlags::TRANSFER_DST
         | vk::BufferUsageFlags::TRANSFER_SRC;
@@ -43,7 +50,7 @@ fn gpu_heights(
     let heights = Buffer::new(
         ctx,
         "test heights",
-        bytes(points.len()),
+        bytes(4 * points.len()),
         storage,
         MemoryLocation::GpuOnly,
     )
@@ -92,6 +99,13 @@ fn gpu_heights(
             layout.sea_floor_m,
             layout.island_radius_m,
         ],
+        shore: [sea.hs_m, sea.mean_omega, sea.reference_group_speed(), 0.0].map(|v| v as f32),
+        open_sea: [
+            layout.deep_floor_m,
+            shoaling(sea, layout.deep_floor_m as f64) as f32,
+            0.0,
+            0.0,
+        ],
         count: points.len() as u32,
         _pad: [0; 3],
     };
@@ -103,43 +117,79 @@ fn gpu_heights(
         rec.dispatch((points.len() as u32).div_ceil(64), 1, 1);
     })
     .unwrap();
-    let out = download(ctx, &heights, points.len() * 4).unwrap();
+    let out = download(ctx, &heights, points.len() * 16).unwrap();
     bytemuck::cast_slice(&out).to_vec()
 }
 
 #[test]
-fn the_terrain_height_is_the_same_in_rust_and_glsl() {
+fn the_terrain_and_the_shore_are_the_same_in_rust_and_glsl() {
     let ctx = gpu_context();
     let moved = SceneLayout {
         island_xz: [120.0, -40.0],
         island_radius_m: 90.0,
         sea_floor_m: 7.5,
+        deep_floor_m: 40.0,
         ..SceneLayout::default()
     };
-    for layout in [SceneLayout::default(), moved] {
-        // A 33 x 33 grid over 2.4 island radii each way: peak, slopes, shore, sea floor.
-        let r = 2.4 * layout.island_radius_m;
-        let points: Vec<[f32; 2]> = (0..33 * 33)
+    // A storm over deep water, and a short sea simulated for 12 m.
+    let seas = [
+        SeaHeight {
+            hs_m: 9.0,
+            mean_omega: 0.5,
+            depth_m: SHORE_DEEP_M,
+        },
+        SeaHeight {
+            hs_m: 1.2,
+            mean_omega: 1.1,
+            depth_m: 12.0,
+        },
+    ];
+    for (layout, sea) in [SceneLayout::default(), moved].iter().zip(&seas) {
+        // An 81 x 81 grid over 5 island radii each way: peak, slopes, shore, shelf, the slope
+        // down to the open sea and its floor.
+        let r = 5.0 * layout.island_radius_m;
+        let points: Vec<[f32; 2]> = (0..81 * 81)
             .map(|i| {
-                let (u, v) = ((i % 33) as f32 / 32.0, (i / 33) as f32 / 32.0);
+                let (u, v) = ((i % 81) as f32 / 80.0, (i / 81) as f32 / 80.0);
                 [
                     layout.island_xz[0] + (2.0 * u - 1.0) * r,
                     layout.island_xz[1] + (2.0 * v - 1.0) * r,
                 ]
             })
             .collect();
-        let gpu = gpu_heights(&ctx, &layout, &points);
-        let mut worst = 0.0f32;
+        let gpu = gpu_terrain(&ctx, layout, sea, &points);
+        let (mut worst_h, mut worst_shore) = (0.0f32, 0.0f64);
+        let mut breaking = 0;
         for (p, g) in points.iter().zip(&gpu) {
-            let cpu = terrain_height(&layout, p[0], p[1]);
-            worst = worst.max((cpu - g).abs());
+            let cpu = terrain_height(layout, p[0], p[1]);
+            worst_h = worst_h.max((cpu - g[0]).abs());
+            let w = shore_waves(sea, -cpu as f64);
+            let hs = sea.hs_m;
+            for (c, g) in [
+                (w.scale, g[1] as f64),
+                (w.breaking, g[2] as f64),
+                (w.hs_m / hs, g[3] as f64 / hs),
+            ] {
+                worst_shore = worst_shore.max((c - g).abs());
+            }
+            breaking += (w.breaking > 0.0 && cpu < 0.0) as usize;
         }
         // f32 on both sides; sin/exp of GLSL are within a few ulp of Rust's. 1 mm over a
-        // height range of about 60 m: any change to a constant or a term breaks it by metres.
-        assert!(worst < 1e-3, "{layout:?}: max |CPU − GPU| = {worst} m");
-        let range = gpu.iter().cloned().fold(f32::MIN, f32::max)
-            - gpu.iter().cloned().fold(f32::MAX, f32::min);
+        // height range of 60–250 m: any change to a constant or a term breaks it by metres.
+        assert!(worst_h < 1e-3, "{layout:?}: max |CPU − GPU| = {worst_h} m");
+        let range = gpu.iter().map(|g| g[0]).fold(f32::MIN, f32::max)
+            - gpu.iter().map(|g| g[0]).fold(f32::MAX, f32::min);
         assert!(range > 40.0, "the grid covers the island: range {range} m");
+        // Scale, breaking and local Hs / Hs (all about 0–1.3): f32 against f64. A changed
+        // constant (γ, Guo's β) moves them by more than 10⁻².
+        assert!(
+            worst_shore < 1e-3,
+            "{sea:?}: max |CPU − GPU| of the shore = {worst_shore}"
+        );
+        assert!(
+            breaking > 10,
+            "the grid crosses the surf zone: {breaking} points"
+        );
     }
     assert_validation_clean(ctx);
 }

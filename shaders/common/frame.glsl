@@ -30,6 +30,11 @@ layout(set = 0, binding = 0, std140) uniform FrameUniforms {
     vec4 dudv_origin;    // DU/DV tile coordinates of the grid centre (mod 1): xy sample 1, zw sample 2
     vec4 dudv;           // x: tiles per metre; y: sample 2's scale; z: scroll phase (turns)
     vec4 buoy;           // the floating buoy (object 0): xyz its unit axis; w: its heave (m)
+    vec4 shore;          // the waves over the shallows (common/shore.glsl): x the sea's Hs (m),
+                         // y its mean angular frequency ω̄ (rad/s), z c_g(ω̄) at the depth it is
+                         // simulated for (m/s); w: unused
+    vec4 open_sea;       // past the island's slope (SHELF_FOOT_R): x the floor's depth (m,
+                         // common/terrain.glsl); y the shoaling coefficient there
 } frame;
 
 // Which view a draw renders (ViewIndex in src/render/uniforms.rs).

@@ -6,7 +6,8 @@
 // - water depth along the view ray from the refraction depth texture, Beer-Lambert colour;
 // - Fresnel weight between reflection and refraction (`--fresnel`: Schlick, exact (seed 004),
 //   or seed 001 eq. 6 r = cos θ^0.5);
-// - Blinn-Phong sun highlight (seed 003), foam from the simulation, haze toward the horizon.
+// - Blinn-Phong sun highlight (seed 003), foam from the simulation and the surf where the
+//   waves break on the shallows (common/shore.glsl), haze toward the horizon.
 // Every texture here has one mip level, so lookups are textureLod(…, 0): the same result as
 // texture() (minification and magnification filters are both linear) without the per-quad
 // derivatives and LOD a CPU driver computes for it. The cascade loop's bound is the
@@ -14,10 +15,12 @@
 #include "common/frame.glsl"
 #include "common/water.glsl"
 #include "common/display.glsl"
+#include "common/shore.glsl"
 
 layout(location = 0) in vec3 in_rel_pos;
 layout(location = 1) in vec2 in_xz;
 layout(location = 2) in vec3 in_displacement;
+layout(location = 3) in vec2 in_shore; // water.tese: the water's depth (m) and K_s
 layout(location = 0) out vec4 out_colour;
 
 layout(set = 1, binding = 0) uniform sampler2D reflection_colour;
@@ -33,9 +36,10 @@ const float DUDV_STRENGTH = 0.012;   // screen-space offset at full strength
 const float SLOPE_STRENGTH = 0.05;   // screen-space offset per unit slope
 const float SHININESS = 720.0;
 
-// The summed normal and the whitecap field (layer 0's foam: the whole surface's, see
-// src/ocean/foam.rs), faded with the largest cascade.
-vec4 ocean_normal_foam(vec2 xz, float dist) {
+// The summed normal, its slopes scaled as the shallows scale the waves (`scale`), and the
+// whitecap field (layer 0's foam: the whole surface's, see src/ocean/foam.rs), faded with the
+// largest cascade.
+vec4 ocean_normal_foam(vec2 xz, float dist, float scale) {
     vec2 slope = vec2(0.0);
     float foam = 0.0;
     for (int c = 0; c < CASCADES; ++c) {
@@ -45,6 +49,7 @@ vec4 ocean_normal_foam(vec2 xz, float dist) {
         slope += weight * s.xy;
         foam += c == 0 ? weight * s.w : 0.0;
     }
+    slope *= scale;
     return vec4(normalize(vec3(-slope.x, 1.0, -slope.y)), foam);
 }
 
@@ -123,8 +128,15 @@ float fresnel(float cos_theta) {
 void main() {
     float dist = length(in_rel_pos);
     vec3 v = -in_rel_pos / dist; // toward the camera
-    vec4 nf = ocean_normal_foam(in_xz, dist);
+    // The shallows from the depth and K_s between the vertices (a pixel's own terrain height
+    // cost lavapipe 0.8 ms a frame at --quality low: it runs both sides of a branch).
+    vec3 shore = shore_waves_at(in_shore.y, in_shore.x);
+    vec4 nf = ocean_normal_foam(in_xz, dist, shore.x);
     vec3 n = nf.xyz;
+    // Surf where the waves break on the shallows (shore.y, 0–1): foam on the crests and their
+    // fronts, thinner in the troughs between them.
+    float crest = smoothstep(-0.2, 0.6, in_displacement.y / max(0.5 * shore.z, 0.01));
+    nf.w = max(nf.w, shore.y * mix(0.3, 0.85, crest));
     uint view = debug_view();
     if (view == VIEW_DISPLACEMENT) {
         out_colour = target_colour(0.5 + 0.25 * in_displacement.xzy);

@@ -1,22 +1,30 @@
 #version 460
-// For tests/shared.rs only: `terrain_height` of shaders/common/terrain.glsl at each point of
-// `points`, to compare with its Rust twin (`terrain_height` in src/render/scene.rs).
+// For tests/shared.rs only: at each point of `points`, `terrain_height` of
+// shaders/common/terrain.glsl and `shore_waves` of common/shore.glsl over the depth there, to
+// compare with their Rust twins (`terrain_height` in src/render/scene.rs, `shore_waves` in
+// src/ocean/shore.rs).
 layout(local_size_x = 64) in;
 
-// The one field of the frame uniforms terrain.glsl reads: (island x, z, sea floor depth,
-// island radius), as in shaders/common/frame.glsl.
+// The fields of the frame uniforms terrain.glsl and shore.glsl read, as in
+// shaders/common/frame.glsl: (island x, z, sea floor depth, island radius), (Hs, mean ω, c_g at
+// the simulated depth, -) and (open sea's floor depth, K_s there, -, -).
 layout(push_constant) uniform Frame {
     vec4 terrain;
+    vec4 shore;
+    vec4 open_sea;
     uint count;
 } frame;
 layout(std430, set = 0, binding = 0) readonly buffer Points { vec2 xz[]; } points;
-layout(std430, set = 0, binding = 1) writeonly buffer Heights { float h[]; } heights;
+// Per point: (terrain height, shore scale, breaking, local Hs).
+layout(std430, set = 0, binding = 1) writeonly buffer Heights { vec4 h[]; } heights;
 
 #include "common/terrain.glsl"
+#include "common/shore.glsl"
 
 void main() {
     uint i = gl_GlobalInvocationID.x;
     if (i < frame.count) {
-        heights.h[i] = terrain_height(points.xz[i]);
+        float h = terrain_height(points.xz[i]);
+        heights.h[i] = vec4(h, shore_waves(-h));
     }
 }

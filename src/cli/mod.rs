@@ -23,6 +23,7 @@ use crate::frontend::RunSettings;
 use crate::gpu::PresentMode;
 use crate::ocean::{gerstner, OceanSettings, SeaState, SpectrumKind, Waves};
 use crate::profile::WARMUP_FRAMES;
+use crate::render::uniforms::DEEP_FLOOR_M;
 use crate::render::{default_sun_dir, Camera, FresnelModel, SceneLayout, SceneSettings, ViewMode};
 use glam::Vec3;
 
@@ -143,7 +144,7 @@ pub struct Cli {
     pub fetch: Option<f64>,
 
     /// Water depth (m, 0 < h <= 11000); default deep water. Finite depth changes the dispersion
-    /// and applies the TMA attenuation.
+    /// and applies the TMA attenuation; the open sea's floor lies there (at most 200 m down).
     #[arg(long, global = true, value_name = "M", allow_hyphen_values = true,
           value_parser = |s: &str| parse_above(s, 0.0, 11_000.0), help_heading = "Ocean")]
     pub depth: Option<f64>,
@@ -253,7 +254,8 @@ pub struct Cli {
           default_value = "9,-55", help_heading = "Scene")]
     pub buoy: [f32; 2],
 
-    /// Depth of the sea floor around the island (m, 1 to 500).
+    /// Depth of the shelf around the island (m, 1 to 500); beyond it the floor slopes down to
+    /// the open sea's (--depth, or 200 m).
     #[arg(long, global = true, value_name = "M", default_value = "18", allow_hyphen_values = true,
           value_parser = |s: &str| parse_in(s, 1.0, 500.0), help_heading = "Scene")]
     pub sea_floor: f64,
@@ -357,6 +359,10 @@ impl Cli {
             layout: SceneLayout {
                 buoy_xz: self.buoy,
                 sea_floor_m: self.sea_floor as f32,
+                // The floor the simulated sea has under it (deep water: one too deep to see).
+                deep_floor_m: self
+                    .depth
+                    .map_or(DEEP_FLOOR_M, |d| (d as f32).min(DEEP_FLOOR_M)),
                 ..SceneLayout::default()
             },
             sun_dir,

@@ -15,6 +15,7 @@ use crate::ocean::simulation::Simulation;
 use crate::ocean::stats::stats_line;
 use crate::output::PendingFile;
 use crate::profile::{ProfileReport, WARMUP_FRAMES};
+use crate::render::scene::shore_scale;
 use crate::render::{
     record_frame, Delivery, FrameInputs, FrameParts, OceanBindings, OutputTarget, Renderer,
 };
@@ -74,9 +75,12 @@ impl Session {
             cascades: simulation.cascades.len() as u32,
             texels: simulation.settings.fft_size as u32,
             max_displacement_m: simulation.max_displacement_m as f32,
+            sea_height: simulation.sea_height,
         };
         let [bx, bz] = s.scene.layout.buoy_xz;
-        let buoy = Buoy::on(&s.ocean, [bx as f64, bz as f64]);
+        // The buoy floats on the waves as the water draws them, shallows included.
+        let shore = shore_scale(s.scene.layout, simulation.sea_height);
+        let buoy = Buoy::on(&s.ocean, [bx as f64, bz as f64], shore);
         let camera = s.camera.unwrap_or_default();
         let renderer = Renderer::new(ctx, output_format, extent, ocean, &s.scene, camera)?;
         let mut session = Session {

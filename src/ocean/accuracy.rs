@@ -1,10 +1,11 @@
 //! The sea against the ocean literature: each row a quantity, the paper's value, ours and the
 //! tolerance it is held to. The literature's formulas are written out here independently of
-//! `spectrum.rs` (the unit tests there use them too); tests/accuracy.rs adds the GPU's rows
+//! `spectrum.rs` and `shore.rs` (the unit tests there use them too); tests/accuracy.rs adds the GPU's rows
 //! (whitecaps), asserts every row and prints README's "Physical accuracy" table.
 
 use std::f64::consts::PI;
 
+use super::shore::{shoaling, shore_waves, SeaHeight, SHORE_DEEP_M};
 use super::spectrum::{
     donelan_banner, donelan_banner_beta, frequency_spectrum, peak_omega, SeaState, SpectrumKind, G,
 };
@@ -241,4 +242,69 @@ pub fn spectrum_rows() -> Vec<Row> {
         });
     }
     rows
+}
+
+/// A deep-water sea of one frequency (an 8 s wave, Hs 1 m) for the shoaling rows.
+fn shoaling_sea() -> (SeaHeight, f64) {
+    let omega = 2.0 * PI / 8.0;
+    let sea = SeaHeight {
+        hs_m: 1.0,
+        mean_omega: omega,
+        depth_m: SHORE_DEEP_M,
+    };
+    (sea, 2.0 * PI * G / (omega * omega)) // and its deep-water wavelength L₀
+}
+
+/// Our shoaling coefficient's minimum over depth, and the relative depth d/L₀ where it is
+/// (scanned in steps of 0.0005 L₀).
+pub fn shoaling_minimum() -> (f64, f64) {
+    let (sea, l0) = shoaling_sea();
+    (1..1000)
+        .map(|i| i as f64 / 2000.0)
+        .map(|r| (shoaling(&sea, r * l0), r))
+        .fold((f64::MAX, 0.0), |a, b| if b.0 < a.0 { b } else { a })
+}
+
+/// Green's law, the shallow-water limit of linear shoaling from deep water: K_s = (4 k₀ d)^−¼
+/// (energy flux E·√(g d) = E₀·g/(2ω)).
+pub fn green_law(k0d: f64) -> f64 {
+    (4.0 * k0d).powf(-0.25)
+}
+
+/// Our shoaling coefficient at k₀d.
+pub fn shoaling_at(k0d: f64) -> f64 {
+    let (sea, l0) = shoaling_sea();
+    shoaling(&sea, k0d * l0 / (2.0 * PI))
+}
+
+/// The rows of the waves over the shallows (src/ocean/shore.rs).
+pub fn shore_rows() -> Vec<Row> {
+    let (min_ks, at) = shoaling_minimum();
+    let k0d = 1e-3;
+    // A 3 m sea over 1 m of water: broken down to the breaker index.
+    let (sea, _) = shoaling_sea();
+    let surf = shore_waves(&SeaHeight { hs_m: 3.0, ..sea }, 1.0).hs_m;
+    vec![
+        Row {
+            quantity: format!("linear shoaling K_s, minimum (at d/L₀ = {at:.3})"),
+            literature: "Dean & Dalrymple (1991): 0.913 at d/L₀ ≈ 0.15".into(),
+            literature_value: 0.913,
+            ours: min_ks,
+            tolerance: Tolerance::Relative(0.002),
+        },
+        Row {
+            quantity: "linear shoaling K_s at k₀d = 10⁻³".into(),
+            literature: format!("Green's law (4k₀d)^−¼: {:.3}", green_law(k0d)),
+            literature_value: green_law(k0d),
+            ours: shoaling_at(k0d),
+            tolerance: Tolerance::Relative(0.01),
+        },
+        Row {
+            quantity: "surf zone Hs / depth (3 m sea over 1 m)".into(),
+            literature: "McCowan (1894) breaker index: 0.78".into(),
+            literature_value: 0.78,
+            ours: surf,
+            tolerance: Tolerance::Relative(0.001),
+        },
+    ]
 }

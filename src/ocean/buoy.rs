@@ -21,7 +21,7 @@
 //! The buoy stays at its mooring's (x, z): no drift.
 
 use super::params::OceanSettings;
-use super::surface::{lattice_for, Lattice, SurfaceQuery};
+use super::surface::{lattice_for, DisplacementScale, Lattice, SurfaceQuery};
 use crate::shared::BUOY_RADIUS_M;
 
 /// Points on the waterline circle the tilt is fitted through.
@@ -69,9 +69,13 @@ impl Buoy {
         }
     }
 
-    /// A buoy on the surface of a run's wave model (FFT cascades or Gerstner waves).
-    pub fn on(settings: &OceanSettings, xz: [f64; 2]) -> Buoy {
-        Buoy::new(xz, lattice_for(settings, DROPPED_MODES_M))
+    /// A buoy on the surface of a run's wave model (FFT cascades or Gerstner waves), its
+    /// displacement scaled by `shore` as the water draws it over the shallows.
+    pub fn on(settings: &OceanSettings, xz: [f64; 2], shore: DisplacementScale) -> Buoy {
+        Buoy {
+            xz,
+            surface: SurfaceQuery::scaled(lattice_for(settings, DROPPED_MODES_M), shore),
+        }
     }
 
     /// Where it is moored (m).

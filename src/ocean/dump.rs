@@ -72,6 +72,13 @@ pub fn params(sim: &Simulation, t: f64) -> Value {
             "persistence": foam::PERSISTENCE,
             "monahan_fraction": foam::monahan_fraction(s.sea.wind_speed_m_s),
         },
+        // Over the island's shallows the water draws these waves scaled by the local depth
+        // (src/ocean/shore.rs): shoaling at the mean frequency, breaking at Hs = γ·d.
+        "shore": {
+            "hs_m": sim.sea_height.hs_m,
+            "mean_omega_rad_s": sim.sea_height.mean_omega,
+            "breaker_index": crate::shared::BREAKER_INDEX,
+        },
     });
     let model = match sim.gerstner_waves() {
         None => json!({

@@ -1,6 +1,7 @@
 //! The ocean: sea state and spectra ([`spectrum`]), the CPU reference simulation with rustfft
 //! ([`cpu`]), analytic Gerstner waves ([`gerstner`]), per-frame height queries of the drawn
-//! surface ([`surface`]), the floating buoy ([`buoy`]) and whitecaps ([`foam`]).
+//! surface ([`surface`]), the floating buoy ([`buoy`]), whitecaps ([`foam`]) and waves over
+//! the island's shallows ([`shore`]).
 
 pub mod accuracy;
 pub mod buoy;
@@ -10,6 +11,7 @@ pub mod fft;
 pub mod foam;
 pub mod gerstner;
 pub mod params;
+pub mod shore;
 pub mod simulation;
 pub mod spectrum;
 pub mod stats;

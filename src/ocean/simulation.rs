@@ -26,6 +26,7 @@ use gerstner_model::GerstnerModel;
 use super::foam;
 use super::gerstner::Wave;
 use super::params::{OceanSettings, Waves};
+use super::shore::SeaHeight;
 use super::spectrum::Cascade;
 use crate::gpu::compute::ComputeQueue;
 use crate::gpu::descriptors::{self, Write};
@@ -230,6 +231,16 @@ pub struct Simulation {
     last_time_s: Option<f64>,
     /// Bound on how far the surface moves from its rest position (m): culling margin.
     pub max_displacement_m: f64,
+    /// The rendered sea's significant height and mean frequency (the shore's shoaling and
+    /// breaking, `ocean::shore`).
+    pub sea_height: SeaHeight,
+}
+
+/// A model as the simulation holds it, with its displacement bound and sea height.
+fn boxed<M: WaveModel + 'static>(
+    (model, bound, sea): (M, f64, SeaHeight),
+) -> (Box<dyn WaveModel>, f64, SeaHeight) {
+    (Box::new(model), bound, sea)
 }
 
 impl Simulation {
@@ -306,20 +317,21 @@ impl Simulation {
                 },
             ]
         };
-        let (model, max_displacement_m): (Box<dyn WaveModel>, f64) = match &settings.waves {
-            Waves::Fft => {
-                let (m, d) = FftModel::new(ctx, settings, &cascades, &pool, &image_writes)?;
-                (Box::new(m), d)
-            }
-            Waves::Gerstner(waves) => {
-                let (m, d) = GerstnerModel::new(ctx, waves, &pool, &image_writes)?;
-                (Box::new(m), d)
-            }
+        let (model, max_displacement_m, sea_height) = match &settings.waves {
+            Waves::Fft => boxed(FftModel::new(
+                ctx,
+                settings,
+                &cascades,
+                &pool,
+                &image_writes,
+            )?),
+            Waves::Gerstner(w) => boxed(GerstnerModel::new(ctx, w, &pool, &image_writes)?),
         };
         Ok(Simulation {
             foam_threshold: foam::threshold(settings),
             previous_origin_m: None,
             max_displacement_m,
+            sea_height,
             settings: settings.clone(),
             cascades,
             model,

@@ -223,13 +223,19 @@ pub fn lattice_for(settings: &OceanSettings, rms_m: f64) -> Box<dyn Lattice + Se
     }
 }
 
+/// A factor on the displacement at each rest point (x, z): the waves over the shallows
+/// (`ocean::shore`), as shaders/surface/water.tese applies it.
+pub type DisplacementScale = Box<dyn Fn(f64, f64) -> f64 + Send>;
+
 /// Surface queries over a [`Lattice`]: bilinear between nodes and summed over lattices, as the
-/// water shaders sample the images; node values cached for one time.
+/// water shaders sample the images, times an optional [`DisplacementScale`]; node values cached
+/// for one time.
 pub struct SurfaceQuery<L: ?Sized + Lattice> {
     steps: Vec<f64>,
     time: Option<f64>,
     cache: HashMap<(usize, i64, i64), [f64; 3]>,
     lattice: Box<L>,
+    scale: Option<DisplacementScale>,
 }
 
 impl<L: ?Sized + Lattice> SurfaceQuery<L> {
@@ -239,6 +245,15 @@ impl<L: ?Sized + Lattice> SurfaceQuery<L> {
             time: None,
             cache: HashMap::new(),
             lattice,
+            scale: None,
+        }
+    }
+
+    /// The same queries with the displacement at each rest point scaled by `scale`.
+    pub fn scaled(lattice: Box<L>, scale: DisplacementScale) -> SurfaceQuery<L> {
+        SurfaceQuery {
+            scale: Some(scale),
+            ..SurfaceQuery::new(lattice)
         }
     }
 
@@ -276,7 +291,8 @@ impl<L: ?Sized + Lattice> SurfaceQuery<L> {
                     + (v01[k] * (1.0 - tx) + v11[k] * tx) * tz;
             }
         }
-        [alpha + d[0], d[1], beta + d[2]]
+        let s = self.scale.as_ref().map_or(1.0, |f| f(alpha, beta));
+        [alpha + s * d[0], s * d[1], beta + s * d[2]]
     }
 
     /// Rest point carried to (x, z) at time t (fixed-point iteration α ← α + x − X(α, β), as

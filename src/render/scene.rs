@@ -3,7 +3,9 @@
 
 use std::path::Path;
 
-use super::uniforms::SceneLayout;
+use super::uniforms::{SceneLayout, WATER_LEVEL_M};
+use crate::ocean::shore::{shore_waves, SeaHeight};
+use crate::ocean::surface::DisplacementScale;
 
 /// Side of the generated DU/DV map (px).
 pub const DUDV_SIDE: u32 = 256;
@@ -58,18 +60,31 @@ pub fn load_dudv(path: &Path) -> anyhow::Result<(u32, u32, Vec<u8>)> {
 /// Height of the island terrain at world (x, z) (m): `terrain_height` of
 /// shaders/common/terrain.glsl.
 pub fn terrain_height(layout: &SceneLayout, x: f32, z: f32) -> f32 {
-    use crate::shared::PEAK_M;
+    use crate::shared::{PEAK_M, SHELF_EDGE_R, SHELF_FOOT_R};
     let dx = (x - layout.island_xz[0]) / layout.island_radius_m;
     let dz = (z - layout.island_xz[1]) / layout.island_radius_m;
     let r2 = dx * dx + dz * dz;
     let island = (-r2 * 1.6).exp();
+    // GLSL's smoothstep.
+    let t = ((r2.sqrt() - SHELF_EDGE_R) / (SHELF_FOOT_R - SHELF_EDGE_R)).clamp(0.0, 1.0);
+    let slope = t * t * (3.0 - 2.0 * t);
     let dot = |a: f32, b: f32| dx * a + dz * b;
     let n = 0.50 * (dot(3.1, 1.7) + 0.4).sin()
         + 0.25 * (dot(-4.3, 6.1) + 1.3).sin()
         + 0.12 * (dot(11.7, -7.9) + 2.1).sin()
         + 0.06 * (dot(-19.3, -23.1) + 0.7).sin();
-    let depth = layout.sea_floor_m;
-    -depth + (depth + PEAK_M) * island * (1.0 + 0.45 * n) + 1.5 * n * (1.0 - island)
+    let shelf = layout.sea_floor_m;
+    let depth = shelf + (layout.deep_floor_m - shelf) * slope;
+    -depth + (shelf + PEAK_M) * island * (1.0 + 0.45 * n) + 1.5 * n * (1.0 - island) * (1.0 - slope)
+}
+
+/// The factor the water puts on the waves at a rest point (x, z) over the island's terrain
+/// (`ocean::shore`, as shaders/surface/water.tese applies it): the buoy's height queries.
+pub fn shore_scale(layout: SceneLayout, sea: SeaHeight) -> DisplacementScale {
+    Box::new(move |x, z| {
+        let depth = WATER_LEVEL_M - terrain_height(&layout, x as f32, z as f32);
+        shore_waves(&sea, depth as f64).scale
+    })
 }
 
 #[cfg(test)]
@@ -101,11 +116,53 @@ mod tests {
     }
 
     #[test]
-    fn island_rises_from_the_sea_floor() {
+    fn the_waves_die_on_the_beach_and_keep_their_height_at_sea() {
+        let layout = SceneLayout::default();
+        let sea = SeaHeight {
+            hs_m: 2.5,
+            mean_omega: 0.9,
+            depth_m: crate::ocean::shore::SHORE_DEEP_M,
+        };
+        let scale = shore_scale(layout, sea);
+        let [x, z] = layout.island_xz;
+        let r = layout.island_radius_m as f64;
+        let (x, z) = (x as f64, z as f64);
+        assert_eq!(scale(x, z), 0.0, "the island's peak");
+        assert!((scale(x + 10.0 * r, z) - 1.0).abs() < 1e-3, "the open sea");
+        // Along the shore: where the water is d deep the waves are at most 0.78·d / Hs.
+        let mut shallow = 0;
+        for i in 0..400 {
+            let px = x + 0.8 * r + i as f64 * 0.002 * r;
+            let depth = -terrain_height(&layout, px as f32, z as f32) as f64;
+            if depth > 0.0 && depth < 2.0 {
+                shallow += 1;
+                assert!(scale(px, z) <= 0.78 * depth / 2.5 + 1e-6, "{depth} m deep");
+            }
+        }
+        assert!(shallow > 5, "the line crosses the shallows");
+    }
+
+    #[test]
+    fn island_rises_from_its_shelf_and_the_floor_falls_to_the_open_sea() {
         let layout = SceneLayout::default();
         let [x, z] = layout.island_xz;
+        let r = layout.island_radius_m;
         assert!(terrain_height(&layout, x, z) > 20.0);
-        let far = terrain_height(&layout, x + 3.0 * layout.island_radius_m, z);
-        assert!((far + layout.sea_floor_m).abs() < 3.0, "far floor {far}");
+        // The shelf: --sea-floor deep, roughened by the ridges.
+        let shelf = terrain_height(&layout, x + 1.7 * r, z);
+        assert!((shelf + layout.sea_floor_m).abs() < 3.0, "shelf {shelf}");
+        // Past the slope's foot, and to the horizon: the open sea's floor, flat.
+        for d in [4.0, 10.0, 60.0] {
+            let far = terrain_height(&layout, x + d * r, z + 0.3 * d * r);
+            assert!(
+                (far + layout.deep_floor_m).abs() < 1e-3,
+                "floor {far} {d} radii out"
+            );
+        }
+        // The slope in between goes down all the way.
+        let depths: Vec<f32> = (0..12)
+            .map(|i| terrain_height(&layout, x + (1.8 + 0.2 * i as f32) * r, z))
+            .collect();
+        assert!(depths.windows(2).all(|p| p[1] < p[0] + 1.0), "{depths:?}");
     }
 }

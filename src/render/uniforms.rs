@@ -7,6 +7,7 @@ use glam::{Mat4, Vec3, Vec4};
 use super::camera::Camera;
 use super::{FresnelModel, ViewMode};
 use crate::ocean::buoy::BuoyPose;
+use crate::ocean::shore::{shoaling, SeaHeight};
 use crate::shared::{BUOY_FREEBOARD_M, BUOY_RADIUS_M};
 
 /// Per-frame inputs.
@@ -36,6 +37,9 @@ pub struct OceanBindings {
     /// Bound on the surface's displacement from its rest position (m): patch culling, and how
     /// deep the main view can see under the water (`frame_views`).
     pub max_displacement_m: f32,
+    /// The rendered sea's height and mean frequency: how the waves change over the shallows
+    /// (`ocean::shore`, `FrameUniforms::shore`).
+    pub sea_height: SeaHeight,
 }
 
 /// The views a frame renders: the camera, its mirror image below the water plane (reflection)
@@ -162,6 +166,13 @@ pub struct FrameUniforms {
     pub dudv: [f32; 4],
     /// The buoy (object 0, `ocean::buoy`): xyz its unit axis, w its heave (m).
     pub buoy: [f32; 4],
+    /// The waves over the shallows (shaders/common/shore.glsl, `ocean::shore`): x the sea's
+    /// significant height (m), y its mean angular frequency ω̄ (rad/s), z c_g(ω̄) at the depth
+    /// it is simulated for (m/s); w: unused.
+    pub shore: [f32; 4],
+    /// Past the island's slope: x the open sea's floor depth (m, `SceneLayout::deep_floor_m`),
+    /// y the shoaling coefficient there; zw: unused.
+    pub open_sea: [f32; 4],
 }
 
 /// Side of a DU/DV tile on the water (m).
@@ -213,9 +224,17 @@ impl WaterFrame {
 pub struct SceneLayout {
     pub island_xz: [f32; 2],
     pub island_radius_m: f32,
+    /// Depth of the shelf around the island (m, `--sea-floor`).
     pub sea_floor_m: f32,
+    /// Depth of the open sea's floor, past the island's slope (m): the simulated depth
+    /// (`--depth`), at most `DEEP_FLOOR_M`.
+    pub deep_floor_m: f32,
     pub buoy_xz: [f32; 2],
 }
+
+/// The open sea's floor depth when the sea is deep (m): below `VISIBLE_DEPTH_M`, where the
+/// terrain is not drawn. Deeper floors would look the same.
+pub const DEEP_FLOOR_M: f32 = 200.0;
 
 impl Default for SceneLayout {
     fn default() -> Self {
@@ -223,6 +242,7 @@ impl Default for SceneLayout {
             island_xz: [-420.0, -900.0],
             island_radius_m: 300.0,
             sea_floor_m: 18.0,
+            deep_floor_m: DEEP_FLOOR_M,
             buoy_xz: [9.0, -55.0],
         }
     }
@@ -339,6 +359,19 @@ impl FrameUniforms {
             buoy: {
                 let b = &p.inputs.buoy;
                 [b.axis[0], b.axis[1], b.axis[2], b.heave_m].map(|v| v as f32)
+            },
+            shore: {
+                let sea = &p.ocean.sea_height;
+                [sea.hs_m, sea.mean_omega, sea.reference_group_speed(), 0.0].map(|v| v as f32)
+            },
+            open_sea: {
+                let floor = p.scene.deep_floor_m;
+                [
+                    floor,
+                    shoaling(&p.ocean.sea_height, floor as f64) as f32,
+                    0.0,
+                    0.0,
+                ]
             },
         }
     }

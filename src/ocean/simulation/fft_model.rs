@@ -13,7 +13,8 @@ use crate::gpu::{Buffer, Context, DescriptorPool, MemoryLocation, Recorder, Trac
 use crate::ocean::fft::{Direction, GpuFft};
 use crate::ocean::foam;
 use crate::ocean::params::OceanSettings;
-use crate::ocean::spectrum::{h0, omega_steps_grid, time_ticks, Cascade};
+use crate::ocean::shore::SeaHeight;
+use crate::ocean::spectrum::{dispersion, h0, omega_steps_grid, time_ticks, wave_vector, Cascade};
 use crate::pass_names as names;
 use crate::shaders;
 
@@ -54,16 +55,16 @@ pub(super) struct FftModel {
 
 impl FftModel {
     /// The model's buffers, kernels and sets; `image_writes(slot)` binds a slot's images (at
-    /// bindings 1–3). Also returns a bound on the displacement (m).
+    /// bindings 1–3). Also returns a bound on the displacement (m) and the sea's height.
     pub(super) fn new(
         ctx: &Arc<Context>,
         settings: &OceanSettings,
         cascades: &[Cascade],
         pool: &DescriptorPool,
         image_writes: &dyn Fn(usize) -> [Write; 3],
-    ) -> anyhow::Result<(FftModel, f64)> {
+    ) -> anyhow::Result<(FftModel, f64, SeaHeight)> {
         let fft = GpuFft::new(ctx, settings.fft_size, 4 * cascades.len())?;
-        let (h0_buffer, steps_buffer, max_displacement_m) =
+        let (h0_buffer, steps_buffer, max_displacement_m, sea) =
             upload_spectrum(ctx, settings, cascades)?;
         let storage = vk::DescriptorType::STORAGE_BUFFER;
         let evolve = Kernel::new(
@@ -105,31 +106,40 @@ impl FftModel {
             evolve_set,
             assemble_sets,
         };
-        Ok((model, max_displacement_m))
+        Ok((model, max_displacement_m, sea))
     }
 }
 
-/// h0 of every cascade and every element's ω quantum, uploaded on the compute queue; and a
-/// bound on the displacement (m) from the spectrum's variance.
+/// h0 of every cascade and every element's ω quantum, uploaded on the compute queue; a bound
+/// on the displacement (m) from the spectrum's variance; the sea's Hs and mean frequency.
 fn upload_spectrum(
     ctx: &Arc<Context>,
     settings: &OceanSettings,
     cascades: &[Cascade],
-) -> anyhow::Result<(Buffer, Buffer, f64)> {
+) -> anyhow::Result<(Buffer, Buffer, f64, SeaHeight)> {
     let n = settings.fft_size;
     let h0_values: Vec<[f32; 2]> = cascades
         .iter()
         .enumerate()
         .flat_map(|(c, cascade)| h0(&settings.sea, n, cascade, c as u32, settings.seed))
         .collect();
-    // Parseval: the height variance is Σ_k E|h(k,t)|² = 2 Σ_k |h0(k)|² (item 3's two terms);
-    // crests rarely pass 4σ, and choppiness moves points sideways by about λ times the
-    // height's scale.
-    let variance: f64 = h0_values
-        .iter()
-        .map(|[re, im]| 2.0 * (*re as f64 * *re as f64 + *im as f64 * *im as f64))
-        .sum();
-    let max_displacement_m = 4.0 * variance.sqrt() * (1.0 + settings.choppiness) + 0.5;
+    // Parseval: the height variance is Σ_k E|h(k,t)|² = 2 Σ_k |h0(k)|² (item 3's two terms),
+    // each element's energy at its ω (its wave vector in its cascade's grid): Hs = 4σ and the
+    // mean frequency. Crests rarely pass 4σ, and choppiness moves points sideways by about λ
+    // times the height's scale.
+    let depth = settings.sea.depth_m;
+    let sea = SeaHeight::from_waves(
+        cascades.iter().enumerate().flat_map(|(c, cascade)| {
+            let h0 = &h0_values[c * n * n..(c + 1) * n * n];
+            h0.iter().enumerate().map(move |(i, [re, im])| {
+                let k = wave_vector(i % n, i / n, n, cascade.patch_m);
+                let energy = 2.0 * (*re as f64 * *re as f64 + *im as f64 * *im as f64);
+                (energy, dispersion(k[0].hypot(k[1]), depth).0)
+            })
+        }),
+        depth,
+    );
+    let max_displacement_m = sea.hs_m * (1.0 + settings.choppiness) + 0.5;
     // Uploaded, read and (--dump) downloaded on the compute queue only: it never crosses
     // queue families.
     let h0_bytes: &[u8] = bytemuck::cast_slice(&h0_values);
@@ -160,7 +170,7 @@ fn upload_spectrum(
         &steps_buffer,
         bytemuck::cast_slice(&steps),
     )?;
-    Ok((h0_buffer, steps_buffer, max_displacement_m))
+    Ok((h0_buffer, steps_buffer, max_displacement_m, sea))
 }
 
 impl WaveModel for FftModel {

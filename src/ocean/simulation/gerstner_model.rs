@@ -11,6 +11,7 @@ use crate::gpu::descriptors::Write;
 use crate::gpu::{Buffer, Context, DescriptorPool, MemoryLocation, Recorder, Tracked, Use};
 use crate::ocean::foam;
 use crate::ocean::gerstner::{Wave, G_SEED};
+use crate::ocean::shore::SeaHeight;
 use crate::pass_names as names;
 use crate::shaders;
 
@@ -48,13 +49,13 @@ pub(super) struct GerstnerModel {
 
 impl GerstnerModel {
     /// The model's buffers, kernel and sets; `image_writes(slot)` binds a slot's images (at
-    /// bindings 1–3). Also returns a bound on the displacement (m).
+    /// bindings 1–3). Also returns a bound on the displacement (m) and the sea's height.
     pub(super) fn new(
         ctx: &Arc<Context>,
         waves: &[Wave],
         pool: &DescriptorPool,
         image_writes: &dyn Fn(usize) -> [Write; 3],
-    ) -> anyhow::Result<(GerstnerModel, f64)> {
+    ) -> anyhow::Result<(GerstnerModel, f64, SeaHeight)> {
         anyhow::ensure!(!waves.is_empty(), "Gerstner mode needs at least one wave");
         let kernel = Kernel::image_writer(
             ctx,
@@ -86,13 +87,21 @@ impl GerstnerModel {
             .map(|w| w.amplitude.abs() * (1.0 + w.steepness.abs()))
             .sum::<f64>()
             + 0.5;
+        // A wave of amplitude a holds a²/2 of the height variance (deep water, g of seed 000).
+        let sea = SeaHeight::from_waves(
+            waves.iter().map(|w| {
+                let omega = (G_SEED * w.kx.hypot(w.kz)).sqrt();
+                (0.5 * w.amplitude * w.amplitude, omega)
+            }),
+            None,
+        );
         let model = GerstnerModel {
             waves: waves.to_vec(),
             buffers,
             kernel,
             sets,
         };
-        Ok((model, max_displacement_m))
+        Ok((model, max_displacement_m, sea))
     }
 }
 
