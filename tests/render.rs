@@ -247,6 +247,40 @@ fn waves_break_into_surf_where_they_reach_0_78_of_the_depth() {
     );
 }
 
+#[test]
+fn the_sun_is_a_round_disc_of_its_real_size() {
+    // Looking at a sun 20° up at 1920x1080 (60° vertical field: focal length 935 px), the
+    // disc's radius is 0.00465 rad × 935 = 4.35 px (the sun's 0.533° diameter). Saturated
+    // pixels cover the disc and the half-covered pixels of its anti-aliased edge: the radius of
+    // a circle of their area is within a pixel of it. (The sky cube's texels drew a square of
+    // radius 12.8 px.)
+    let p = common::shot(
+        "render-sun",
+        (1920, 1080),
+        &[
+            "--render-scale",
+            "1",
+            "--sun",
+            "30,20",
+            "--camera",
+            "0,4,0",
+            "--look-at",
+            "814,346,470",
+        ],
+        &[],
+    );
+    let saturated = p
+        .chunks(4)
+        .filter(|c| c[..3].iter().all(|&v| v >= 250))
+        .count();
+    let radius = (saturated as f64 / std::f64::consts::PI).sqrt();
+    let want = 0.00465 * 540.0 / (30f64.to_radians()).tan();
+    assert!(
+        (radius - want).abs() < 1.0,
+        "sun disc radius {radius:.2} px ({saturated} saturated pixels), expected {want:.2} ± 1"
+    );
+}
+
 /// Pixels of the solid magenta test background (linear (1, 0, 1), tone-mapped and sRGB-encoded).
 fn background_pixels(p: &[u8]) -> usize {
     p.chunks(4)

@@ -35,6 +35,8 @@ layout(set = 0, binding = 0, std140) uniform FrameUniforms {
                          // simulated for (m/s); w: unused
     vec4 open_sea;       // past the island's slope (SHELF_FOOT_R): x the floor's depth (m,
                          // common/terrain.glsl); y the shoaling coefficient there
+    vec4 sky;            // x: radiance of the sun's disc, which the sky pass draws (0 with
+                         // --skybox, whose faces hold their own sun); yzw: unused
 } frame;
 
 // Which view a draw renders (ViewIndex in src/render/uniforms.rs).

@@ -1,9 +1,13 @@
 #version 460
 // Sky pass: every pixel gets the sky cubemap's radiance along its view ray (in the reflection
-// view the ray is mirrored, so the reflection shows the sky the water reflects). With the test
-// background on (modes.w), the main view paints a solid colour found nowhere else instead.
+// view the ray is mirrored, so the reflection shows the sky the water reflects), and in the
+// camera's view the sun's disc, anti-aliased over the pixel's angular size (1 / focal length)
+// and limb-darkened (common/sky.glsl). The reflection view leaves the disc out: a mirror image
+// of it was a second sharp sun in the water, whose sun is the specular term of water.frag. With
+// the test background on (modes.w), the main view paints a solid colour found nowhere else.
 #include "common/frame.glsl"
 #include "common/display.glsl"
+#include "common/sky.glsl"
 
 layout(location = 0) in vec2 in_uv;
 layout(location = 1) in vec2 in_ndc;
@@ -14,5 +18,7 @@ void main() {
         out_colour = target_colour(frame.background.rgb);
         return;
     }
-    out_colour = target_colour(sky_lookup(view_ray(in_ndc)));
+    vec3 dir = view_ray(in_ndc);
+    float disc = pass.view == 0u ? sun_disc(dir, frame.sun_dir.xyz, 1.0 / frame.lod.x) : 0.0;
+    out_colour = target_colour(sky_lookup(dir) + SUN_COLOUR * frame.sky.x * disc);
 }

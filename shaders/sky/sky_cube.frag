@@ -25,5 +25,5 @@ vec3 face_direction(uint face, vec2 st) {
 
 void main() {
     vec3 dir = normalize(face_direction(pc.face, in_uv));
-    out_colour = vec4(sky_radiance(dir, pc.sun_dir.xyz, pc.sun_dir.w), 1.0);
+    out_colour = vec4(sky_gradient(dir, pc.sun_dir.xyz), 1.0);
 }

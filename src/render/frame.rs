@@ -29,7 +29,7 @@
 use ash::vk;
 
 use super::passes::TexturesViewPass;
-use super::renderer::{OutputTarget, Renderer, SUN_SCALE};
+use super::renderer::{OutputTarget, Renderer};
 use super::targets::ColourDepth;
 use super::uniforms::ViewIndex;
 use super::FrameInputs;
@@ -132,9 +132,9 @@ pub fn record_frame(
         }
         let set = r.write_uniforms(frame.slot, output, inputs);
         let sun = r.settings.sun_dir;
-        if r.sky_cube.is_stale(sun, SUN_SCALE) {
+        if r.sky_cube.is_stale(sun) {
             let cube = &mut r.sky_cube;
-            profiler.pass(&rec, names::SKY_CUBE, || cube.update(&rec, sun, SUN_SCALE));
+            profiler.pass(&rec, names::SKY_CUBE, || cube.update(&rec, sun));
         }
         let t = &r.targets;
         // Each pass: its rendering scope's barriers, then its timestamps around the drawing.

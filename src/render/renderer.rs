@@ -386,6 +386,7 @@ impl Renderer {
             &FrameParams {
                 sun_dir: s.sun_dir,
                 sun_scale: SUN_SCALE,
+                analytic_sky: s.skybox.is_none(),
                 time_s: inputs.time_s,
                 size: (extent.width, extent.height),
                 aspect: output.extent.width as f32 / output.extent.height.max(1) as f32,

@@ -173,6 +173,9 @@ pub struct FrameUniforms {
     /// Past the island's slope: x the open sea's floor depth (m, `SceneLayout::deep_floor_m`),
     /// y the shoaling coefficient there; zw: unused.
     pub open_sea: [f32; 4],
+    /// x: radiance of the sun's disc, drawn by the sky pass (shaders/sky/sky.frag): the sun
+    /// radiance scale, or 0 with `--skybox` (its faces hold their own sun); yzw: unused.
+    pub sky: [f32; 4],
 }
 
 /// Side of a DU/DV tile on the water (m).
@@ -273,6 +276,8 @@ impl SceneLayout {
 pub struct FrameParams<'a> {
     pub sun_dir: Vec3,
     pub sun_scale: f32,
+    /// The sky is the analytic one (not `--skybox`): the sky pass draws the sun's disc.
+    pub analytic_sky: bool,
     /// Simulation time (s).
     pub time_s: f64,
     /// Main target size (px).
@@ -364,6 +369,12 @@ impl FrameUniforms {
                 let sea = &p.ocean.sea_height;
                 [sea.hs_m, sea.mean_omega, sea.reference_group_speed(), 0.0].map(|v| v as f32)
             },
+            sky: [
+                if p.analytic_sky { p.sun_scale } else { 0.0 },
+                0.0,
+                0.0,
+                0.0,
+            ],
             open_sea: {
                 let floor = p.scene.deep_floor_m;
                 [

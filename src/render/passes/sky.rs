@@ -85,8 +85,8 @@ pub struct SkyCube {
     pub image: Image,
     /// Renders the analytic sky; `None` for a loaded skybox.
     render: Option<(PipelineLayout, Pipeline)>,
-    /// Sun (direction, scale) the cube was last rendered for.
-    rendered_for: Option<(Vec3, f32)>,
+    /// Sun direction the cube was last rendered for.
+    rendered_for: Option<Vec3>,
 }
 
 impl SkyCube {
@@ -154,14 +154,14 @@ impl SkyCube {
     }
 
     /// Whether `update` has to render the cube for this sun (never for a loaded skybox).
-    pub fn is_stale(&self, sun_dir: Vec3, sun_scale: f32) -> bool {
-        self.render.is_some() && self.rendered_for != Some((sun_dir, sun_scale))
+    pub fn is_stale(&self, sun_dir: Vec3) -> bool {
+        self.render.is_some() && self.rendered_for != Some(sun_dir)
     }
 
     /// Renders the analytic sky into the six faces for this sun. Outside any rendering scope;
     /// leaves the cube in SHADER_READ_ONLY_OPTIMAL. Earlier frames sampling the cube are
     /// ordered before it by the barrier (same queue).
-    pub fn update(&mut self, rec: &Recorder, sun_dir: Vec3, sun_scale: f32) {
+    pub fn update(&mut self, rec: &Recorder, sun_dir: Vec3) {
         let Some((layout, pipeline)) = &self.render else {
             return;
         };
@@ -181,7 +181,7 @@ impl SkyCube {
             rec.push_constants(
                 layout,
                 &FacePush {
-                    sun_dir: sun_dir.normalize().extend(sun_scale).to_array(),
+                    sun_dir: sun_dir.normalize().extend(0.0).to_array(),
                     face: face as u32,
                 },
             );
@@ -190,7 +190,7 @@ impl SkyCube {
         }
         // Every pass samples the cube through the frame's descriptor set.
         rec.uses(&[(&self.image, Use::FragmentSampled)]);
-        self.rendered_for = Some((sun_dir, sun_scale));
+        self.rendered_for = Some(sun_dir);
     }
 }
 
