@@ -13,7 +13,8 @@ use vkocean::gpu::oneshot::{download, run_once, upload};
 use vkocean::gpu::{
     vk, Buffer, DescriptorPool, DescriptorSetLayout, MemoryLocation, Pipeline, PipelineLayout, Use,
 };
-use vkocean::ocean::shore::{shoaling, shore_waves, SeaHeight, SHORE_DEEP_M};
+use vkocean::ocean::moments::{SeaMoments, DEEP_WATER_M};
+use vkocean::ocean::shore::{reference_group_speed, shoaling, shore_waves};
 use vkocean::render::scene::terrain_height;
 use vkocean::render::SceneLayout;
 
@@ -32,7 +33,7 @@ struct Push {
 fn gpu_terrain(
     ctx: &std::sync::Arc<vkocean::gpu::Context>,
     layout: &SceneLayout,
-    sea: &SeaHeight,
+    sea: &SeaMoments,
     points: &[[f32; 2]],
 ) -> Vec<[f32; 4]> {
     let storage = vk::BufferUsageFlags::STORAGE_BUFFER
@@ -99,7 +100,7 @@ fn gpu_terrain(
             layout.sea_floor_m,
             layout.island_radius_m,
         ],
-        shore: [sea.hs_m, sea.mean_omega, sea.reference_group_speed(), 0.0].map(|v| v as f32),
+        shore: [sea.hs_m, sea.mean_omega, reference_group_speed(sea), 0.0].map(|v| v as f32),
         open_sea: [
             layout.deep_floor_m,
             shoaling(sea, layout.deep_floor_m as f64) as f32,
@@ -133,15 +134,17 @@ fn the_terrain_and_the_shore_are_the_same_in_rust_and_glsl() {
     };
     // A storm over deep water, and a short sea simulated for 12 m.
     let seas = [
-        SeaHeight {
+        SeaMoments {
             hs_m: 9.0,
             mean_omega: 0.5,
-            depth_m: SHORE_DEEP_M,
+            depth_m: DEEP_WATER_M,
+            slope_variance: [0.0; 4],
         },
-        SeaHeight {
+        SeaMoments {
             hs_m: 1.2,
             mean_omega: 1.1,
             depth_m: 12.0,
+            slope_variance: [0.0; 4],
         },
     ];
     for (layout, sea) in [SceneLayout::default(), moved].iter().zip(&seas) {

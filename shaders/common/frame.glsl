@@ -35,8 +35,10 @@ layout(set = 0, binding = 0, std140) uniform FrameUniforms {
                          // simulated for (m/s); w: unused
     vec4 open_sea;       // past the island's slope (SHELF_FOOT_R): x the floor's depth (m,
                          // common/terrain.glsl); y the shoaling coefficient there
-    vec4 sky;            // x: radiance of the sun's disc, which the sky pass draws (0 with
-                         // --skybox, whose faces hold their own sun); yzw: unused
+    vec4 light;          // x: radiance of the sun's disc, which the sky pass draws (0 with
+                         // --skybox, whose faces hold their own sun); y: the sea's mean-square
+                         // slope (Cox & Munk 1954); z: the sun's irradiance on the water
+    vec4 slope_variance; // mean-square slope of cascade c's waves (Σ k²E), c = 0..3
 } frame;
 
 // Which view a draw renders (ViewIndex in src/render/uniforms.rs).

@@ -20,5 +20,5 @@ void main() {
     }
     vec3 dir = view_ray(in_ndc);
     float disc = pass.view == 0u ? sun_disc(dir, frame.sun_dir.xyz, 1.0 / frame.lod.x) : 0.0;
-    out_colour = target_colour(sky_lookup(dir) + SUN_COLOUR * frame.sky.x * disc);
+    out_colour = target_colour(sky_lookup(dir) + SUN_COLOUR * frame.light.x * disc);
 }

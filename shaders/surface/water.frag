@@ -6,8 +6,9 @@
 // - water depth along the view ray from the refraction depth texture, Beer-Lambert colour;
 // - Fresnel weight between reflection and refraction (`--fresnel`: Schlick, exact (seed 004),
 //   or seed 001 eq. 6 r = cos θ^0.5);
-// - Blinn-Phong sun highlight (seed 003), foam from the simulation and the surf where the
-//   waves break on the shallows (common/shore.glsl), haze toward the horizon.
+// - the sun's glitter (a Beckmann lobe of the slopes the pixel does not resolve), foam from the
+//   simulation and the surf where the waves break on the shallows (common/shore.glsl), haze
+//   toward the horizon.
 // Every texture here has one mip level, so lookups are textureLod(…, 0): the same result as
 // texture() (minification and magnification filters are both linear) without the per-quad
 // derivatives and LOD a CPU driver computes for it. The cascade loop's bound is the
@@ -34,23 +35,49 @@ const float N_WATER = 1.333;
 const float F0 = 0.02;               // ((n - 1) / (n + 1))^2
 const float DUDV_STRENGTH = 0.012;   // screen-space offset at full strength
 const float SLOPE_STRENGTH = 0.05;   // screen-space offset per unit slope
-const float SHININESS = 720.0;
+const float PI = 3.14159265;
 
 // The summed normal, its slopes scaled as the shallows scale the waves (`scale`), and the
 // whitecap field (layer 0's foam: the whole surface's, see src/ocean/foam.rs), faded with the
-// largest cascade.
-vec4 ocean_normal_foam(vec2 xz, float dist, float scale) {
+// largest cascade. `resolved`: the mean-square slope those faded, scaled cascades carry.
+vec4 ocean_normal_foam(vec2 xz, float dist, float scale, out float resolved) {
     vec2 slope = vec2(0.0);
     float foam = 0.0;
+    resolved = 0.0;
     for (int c = 0; c < CASCADES; ++c) {
         float weight;
         vec3 uv = ocean_uv(xz, c, dist, weight);
         vec4 s = ocean_texture(ocean_normals, uv);
         slope += weight * s.xy;
         foam += c == 0 ? weight * s.w : 0.0;
+        resolved += weight * weight * frame.slope_variance[c];
     }
     slope *= scale;
+    resolved *= scale * scale;
     return vec4(normalize(vec3(-slope.x, 1.0, -slope.y)), foam);
+}
+
+float fresnel(float cos_theta); // below
+
+// Smith's masking for the Beckmann distribution of mean-square slope m2, at a direction whose
+// cosine to the normal is `c` (Walter et al. 2007's rational fit, eq. 27).
+float smith_g1(float c, float m2) {
+    float a = c / sqrt(m2 * max(1.0 - c * c, 1e-6));
+    return a < 1.6 ? (3.535 * a + 2.181 * a * a) / (1.0 + 2.276 * a + 2.577 * a * a) : 1.0;
+}
+
+// The sun's reflection off the slopes a pixel does not resolve (Bruneton, Neyret & Holzschuch
+// 2010): the facets around the drawn normal n have Gaussian (Beckmann) slopes of mean square
+// m2, so the radiance toward v is E·F(v·h)·D(h)·G/(4 n·v), D = exp(−tan²θ_h/m2)/(π m2 cos⁴θ_h).
+float sun_glitter(vec3 n, vec3 v, vec3 l, float m2) {
+    vec3 h = normalize(v + l);
+    float nh = max(dot(n, h), 1e-4);
+    float nv = max(dot(n, v), 1e-4);
+    float nl = max(dot(n, l), 0.0);
+    float c2 = nh * nh;
+    float d = exp(-(1.0 - c2) / (c2 * m2)) / (PI * m2 * c2 * c2);
+    float g = smith_g1(nv, m2) * smith_g1(max(nl, 1e-4), m2) * step(1e-4, nl);
+    return fresnel(clamp(dot(v, h), 0.0, 1.0)) * d * g / (4.0 * nv);
 }
 
 // Value noise in [0, 1] on a lattice that repeats every `cells` cells (hash of the lattice
@@ -131,7 +158,8 @@ void main() {
     // The shallows from the depth and K_s between the vertices (a pixel's own terrain height
     // cost lavapipe 0.8 ms a frame at --quality low: it runs both sides of a branch).
     vec3 shore = shore_waves_at(in_shore.y, in_shore.x);
-    vec4 nf = ocean_normal_foam(in_xz, dist, shore.x);
+    float resolved;
+    vec4 nf = ocean_normal_foam(in_xz, dist, shore.x, resolved);
     vec3 n = nf.xyz;
     // Surf where the waves break on the shallows (shore.y, 0–1): foam on the crests and their
     // fronts, thinner in the troughs between them.
@@ -198,10 +226,11 @@ void main() {
     // Fresh foam (field near 1) is dense and white, fading foam thinner.
     float opacity = cover * mix(0.55, 0.95, nf.w);
     colour = mix(colour, vec3(0.85, 0.9, 0.92) * (0.6 + 0.4 * max(sun.y, 0.0)), opacity);
-    // c_h: Blinn-Phong sun highlight (seed 003), none on the foam.
-    vec3 h = normalize(v + sun);
-    float spec = pow(max(dot(n, h), 0.0), SHININESS) * frame.sun_dir.w * 0.05 * (1.0 - opacity);
-    colour += vec3(1.0, 0.9, 0.72) * spec;
+    // c_h: the sun's glitter from the slopes the normal does not resolve (the sea's mean-square
+    // slope, Cox & Munk 1954, less what the cascades drawn here carry), none on the foam.
+    float unresolved = max(frame.light.y - resolved, 2e-3);
+    float glitter = sun_glitter(n, v, sun, unresolved) * frame.light.z * (1.0 - opacity);
+    colour += vec3(1.0, 0.9, 0.72) * glitter;
 
     vec3 horizon = sky_lookup(normalize(vec3(-v.x, 0.0, -v.z) + vec3(0.0, 0.002, 0.0)));
     float haze = 1.0 - exp(-dist / 9000.0);

@@ -75,11 +75,12 @@ impl Session {
             cascades: simulation.cascades.len() as u32,
             texels: simulation.settings.fft_size as u32,
             max_displacement_m: simulation.max_displacement_m as f32,
-            sea_height: simulation.sea_height,
+            sea_moments: simulation.sea_moments,
+            mean_square_slope: simulation.mean_square_slope() as f32,
         };
         let [bx, bz] = s.scene.layout.buoy_xz;
         // The buoy floats on the waves as the water draws them, shallows included.
-        let shore = shore_scale(s.scene.layout, simulation.sea_height);
+        let shore = shore_scale(s.scene.layout, simulation.sea_moments);
         let buoy = Buoy::on(&s.ocean, [bx as f64, bz as f64], shore);
         let camera = s.camera.unwrap_or_default();
         let renderer = Renderer::new(ctx, output_format, extent, ocean, &s.scene, camera)?;

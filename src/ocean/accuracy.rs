@@ -5,7 +5,8 @@
 
 use std::f64::consts::PI;
 
-use super::shore::{shoaling, shore_waves, SeaHeight, SHORE_DEEP_M};
+use super::moments::{SeaMoments, DEEP_WATER_M};
+use super::shore::{shoaling, shore_waves};
 use super::spectrum::{
     donelan_banner, donelan_banner_beta, frequency_spectrum, peak_omega, SeaState, SpectrumKind, G,
 };
@@ -245,12 +246,13 @@ pub fn spectrum_rows() -> Vec<Row> {
 }
 
 /// A deep-water sea of one frequency (an 8 s wave, Hs 1 m) for the shoaling rows.
-fn shoaling_sea() -> (SeaHeight, f64) {
+fn shoaling_sea() -> (SeaMoments, f64) {
     let omega = 2.0 * PI / 8.0;
-    let sea = SeaHeight {
+    let sea = SeaMoments {
         hs_m: 1.0,
         mean_omega: omega,
-        depth_m: SHORE_DEEP_M,
+        depth_m: DEEP_WATER_M,
+        slope_variance: [0.0; 4],
     };
     (sea, 2.0 * PI * G / (omega * omega)) // and its deep-water wavelength L₀
 }
@@ -283,7 +285,7 @@ pub fn shore_rows() -> Vec<Row> {
     let k0d = 1e-3;
     // A 3 m sea over 1 m of water: broken down to the breaker index.
     let (sea, _) = shoaling_sea();
-    let surf = shore_waves(&SeaHeight { hs_m: 3.0, ..sea }, 1.0).hs_m;
+    let surf = shore_waves(&SeaMoments { hs_m: 3.0, ..sea }, 1.0).hs_m;
     vec![
         Row {
             quantity: format!("linear shoaling K_s, minimum (at d/L₀ = {at:.3})"),

@@ -75,9 +75,15 @@ pub fn params(sim: &Simulation, t: f64) -> Value {
         // Over the island's shallows the water draws these waves scaled by the local depth
         // (src/ocean/shore.rs): shoaling at the mean frequency, breaking at Hs = γ·d.
         "shore": {
-            "hs_m": sim.sea_height.hs_m,
-            "mean_omega_rad_s": sim.sea_height.mean_omega,
+            "hs_m": sim.sea_moments.hs_m,
+            "mean_omega_rad_s": sim.sea_moments.mean_omega,
             "breaker_index": crate::shared::BREAKER_INDEX,
+        },
+        // The sea surface's mean-square slope (Cox & Munk 1954 at the wind) and what each
+        // cascade's waves carry of it (Σ k²E); the sun's glitter takes the rest (water.frag).
+        "slopes": {
+            "mean_square_slope": sim.mean_square_slope(),
+            "resolved": &sim.sea_moments.slope_variance[..sim.cascades.len()],
         },
     });
     let model = match sim.gerstner_waves() {

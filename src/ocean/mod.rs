@@ -1,7 +1,7 @@
 //! The ocean: sea state and spectra ([`spectrum`]), the CPU reference simulation with rustfft
 //! ([`cpu`]), analytic Gerstner waves ([`gerstner`]), per-frame height queries of the drawn
-//! surface ([`surface`]), the floating buoy ([`buoy`]), whitecaps ([`foam`]) and waves over
-//! the island's shallows ([`shore`]).
+//! surface ([`surface`]), the floating buoy ([`buoy`]), whitecaps ([`foam`]), waves over the
+//! island's shallows ([`shore`]) and the rendered waves' moments ([`moments`]).
 
 pub mod accuracy;
 pub mod buoy;
@@ -10,6 +10,7 @@ pub mod dump;
 pub mod fft;
 pub mod foam;
 pub mod gerstner;
+pub mod moments;
 pub mod params;
 pub mod shore;
 pub mod simulation;

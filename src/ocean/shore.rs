@@ -7,7 +7,7 @@
 //!   height grows by K_s = √(c_g(ω, h_sim) / c_g(ω, d)), c_g = ½(1 + 2kh/sinh 2kh)·ω/k (e.g.
 //!   Dean & Dalrymple 1991, §4.6): it dips to 0.913 at d/L₀ ≈ 0.15 and grows as Green's law
 //!   (4k₀d)^−¼ in shallow water. One ω stands for the whole sea: its mean frequency
-//!   ω̄ = m₁/m₀ (`SeaHeight`), where the energy is.
+//!   ω̄ = m₁/m₀ (`SeaMoments`), where the energy is.
 //! - **Depth-limited breaking**: the local significant height is min(K_s·Hs, γ·d) with the
 //!   breaker index γ = 0.78 (McCowan 1894's limit H/d for a solitary wave; `BREAKER_INDEX`).
 //!   How hard the waves break, 0 to 1, grows with K_s·Hs/(γ·d) − 1: the surf foam of
@@ -21,40 +21,13 @@
 //! in shallow water, wave set-up and run-up. The factor scales the displacement of every
 //! cascade alike, so short waves that would not feel the bottom shrink with the long ones.
 
+use super::moments::SeaMoments;
 use super::spectrum::G;
 use crate::shared::BREAKER_INDEX;
 
-/// The depth that stands for deep water (m): k·h is past 10 there for any
-/// ω above 0.1 rad/s (periods under a minute), so c_g = g/(2ω).
-pub const SHORE_DEEP_M: f64 = 1.0e4;
-
-/// What the shore shader needs of the simulated sea.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct SeaHeight {
-    /// Significant wave height of the rendered waves, 4√m₀ (m).
-    pub hs_m: f64,
-    /// Mean angular frequency m₁/m₀ (rad/s).
-    pub mean_omega: f64,
-    /// Depth the sea is simulated for (m; `SHORE_DEEP_M` for deep water).
-    pub depth_m: f64,
-}
-
-impl SeaHeight {
-    /// From the rendered waves' (energy, angular frequency) pairs, simulated for `depth_m`
-    /// (`None`: deep water).
-    pub fn from_waves(waves: impl Iterator<Item = (f64, f64)>, depth_m: Option<f64>) -> Self {
-        let (m0, m1) = waves.fold((0.0, 0.0), |(m0, m1), (e, w)| (m0 + e, m1 + e * w));
-        SeaHeight {
-            hs_m: 4.0 * m0.sqrt(),
-            mean_omega: if m0 > 0.0 { m1 / m0 } else { 1.0 },
-            depth_m: depth_m.unwrap_or(SHORE_DEEP_M),
-        }
-    }
-
-    /// c_g(ω̄) at the simulated depth (m/s): `frame.shore.z`.
-    pub fn reference_group_speed(&self) -> f64 {
-        group_speed(self.mean_omega.max(1e-3), self.depth_m)
-    }
+/// c_g(ω̄) at the depth the sea is simulated for (m/s): `frame.shore.z`.
+pub fn reference_group_speed(sea: &SeaMoments) -> f64 {
+    group_speed(sea.mean_omega.max(1e-3), sea.depth_m)
 }
 
 /// k·h of a wave of angular frequency ω over depth h (ω² = g k tanh kh): Guo (2002)'s explicit
@@ -80,9 +53,9 @@ pub fn group_speed(omega: f64, h: f64) -> f64 {
 }
 
 /// The linear shoaling coefficient of the sea at `depth` (m).
-pub fn shoaling(sea: &SeaHeight, depth: f64) -> f64 {
+pub fn shoaling(sea: &SeaMoments, depth: f64) -> f64 {
     let omega = sea.mean_omega.max(1e-3);
-    (sea.reference_group_speed() / group_speed(omega, depth.max(0.01))).sqrt()
+    (reference_group_speed(sea) / group_speed(omega, depth.max(0.01))).sqrt()
 }
 
 /// The waves at a point of the water over the shallows.
@@ -97,13 +70,13 @@ pub struct ShoreWaves {
 }
 
 /// The waves where the water is `depth` deep: `shore_waves` of shore.glsl.
-pub fn shore_waves(sea: &SeaHeight, depth: f64) -> ShoreWaves {
+pub fn shore_waves(sea: &SeaMoments, depth: f64) -> ShoreWaves {
     shore_waves_at(sea, shoaling(sea, depth), depth)
 }
 
 /// The same with the shoaling coefficient `ks` given: `shore_waves_at` of shore.glsl (the water
 /// shader interpolates `ks` between vertices and takes the depth per pixel).
-pub fn shore_waves_at(sea: &SeaHeight, ks: f64, depth: f64) -> ShoreWaves {
+pub fn shore_waves_at(sea: &SeaMoments, ks: f64, depth: f64) -> ShoreWaves {
     let hs = sea.hs_m.max(1e-3);
     let limit = BREAKER_INDEX as f64 * depth.max(0.0);
     let local = (ks * hs).min(limit);
@@ -117,6 +90,7 @@ pub fn shore_waves_at(sea: &SeaHeight, ks: f64, depth: f64) -> ShoreWaves {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::ocean::moments::DEEP_WATER_M;
     use crate::ocean::spectrum::dispersion;
 
     /// k·h from the exact dispersion relation (bisection on ω(k) of `spectrum::dispersion`).
@@ -149,11 +123,12 @@ mod tests {
         );
     }
 
-    fn deep(omega: f64) -> SeaHeight {
-        SeaHeight {
+    fn deep(omega: f64) -> SeaMoments {
+        SeaMoments {
             hs_m: 1.0,
             mean_omega: omega,
-            depth_m: SHORE_DEEP_M,
+            depth_m: DEEP_WATER_M,
+            slope_variance: [0.0; 4],
         }
     }
 
@@ -171,7 +146,7 @@ mod tests {
 
     #[test]
     fn breaking_limits_the_height_to_the_breaker_index() {
-        let sea = SeaHeight {
+        let sea = SeaMoments {
             hs_m: 3.0,
             ..deep(0.8)
         };
@@ -203,20 +178,13 @@ mod tests {
 
     #[test]
     fn a_sea_simulated_at_finite_depth_is_unchanged_at_that_depth() {
-        let sea = SeaHeight {
+        let sea = SeaMoments {
             hs_m: 1.0,
             mean_omega: 0.9,
             depth_m: 12.0,
+            slope_variance: [0.0; 4],
         };
         assert!((shoaling(&sea, 12.0) - 1.0).abs() < 1e-12);
         assert!((shore_waves(&sea, 12.0).scale - 1.0).abs() < 1e-12);
-    }
-
-    #[test]
-    fn sea_height_is_four_root_m0_and_the_mean_frequency() {
-        let s = SeaHeight::from_waves([(1.0, 0.5), (3.0, 1.0)].into_iter(), None);
-        assert!((s.hs_m - 8.0).abs() < 1e-12);
-        assert!((s.mean_omega - 3.5 / 4.0).abs() < 1e-12);
-        assert_eq!(s.depth_m, SHORE_DEEP_M);
     }
 }

@@ -25,8 +25,8 @@ use gerstner_model::GerstnerModel;
 
 use super::foam;
 use super::gerstner::Wave;
+use super::moments::{cox_munk_mean_square_slope, SeaMoments};
 use super::params::{OceanSettings, Waves};
-use super::shore::SeaHeight;
 use super::spectrum::Cascade;
 use crate::gpu::compute::ComputeQueue;
 use crate::gpu::descriptors::{self, Write};
@@ -233,13 +233,27 @@ pub struct Simulation {
     pub max_displacement_m: f64,
     /// The rendered sea's significant height and mean frequency (the shore's shoaling and
     /// breaking, `ocean::shore`).
-    pub sea_height: SeaHeight,
+    pub sea_moments: SeaMoments,
+}
+
+impl Simulation {
+    /// The whole sea surface's mean-square slope: Cox & Munk (1954) at the wind for the FFT
+    /// sea, and for Gerstner waves (no wind) their own plus Cox & Munk's calm 0.003; never less
+    /// than what the cascades resolve.
+    pub fn mean_square_slope(&self) -> f64 {
+        let resolved: f64 = self.sea_moments.slope_variance.iter().sum();
+        let sea = match self.settings.waves {
+            Waves::Fft => cox_munk_mean_square_slope(self.settings.sea.wind_speed_m_s),
+            Waves::Gerstner(_) => resolved + cox_munk_mean_square_slope(0.0),
+        };
+        sea.max(resolved)
+    }
 }
 
 /// A model as the simulation holds it, with its displacement bound and sea height.
 fn boxed<M: WaveModel + 'static>(
-    (model, bound, sea): (M, f64, SeaHeight),
-) -> (Box<dyn WaveModel>, f64, SeaHeight) {
+    (model, bound, sea): (M, f64, SeaMoments),
+) -> (Box<dyn WaveModel>, f64, SeaMoments) {
     (Box::new(model), bound, sea)
 }
 
@@ -317,7 +331,7 @@ impl Simulation {
                 },
             ]
         };
-        let (model, max_displacement_m, sea_height) = match &settings.waves {
+        let (model, max_displacement_m, sea_moments) = match &settings.waves {
             Waves::Fft => boxed(FftModel::new(
                 ctx,
                 settings,
@@ -331,7 +345,7 @@ impl Simulation {
             foam_threshold: foam::threshold(settings),
             previous_origin_m: None,
             max_displacement_m,
-            sea_height,
+            sea_moments,
             settings: settings.clone(),
             cascades,
             model,

@@ -4,7 +4,8 @@
 use std::path::Path;
 
 use super::uniforms::{SceneLayout, WATER_LEVEL_M};
-use crate::ocean::shore::{shore_waves, SeaHeight};
+use crate::ocean::moments::SeaMoments;
+use crate::ocean::shore::shore_waves;
 use crate::ocean::surface::DisplacementScale;
 
 /// Side of the generated DU/DV map (px).
@@ -80,7 +81,7 @@ pub fn terrain_height(layout: &SceneLayout, x: f32, z: f32) -> f32 {
 
 /// The factor the water puts on the waves at a rest point (x, z) over the island's terrain
 /// (`ocean::shore`, as shaders/surface/water.tese applies it): the buoy's height queries.
-pub fn shore_scale(layout: SceneLayout, sea: SeaHeight) -> DisplacementScale {
+pub fn shore_scale(layout: SceneLayout, sea: SeaMoments) -> DisplacementScale {
     Box::new(move |x, z| {
         let depth = WATER_LEVEL_M - terrain_height(&layout, x as f32, z as f32);
         shore_waves(&sea, depth as f64).scale
@@ -118,10 +119,11 @@ mod tests {
     #[test]
     fn the_waves_die_on_the_beach_and_keep_their_height_at_sea() {
         let layout = SceneLayout::default();
-        let sea = SeaHeight {
+        let sea = SeaMoments {
             hs_m: 2.5,
             mean_omega: 0.9,
-            depth_m: crate::ocean::shore::SHORE_DEEP_M,
+            depth_m: crate::ocean::moments::DEEP_WATER_M,
+            slope_variance: [0.0; 4],
         };
         let scale = shore_scale(layout, sea);
         let [x, z] = layout.island_xz;

@@ -7,7 +7,8 @@ use glam::{Mat4, Vec3, Vec4};
 use super::camera::Camera;
 use super::{FresnelModel, ViewMode};
 use crate::ocean::buoy::BuoyPose;
-use crate::ocean::shore::{shoaling, SeaHeight};
+use crate::ocean::moments::SeaMoments;
+use crate::ocean::shore::{reference_group_speed, shoaling};
 use crate::shared::{BUOY_FREEBOARD_M, BUOY_RADIUS_M};
 
 /// Per-frame inputs.
@@ -37,9 +38,13 @@ pub struct OceanBindings {
     /// Bound on the surface's displacement from its rest position (m): patch culling, and how
     /// deep the main view can see under the water (`frame_views`).
     pub max_displacement_m: f32,
-    /// The rendered sea's height and mean frequency: how the waves change over the shallows
-    /// (`ocean::shore`, `FrameUniforms::shore`).
-    pub sea_height: SeaHeight,
+    /// The rendered sea's height, mean frequency and slopes: how the waves change over the
+    /// shallows (`ocean::shore`, `FrameUniforms::shore`), what the normals resolve of the
+    /// roughness (`FrameUniforms::slope_variance`).
+    pub sea_moments: SeaMoments,
+    /// The whole sea surface's mean-square slope (Cox & Munk 1954 at the wind; at least what the
+    /// cascades resolve): the sun's reflection takes what the normals do not resolve.
+    pub mean_square_slope: f32,
 }
 
 /// The views a frame renders: the camera, its mirror image below the water plane (reflection)
@@ -174,8 +179,13 @@ pub struct FrameUniforms {
     /// y the shoaling coefficient there; zw: unused.
     pub open_sea: [f32; 4],
     /// x: radiance of the sun's disc, drawn by the sky pass (shaders/sky/sky.frag): the sun
-    /// radiance scale, or 0 with `--skybox` (its faces hold their own sun); yzw: unused.
-    pub sky: [f32; 4],
+    /// radiance scale, or 0 with `--skybox` (its faces hold their own sun); y: the sea's
+    /// mean-square slope (`OceanBindings::mean_square_slope`); z: the sun's irradiance on the
+    /// water (`SUN_IRRADIANCE` of the radiance scale); w: unused.
+    pub light: [f32; 4],
+    /// Mean-square slope of each cascade's waves (`SeaMoments::slope_variance`): what the
+    /// normal images resolve of the sea's roughness.
+    pub slope_variance: [f32; 4],
 }
 
 /// Side of a DU/DV tile on the water (m).
@@ -234,6 +244,10 @@ pub struct SceneLayout {
     pub deep_floor_m: f32,
     pub buoy_xz: [f32; 2],
 }
+
+/// The sun's irradiance on the water relative to its disc's radiance scale (`sun_dir.w`):
+/// the sun's glitter (water.frag) is E·F·D·G/(4 cos θ_v).
+pub const SUN_IRRADIANCE: f32 = 0.15;
 
 /// The open sea's floor depth when the sea is deep (m): below `VISIBLE_DEPTH_M`, where the
 /// terrain is not drawn. Deeper floors would look the same.
@@ -366,20 +380,21 @@ impl FrameUniforms {
                 [b.axis[0], b.axis[1], b.axis[2], b.heave_m].map(|v| v as f32)
             },
             shore: {
-                let sea = &p.ocean.sea_height;
-                [sea.hs_m, sea.mean_omega, sea.reference_group_speed(), 0.0].map(|v| v as f32)
+                let sea = &p.ocean.sea_moments;
+                [sea.hs_m, sea.mean_omega, reference_group_speed(sea), 0.0].map(|v| v as f32)
             },
-            sky: [
+            light: [
                 if p.analytic_sky { p.sun_scale } else { 0.0 },
-                0.0,
-                0.0,
+                p.ocean.mean_square_slope,
+                p.sun_scale * SUN_IRRADIANCE,
                 0.0,
             ],
+            slope_variance: p.ocean.sea_moments.slope_variance.map(|v| v as f32),
             open_sea: {
                 let floor = p.scene.deep_floor_m;
                 [
                     floor,
-                    shoaling(&p.ocean.sea_height, floor as f64) as f32,
+                    shoaling(&p.ocean.sea_moments, floor as f64) as f32,
                     0.0,
                     0.0,
                 ]

@@ -12,8 +12,8 @@ use crate::gpu::oneshot::upload_on;
 use crate::gpu::{Buffer, Context, DescriptorPool, MemoryLocation, Recorder, Tracked, Use};
 use crate::ocean::fft::{Direction, GpuFft};
 use crate::ocean::foam;
+use crate::ocean::moments::{Component, SeaMoments};
 use crate::ocean::params::OceanSettings;
-use crate::ocean::shore::SeaHeight;
 use crate::ocean::spectrum::{dispersion, h0, omega_steps_grid, time_ticks, wave_vector, Cascade};
 use crate::pass_names as names;
 use crate::shaders;
@@ -62,7 +62,7 @@ impl FftModel {
         cascades: &[Cascade],
         pool: &DescriptorPool,
         image_writes: &dyn Fn(usize) -> [Write; 3],
-    ) -> anyhow::Result<(FftModel, f64, SeaHeight)> {
+    ) -> anyhow::Result<(FftModel, f64, SeaMoments)> {
         let fft = GpuFft::new(ctx, settings.fft_size, 4 * cascades.len())?;
         let (h0_buffer, steps_buffer, max_displacement_m, sea) =
             upload_spectrum(ctx, settings, cascades)?;
@@ -116,7 +116,7 @@ fn upload_spectrum(
     ctx: &Arc<Context>,
     settings: &OceanSettings,
     cascades: &[Cascade],
-) -> anyhow::Result<(Buffer, Buffer, f64, SeaHeight)> {
+) -> anyhow::Result<(Buffer, Buffer, f64, SeaMoments)> {
     let n = settings.fft_size;
     let h0_values: Vec<[f32; 2]> = cascades
         .iter()
@@ -124,17 +124,22 @@ fn upload_spectrum(
         .flat_map(|(c, cascade)| h0(&settings.sea, n, cascade, c as u32, settings.seed))
         .collect();
     // Parseval: the height variance is Σ_k E|h(k,t)|² = 2 Σ_k |h0(k)|² (item 3's two terms),
-    // each element's energy at its ω (its wave vector in its cascade's grid): Hs = 4σ and the
-    // mean frequency. Crests rarely pass 4σ, and choppiness moves points sideways by about λ
-    // times the height's scale.
+    // each element's energy at its wave vector in its cascade's grid: Hs = 4σ, the mean
+    // frequency and each cascade's mean-square slope. Crests rarely pass 4σ, and choppiness
+    // moves points sideways by about λ times the height's scale.
     let depth = settings.sea.depth_m;
-    let sea = SeaHeight::from_waves(
+    let sea = SeaMoments::from_waves(
         cascades.iter().enumerate().flat_map(|(c, cascade)| {
             let h0 = &h0_values[c * n * n..(c + 1) * n * n];
             h0.iter().enumerate().map(move |(i, [re, im])| {
                 let k = wave_vector(i % n, i / n, n, cascade.patch_m);
-                let energy = 2.0 * (*re as f64 * *re as f64 + *im as f64 * *im as f64);
-                (energy, dispersion(k[0].hypot(k[1]), depth).0)
+                let k = k[0].hypot(k[1]);
+                Component {
+                    energy: 2.0 * (*re as f64 * *re as f64 + *im as f64 * *im as f64),
+                    omega: dispersion(k, depth).0,
+                    k,
+                    layer: c,
+                }
             })
         }),
         depth,

@@ -11,7 +11,7 @@ use crate::gpu::descriptors::Write;
 use crate::gpu::{Buffer, Context, DescriptorPool, MemoryLocation, Recorder, Tracked, Use};
 use crate::ocean::foam;
 use crate::ocean::gerstner::{Wave, G_SEED};
-use crate::ocean::shore::SeaHeight;
+use crate::ocean::moments::{Component, SeaMoments};
 use crate::pass_names as names;
 use crate::shaders;
 
@@ -55,7 +55,7 @@ impl GerstnerModel {
         waves: &[Wave],
         pool: &DescriptorPool,
         image_writes: &dyn Fn(usize) -> [Write; 3],
-    ) -> anyhow::Result<(GerstnerModel, f64, SeaHeight)> {
+    ) -> anyhow::Result<(GerstnerModel, f64, SeaMoments)> {
         anyhow::ensure!(!waves.is_empty(), "Gerstner mode needs at least one wave");
         let kernel = Kernel::image_writer(
             ctx,
@@ -88,10 +88,15 @@ impl GerstnerModel {
             .sum::<f64>()
             + 0.5;
         // A wave of amplitude a holds a²/2 of the height variance (deep water, g of seed 000).
-        let sea = SeaHeight::from_waves(
+        let sea = SeaMoments::from_waves(
             waves.iter().map(|w| {
-                let omega = (G_SEED * w.kx.hypot(w.kz)).sqrt();
-                (0.5 * w.amplitude * w.amplitude, omega)
+                let k = w.kx.hypot(w.kz);
+                Component {
+                    energy: 0.5 * w.amplitude * w.amplitude,
+                    omega: (G_SEED * k).sqrt(),
+                    k,
+                    layer: 0,
+                }
             }),
             None,
         );
