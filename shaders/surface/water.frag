@@ -40,17 +40,26 @@ const float PI = 3.14159265;
 // The summed normal, its slopes scaled as the shallows scale the waves (`scale`), and the
 // whitecap field (layer 0's foam: the whole surface's, see src/ocean/foam.rs), faded with the
 // largest cascade. `resolved`: the mean-square slope those faded, scaled cascades carry.
-vec4 ocean_normal_foam(vec2 xz, float dist, float scale, out float resolved) {
+// A cascade's slopes also fade where the pixel's footprint on the water (`pixel_m`) passes
+// its shortest wavelength (gone at twice that), before they alias into shimmer: its band ends
+// at 6 waves per next patch (L_{c+1}/6 = L_c/26, spectrum.rs's cascades), the last one at its
+// Nyquist limit (2 texels). What fades out joins the glitter's unresolved slopes.
+vec4 ocean_normal_foam(vec2 xz, float dist, float pixel_m, float scale, out float resolved) {
     vec2 slope = vec2(0.0);
     float foam = 0.0;
     resolved = 0.0;
+    float texels = float(textureSize(ocean_normals, 0).x);
     for (int c = 0; c < CASCADES; ++c) {
         float weight;
         vec3 uv = ocean_uv(xz, c, dist, weight);
         vec4 s = ocean_texture(ocean_normals, uv);
-        slope += weight * s.xy;
+        float patch_m = frame.patch_m[c];
+        float shortest = c == CASCADES - 1 ? 2.0 * patch_m / texels
+                                           : max(patch_m / 26.0, 2.0 * patch_m / texels);
+        float slope_weight = weight * clamp(2.0 - pixel_m / shortest, 0.0, 1.0);
+        slope += slope_weight * s.xy;
         foam += c == 0 ? weight * s.w : 0.0;
-        resolved += weight * weight * frame.slope_variance[c];
+        resolved += slope_weight * slope_weight * frame.slope_variance[c];
     }
     slope *= scale;
     resolved *= scale * scale;
@@ -158,8 +167,11 @@ void main() {
     // The shallows from the depth and K_s between the vertices (a pixel's own terrain height
     // cost lavapipe 0.8 ms a frame at --quality low: it runs both sides of a branch).
     vec3 shore = shore_waves_at(in_shore.y, in_shore.x);
+    // The pixel's footprint on the water: dist / focal length across the view, stretched by
+    // 1/sin(elevation) along it (the geometric mean of the two).
+    float pixel_m = dist / (frame.lod.x * sqrt(max(v.y, 0.01)));
     float resolved;
-    vec4 nf = ocean_normal_foam(in_xz, dist, shore.x, resolved);
+    vec4 nf = ocean_normal_foam(in_xz, dist, pixel_m, shore.x, resolved);
     vec3 n = nf.xyz;
     // Surf where the waves break on the shallows (shore.y, 0–1): foam on the crests and their
     // fronts, thinner in the troughs between them.
@@ -218,9 +230,6 @@ void main() {
     vec3 colour = mix(transmitted, c_reflect, f);
 
     // Whitecaps: white, lit by the sun and sky, covering what the texture shows.
-    // The pixel's footprint: dist / focal length across the view, stretched by 1/sin(elevation)
-    // along it (the geometric mean of the two).
-    float pixel_m = dist / (frame.lod.x * sqrt(max(v.y, 0.01)));
     float unused_weight;
     float cover = foam_cover(nf.w, ocean_uv(in_xz, 0, dist, unused_weight).xy, pixel_m);
     // Fresh foam (field near 1) is dense and white, fading foam thinner.
