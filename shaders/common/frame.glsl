@@ -12,7 +12,7 @@ layout(set = 0, binding = 0, std140) uniform FrameUniforms {
     View views[3];       // 0: camera, 1: reflection (mirrored about the water), 2: refraction
     uvec4 modes;         // x: debug view (VIEW_*); y: Fresnel model (FRESNEL_*); z: 1 = bounded
                          // ocean window (Gerstner); w: 1 = solid test background
-    vec4 sun_dir;        // xyz: unit vector toward the sun; w: sun radiance scale
+    vec4 sun_dir;        // xyz: unit vector toward the sun; w: unused (the sun's light: `light`)
     vec4 viewport;       // xy: main target size (px); zw: 1 / size
     vec4 patch_m;        // side of each ocean cascade's patch (m), cascades 0..3
     vec4 lod;            // x: focal length (px); y: target edge (px); z: max displacement (m)

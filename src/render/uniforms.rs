@@ -142,7 +142,7 @@ pub struct FrameUniforms {
     /// z: 1 for a bounded ocean window (Gerstner), 0 for repeating cascades; w: 1 to paint the
     /// solid test background instead of the sky.
     pub modes: [u32; 4],
-    /// xyz: unit vector toward the sun; w: sun radiance scale.
+    /// xyz: unit vector toward the sun; w: unused (the sun's light is in `light`).
     pub sun_dir: [f32; 4],
     /// xy: main target size (px); zw: reciprocal.
     pub viewport: [f32; 4],
@@ -245,7 +245,7 @@ pub struct SceneLayout {
     pub buoy_xz: [f32; 2],
 }
 
-/// The sun's irradiance on the water relative to its disc's radiance scale (`sun_dir.w`):
+/// The sun's irradiance on the water relative to its disc's radiance scale (`sun_scale`):
 /// the sun's glitter (water.frag) is E·F·D·G/(4 cos θ_v).
 pub const SUN_IRRADIANCE: f32 = 0.15;
 
@@ -327,7 +327,7 @@ impl FrameUniforms {
                 p.inputs.ocean_window.into(),
                 p.background.is_some().into(),
             ],
-            sun_dir: p.sun_dir.normalize().extend(p.sun_scale).to_array(),
+            sun_dir: p.sun_dir.normalize().extend(0.0).to_array(),
             viewport: Vec4::new(w, h, 1.0 / w, 1.0 / h).to_array(),
             patch_m: p.ocean.patch_m,
             lod: [focal_px, p.tess_edge_px, p.ocean.max_displacement_m, 0.0],
