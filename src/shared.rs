@@ -86,6 +86,33 @@ shared_constants! {
     /// Absorption of light in the water (1/m, red first): the water's transmission and the
     /// underwater terrain.
     ABSORPTION_PER_M: [f32; 3] = [0.45, 0.09, 0.06];
+    /// The atmosphere the sky is scattered in (shaders/common/sky.glsl, src/render/atmosphere.rs):
+    /// the Earth's, as Bruneton (2017, "Precomputed atmospheric scattering: a new
+    /// implementation") and Hillaire (2020, EGSR) give it. Radii of the ground and of the top
+    /// of the atmosphere (m).
+    EARTH_RADIUS_M: f32 = 6360e3;
+    ATMOSPHERE_TOP_M: f32 = 6460e3;
+    /// Rayleigh scattering at sea level (1/m) at 680, 550 and 440 nm (red, green, blue), its
+    /// density falling as exp(−h / 8 km).
+    RAYLEIGH_SCATTERING: [f32; 3] = [5.802e-6, 13.558e-6, 33.1e-6];
+    RAYLEIGH_SCALE_HEIGHT_M: f32 = 8000.0;
+    /// Mie (aerosol) scattering and extinction at sea level (1/m, grey), density
+    /// exp(−h / 1.2 km), Cornette–Shanks phase function with asymmetry g = 0.8.
+    MIE_SCATTERING: f32 = 3.996e-6;
+    MIE_EXTINCTION: f32 = 4.40e-6;
+    MIE_SCALE_HEIGHT_M: f32 = 1200.0;
+    MIE_G: f32 = 0.8;
+    /// Ozone absorption at its peak (1/m): a tent of density 1 at 25 km falling to 0 at 10 and
+    /// 40 km. It absorbs the green-orange light a long path at sunset carries, so twilight skies
+    /// stay blue overhead.
+    OZONE_ABSORPTION: [f32; 3] = [0.650e-6, 1.881e-6, 0.085e-6];
+    OZONE_PEAK_M: f32 = 25000.0;
+    OZONE_HALF_WIDTH_M: f32 = 15000.0;
+    /// Height of the eye the sky is computed for (m): the sea's surface, give or take a mast.
+    SKY_EYE_ALTITUDE_M: f32 = 10.0;
+    /// Height of the cloud layer (m): cumulus and stratocumulus bases over the sea lie at
+    /// 0.5–2 km (WMO International Cloud Atlas).
+    CLOUD_BASE_M: f32 = 1500.0;
     /// The smallest Jacobian the exact normal divides by (shaders/ocean/assemble.comp and
     /// src/ocean/cpu.rs): where the choppy surface folds (J ≤ 0) its true normal points down,
     /// and the stored slopes stay those of a steep (J = 0.05) face.

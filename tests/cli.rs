@@ -114,7 +114,10 @@ fn bad_usage_exits_2_with_one_line() {
             &["--headless", "--camera", "1,2"],
             "3 comma-separated numbers",
         ),
-        (&["--headless", "--camera", "0,-3,0"], "above the water"),
+        (
+            &["--headless", "--camera", "0,-61,0"],
+            "at most 60 m under the water",
+        ),
         (&["--headless", "--camera", "0,nan,0"], "--camera"),
         (&["--headless", "--look-at", "0,12,0"], "--look-at"),
         (&["--headless", "--look-at", "0,50,0"], "straight above"),

@@ -5,7 +5,8 @@
 // a recreated swapchain changed the byte order): tone mapping per fragment, at the scene's own
 // resolution, instead of a full-screen pass.
 //
-// Tone map: the ACES filmic fit of Narkowicz (2015, "ACES Filmic Tone Mapping Curve"), exposure 1.
+// Tone map: the ACES filmic fit of Narkowicz (2015, "ACES Filmic Tone Mapping Curve"), after the
+// exposure the light calls for (frame.sky_light.w, src/render/atmosphere.rs `Sky::exposure`).
 
 // Set per pipeline (SceneTarget in src/render/passes/mod.rs, DISPLAY_CONSTANT_ID there):
 // 0 = linear HDR radiance; 1 = display colour into an sRGB format (the attachment encodes);
@@ -26,6 +27,6 @@ vec4 target_colour(vec3 radiance) {
     if (DISPLAY_TARGET == 0) {
         return vec4(radiance, 1.0);
     }
-    vec3 display = aces_fit(max(radiance, vec3(0.0)));
+    vec3 display = aces_fit(max(radiance * frame.sky_light.w, vec3(0.0)));
     return vec4(DISPLAY_TARGET == 2 ? srgb_encode(display) : display, 1.0);
 }

@@ -35,10 +35,16 @@ layout(set = 0, binding = 0, std140) uniform FrameUniforms {
                          // simulated for (m/s); w: unused
     vec4 open_sea;       // past the island's slope (SHELF_FOOT_R): x the floor's depth (m,
                          // common/terrain.glsl); y the shoaling coefficient there
-    vec4 light;          // x: radiance of the sun's disc, which the sky pass draws (0 with
-                         // --skybox, whose faces hold their own sun); y: the sea's mean-square
-                         // slope (Cox & Munk 1954); z: the sun's irradiance on the water
+    vec4 light;          // x: radiance of the sun's disc above the air, which the sky pass
+                         // draws (0 with --skybox, whose faces hold their own sun); y: the sea's
+                         // mean-square slope (Cox & Munk 1954); z: the sun's irradiance above
+                         // the air
     vec4 slope_variance; // mean-square slope of cascade c's waves (Σ k²E), c = 0..3
+    vec4 sun_light;      // rgb: the sun's irradiance at the sea through the clear air (times
+                         // sun_visibility(): what the clouds let through); w: cloud cover
+    vec4 sky_light;      // rgb: the irradiance on the sea over the default day's; w: the
+                         // display's exposure (the eye's adaptation to the light)
+    vec4 underwater;     // x: 1 when the camera is under the water; y: its depth there (m)
 } frame;
 
 // Which view a draw renders (ViewIndex in src/render/uniforms.rs).
@@ -83,3 +89,13 @@ vec3 view_ray(vec2 ndc) {
 // Sky radiance along a world direction, from the cubemap (faces as Vulkan addresses them;
 // shaders/sky/sky_cube.frag renders them with the inverse mapping).
 vec3 sky_lookup(vec3 dir) { return textureLod(sky_cube, dir, 0.0).rgb; }
+
+// The sun's light on a surface facing it: through the air, and through the clouds (the sky
+// cube's alpha toward the sun; 1 for a --skybox).
+vec3 sun_light() { return frame.sun_light.rgb * textureLod(sky_cube, frame.sun_dir.xyz, 0.0).a; }
+
+// The sky's light on a surface whose normal is n (irradiance / π): the sky cube along the normal
+// and toward the zenith, a cheap stand-in for the cosine-weighted hemisphere.
+vec3 sky_ambient(vec3 n) {
+    return 0.5 * (sky_lookup(normalize(n + vec3(0.0, 1.0, 0.0))) + sky_lookup(vec3(0.0, 1.0, 0.0)));
+}

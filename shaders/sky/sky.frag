@@ -8,6 +8,7 @@
 #include "common/frame.glsl"
 #include "common/display.glsl"
 #include "common/sky.glsl"
+#include "common/underwater.glsl"
 
 layout(location = 0) in vec2 in_uv;
 layout(location = 1) in vec2 in_ndc;
@@ -15,10 +16,19 @@ layout(location = 0) out vec4 out_colour;
 
 void main() {
     if (frame.modes.w == 1u && pass.view == 0u) {
-        out_colour = target_colour(frame.background.rgb);
+        out_colour = target_colour(frame.background.rgb / frame.sky_light.w);
         return;
     }
     vec3 dir = view_ray(in_ndc);
+    if (camera_underwater() && pass.view == 0u) {
+        // Under the water nothing is endless but the water itself.
+        out_colour = target_colour(water_inscatter(dir));
+        return;
+    }
     float disc = pass.view == 0u ? sun_disc(dir, frame.sun_dir.xyz, 1.0 / frame.lod.x) : 0.0;
-    out_colour = target_colour(sky_lookup(dir) + SUN_COLOUR * frame.light.x * disc);
+    // The disc through the air (the sun's light over its irradiance above it) and the clouds
+    // (the cube's alpha along the ray).
+    vec4 sky = textureLod(sky_cube, dir, 0.0);
+    vec3 through_air = frame.sun_light.rgb / frame.light.z;
+    out_colour = target_colour(sky.rgb + frame.light.x * through_air * sky.a * disc);
 }

@@ -1,10 +1,12 @@
 #version 460
 // Renders one face of the sky cubemap: the direction of each texel by the inverse of Vulkan's
-// cube-face selection (spec table "Cube map face selection"), then the analytic sky
-// (common/sky.glsl). Run for the six faces when the sun changes.
+// cube-face selection (spec table "Cube map face selection"), then the sky (common/sky.glsl):
+// rgb its radiance, a the share of sunlight its clouds let through. Run for the six faces when
+// the sun or the cloud cover changes.
 #include "common/sky.glsl"
 
-layout(push_constant) uniform Face { vec4 sun_dir; uint face; } pc;
+// sky: x the cloud cover (0–1), y the sun's irradiance (SkyCube::update).
+layout(push_constant) uniform Face { vec4 sun_dir; vec4 sky; uint face; } pc;
 
 layout(location = 0) in vec2 in_uv;
 layout(location = 1) in vec2 in_ndc;
@@ -25,5 +27,5 @@ vec3 face_direction(uint face, vec2 st) {
 
 void main() {
     vec3 dir = normalize(face_direction(pc.face, in_uv));
-    out_colour = vec4(sky_gradient(dir, pc.sun_dir.xyz), 1.0);
+    out_colour = sky_radiance(dir, pc.sun_dir.xyz, pc.sky.x, pc.sky.y);
 }

@@ -17,12 +17,18 @@
 #include "common/water.glsl"
 #include "common/display.glsl"
 #include "common/shore.glsl"
+#include "common/underwater.glsl"
 
 layout(location = 0) in vec3 in_rel_pos;
 layout(location = 1) in vec2 in_xz;
 layout(location = 2) in vec3 in_displacement;
 layout(location = 3) in vec2 in_shore; // water.tese: the water's depth (m) and K_s
+layout(location = 4) flat in vec3 in_sun_light; // water.tese: sun_light(), the frame's
+layout(location = 5) flat in vec3 in_sky_zenith; // and the sky's radiance at the zenith
 layout(location = 0) out vec4 out_colour;
+
+// The pipeline that draws the surface from under the water (src/render/passes/water.rs).
+layout(constant_id = 2) const bool UNDERWATER_VIEW = false;
 
 layout(set = 1, binding = 0) uniform sampler2D reflection_colour;
 layout(set = 1, binding = 1) uniform sampler2D refraction_colour;
@@ -161,6 +167,24 @@ float fresnel(float cos_theta) {
     return F0 + (1.0 - F0) * pow(1.0 - cos_theta, 5.0);
 }
 
+// The surface seen from under the water (the camera's below it): within Snell's window,
+// arcsin(1/1.333) = 48.6° of the normal, the sky refracted through it (Snell, written out),
+// less what the surface reflects back down (Schlick's Fresnel at the angle in the air); outside
+// it total internal reflection, a mirror of the water below. Then the water between. Kept
+// short: lavapipe runs this above the water too (a branch not taken still costs), and the
+// general fresnel() with its exact model cost 6 ms a frame at --quality low there.
+vec3 from_below(vec3 n, vec3 v, float dist) {
+    vec3 ray = -v; // from the eye up to the surface
+    float c = max(dot(ray, n), 0.0); // cosine of the angle in the water
+    float s2 = N_WATER * N_WATER * (1.0 - c * c); // sin² of the angle in the air
+    float ca = sqrt(max(1.0 - s2, 0.0));
+    float f = s2 >= 1.0 ? 1.0 : F0 + (1.0 - F0) * pow(1.0 - ca, 5.0);
+    vec3 through = N_WATER * ray + (ca - N_WATER * c) * n;
+    vec3 below = water_inscatter(vec3(ray.x, -ray.y, ray.z));
+    vec3 colour = mix(sky_lookup(through), below, f);
+    return underwater_fog(colour, ray, dist);
+}
+
 void main() {
     float dist = length(in_rel_pos);
     vec3 v = -in_rel_pos / dist; // toward the camera
@@ -195,6 +219,10 @@ void main() {
         return;
     }
     vec3 sun = frame.sun_dir.xyz;
+    if (UNDERWATER_VIEW) {
+        out_colour = target_colour(from_below(n, v, dist));
+        return;
+    }
 
     // Distortion (seed 001 eq. 4-5): DU/DV sampled twice, scrolling in opposite directions
     // (tile coordinates and phase reduced on the CPU: frame.dudv_origin, frame.dudv).
@@ -206,7 +234,13 @@ void main() {
     vec2 offset = (dudv * DUDV_STRENGTH + n.xz * SLOPE_STRENGTH) * fade;
     vec2 screen = gl_FragCoord.xy * frame.viewport.zw;
 
-    vec3 c_reflect = textureLod(reflection_colour, clamp(screen + offset, 0.001, 0.999), 0.0).rgb;
+    // The reflection texture mirrors the scene about the still water level. A point of the
+    // surface h above that level mirrors it about its own height instead: the image of what
+    // stands near it lies 2h lower, where the still-water mirror shows (P − 2h ŷ). Looking it
+    // up there keeps the reflections of the pillars and the buoy on the faces of big waves.
+    vec4 mirror = VIEW.view_proj * vec4(in_rel_pos - vec3(0.0, 2.0 * in_displacement.y, 0.0), 1.0);
+    vec2 mirror_uv = mirror.w > 0.0 ? mirror.xy / mirror.w * 0.5 + 0.5 : screen;
+    vec3 c_reflect = textureLod(reflection_colour, clamp(mirror_uv + offset, 0.001, 0.999), 0.0).rgb;
 
     // Water thickness along the ray: refraction depth behind the surface minus the surface's.
     float near_m = frame.water.w; // Camera::near_m (depth = near / view distance)
@@ -223,7 +257,10 @@ void main() {
     float thickness = max(floor_view - water_view, 0.0) * dist / water_view;
     // Seed 001 eq. 7 fades the whole colour toward c_o with depth, which removes reflections
     // over deep water; the depth fade belongs to the refracted light only (Beer-Lambert).
-    vec3 transmitted = mix(WATER_COLOUR, c_refract, exp(-thickness * ABSORPTION_PER_M));
+    // The light the deep water scatters back up follows the light that falls on it: the sun's
+    // and the sky's irradiance on the sea, relative to the default day's (WATER_COLOUR).
+    vec3 deep = WATER_COLOUR * frame.sky_light.rgb;
+    vec3 transmitted = mix(deep, c_refract, exp(-thickness * ABSORPTION_PER_M));
 
     float cos_theta = clamp(dot(n, v), 0.0, 1.0);
     float f = fresnel(cos_theta);
@@ -234,12 +271,15 @@ void main() {
     float cover = foam_cover(nf.w, ocean_uv(in_xz, 0, dist, unused_weight).xy, pixel_m);
     // Fresh foam (field near 1) is dense and white, fading foam thinner.
     float opacity = cover * mix(0.55, 0.95, nf.w);
-    colour = mix(colour, vec3(0.85, 0.9, 0.92) * (0.6 + 0.4 * max(sun.y, 0.0)), opacity);
+    // Lambertian foam (albedo 0.85) under the sun and the sky.
+    vec3 sunlight = in_sun_light;
+    vec3 foam = 0.85 * (sunlight * max(sun.y, 0.0) / PI + in_sky_zenith);
+    colour = mix(colour, foam, opacity);
     // c_h: the sun's glitter from the slopes the normal does not resolve (the sea's mean-square
     // slope, Cox & Munk 1954, less what the cascades drawn here carry), none on the foam.
     float unresolved = max(frame.light.y - resolved, 2e-3);
-    float glitter = sun_glitter(n, v, sun, unresolved) * frame.light.z * (1.0 - opacity);
-    colour += vec3(1.0, 0.9, 0.72) * glitter;
+    float glitter = sun_glitter(n, v, sun, unresolved) * (1.0 - opacity);
+    colour += sunlight * glitter;
 
     vec3 horizon = sky_lookup(normalize(vec3(-v.x, 0.0, -v.z) + vec3(0.0, 0.002, 0.0)));
     float haze = 1.0 - exp(-dist / 9000.0);

@@ -15,6 +15,10 @@ layout(location = 0) out vec3 out_rel_pos;
 layout(location = 1) out vec2 out_xz;
 layout(location = 2) out vec3 out_displacement;
 layout(location = 3) out vec2 out_shore; // the water's depth (m) and K_s here
+// The frame's light, the same at every vertex: the sun's through the air and clouds and the
+// sky's at the zenith (cube lookups here cost a fraction of what they cost per pixel).
+layout(location = 4) flat out vec3 out_sun_light;
+layout(location = 5) flat out vec3 out_sky_zenith;
 
 void main() {
     vec2 uv = gl_TessCoord.xy;
@@ -39,5 +43,7 @@ void main() {
     // Interpolated to the pixels (the surf, water.frag): dry land counts as just dry, so
     // the waterline between a vertex on a hill and one at sea lies near the shore's.
     out_shore = vec2(max(depth, -1.0), ks);
+    out_sun_light = sun_light();
+    out_sky_zenith = sky_lookup(vec3(0.0, 1.0, 0.0));
     gl_Position = frame.views[0].view_proj * vec4(rel, 1.0);
 }

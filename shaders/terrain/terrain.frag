@@ -1,11 +1,12 @@
 #version 460
-// Terrain and objects, lit by the sun (Lambert) and the sky (hemisphere ambient), with the same
+// Terrain and objects, lit by the sun (Lambert) and the sky (the sky cube), with the same
 // distance haze as the water. Under the water the light is dimmed and tinted by the water it
 // crossed (depth below the surface), so the refraction texture already shows a shallow bottom
 // turning blue with depth.
 #include "common/frame.glsl"
 #include "common/terrain.glsl"
 #include "common/display.glsl"
+#include "common/underwater.glsl"
 
 layout(location = 0) in vec3 in_rel_pos;
 layout(location = 1) in vec3 in_world;
@@ -30,13 +31,17 @@ void main() {
     } else {
         albedo = terrain_albedo(in_world.y, n.y);
     }
+    // Lambertian under the sun through the air and clouds, and the sky (common/frame.glsl).
     float lambert = max(dot(n, sun), 0.0);
-    vec3 ambient = mix(vec3(0.18, 0.2, 0.22), vec3(0.35, 0.45, 0.6), n.y * 0.5 + 0.5);
-    vec3 colour = albedo * (vec3(1.0, 0.92, 0.8) * lambert * 1.6 + ambient);
+    vec3 colour = albedo * (sun_light() * lambert / 3.14159265 + sky_ambient(n));
     // Below the water: light attenuated on its way down (Beer-Lambert, depth below the surface).
     float below = max(water_level() - in_world.y, 0.0);
     colour *= exp(-below * ABSORPTION_PER_M);
     float dist = length(in_rel_pos);
+    if (camera_underwater() && pass.view == 0u) {
+        out_colour = target_colour(underwater_fog(colour, in_rel_pos / dist, dist));
+        return;
+    }
     vec3 horizon = sky_lookup(normalize(vec3(in_rel_pos.x, 0.0, in_rel_pos.z) + vec3(0.0, 0.02, 0.0)));
     float haze = 1.0 - exp(-dist / 9000.0);
     out_colour = target_colour(mix(colour, horizon, haze));

@@ -23,6 +23,7 @@ use crate::frontend::RunSettings;
 use crate::gpu::PresentMode;
 use crate::ocean::{gerstner, OceanSettings, SeaState, SpectrumKind, Waves};
 use crate::profile::WARMUP_FRAMES;
+use crate::render::camera::LOWEST_M;
 use crate::render::uniforms::DEEP_FLOOR_M;
 use crate::render::{default_sun_dir, Camera, FresnelModel, SceneLayout, SceneSettings, ViewMode};
 use glam::Vec3;
@@ -235,9 +236,16 @@ pub struct Cli {
     pub tess_edge: Option<f64>,
 
     /// Sun direction: azimuth (degrees from +x toward +z) and elevation (degrees above the
-    /// horizon, 0 to 90); default -70.7,11.7.
+    /// horizon, -10 to 90: below 0 the dusk); default -70.7,11.7. The sky and the sun's colour
+    /// follow it (sunlight scattered by the air).
     #[arg(long, global = true, value_name = "AZ,EL", value_parser = parse_sun, allow_hyphen_values = true, help_heading = "Scene")]
     pub sun: Option<[f32; 2]>,
+
+    /// Share of the sky under cloud, 0 (clear) to 1 (overcast: grey, no sun). [default: 0.3;
+    /// --preset sets it: calm 0.1, breeze 0.3, moderate 0.5, storm 1]
+    #[arg(long, global = true, value_name = "FRACTION", allow_hyphen_values = true,
+          value_parser = |s: &str| parse_in(s, 0.0, 1.0), help_heading = "Scene")]
+    pub clouds: Option<f64>,
 
     /// DU/DV map PNG (red = du, green = dv, 128 = no offset), tiled over the water; default:
     /// generated at start-up.
@@ -296,10 +304,10 @@ impl Cli {
         }
         let default = Camera::default();
         let position = self.camera.map(Vec3::from).unwrap_or(default.position);
-        if position.y < 0.5 {
+        if position.y < LOWEST_M {
             return Err(UsageError(format!(
-                "--camera {},{},{}: the camera must be at least 0.5 m above the water (y >= 0.5)",
-                position.x, position.y, position.z
+                "--camera {},{},{}: the camera must be at most {} m under the water (y >= {})",
+                position.x, position.y, position.z, -LOWEST_M, LOWEST_M
             )));
         }
         let target = self
@@ -366,6 +374,10 @@ impl Cli {
                 ..SceneLayout::default()
             },
             sun_dir,
+            cloud_cover: self
+                .clouds
+                .unwrap_or(self.preset.map_or(DEFAULT_SEA, sea_preset).cloud_cover)
+                as f32,
             dudv: self.dudv.clone(),
             skybox: self.skybox.clone(),
             background: self.background,

@@ -77,6 +77,9 @@ pub struct SeaPreset {
     pub choppiness: f64,
     /// Side of the largest cascade's patch (m).
     pub patch_size_m: f64,
+    /// The weather's share of the sky under cloud (0–1): the rougher the sea, the more cloud,
+    /// up to a storm's overcast.
+    pub cloud_cover: f64,
 }
 
 /// The sea without `--preset`: a fresh breeze (Beaufort 5, 8.0–10.7 m/s) over 100 km of fetch.
@@ -85,6 +88,7 @@ pub const DEFAULT_SEA: SeaPreset = SeaPreset {
     fetch_km: 100.0,
     choppiness: 1.0,
     patch_size_m: 400.0,
+    cloud_cover: crate::render::atmosphere::DEFAULT_CLOUD_COVER,
 };
 
 /// The sea of a `--preset`. Wind speeds are mid-range of their Beaufort force (WMO: force 2
@@ -94,17 +98,18 @@ pub const DEFAULT_SEA: SeaPreset = SeaPreset {
 /// (1973) growth law 0.13, 0.77, 2.81 and 13.5 m, T_p 1.8, 4.3, 8.4 and 18.6 s; the storm's
 /// 1000 m patch holds its 540 m peak wavelength (2πg/ω_p², ω_p = 22 (g²/(U F))^⅓).
 pub fn sea_preset(p: PresetArg) -> SeaPreset {
-    let sea = |wind_speed_m_s, fetch_km, choppiness, patch_size_m| SeaPreset {
+    let sea = |wind_speed_m_s, fetch_km, choppiness, patch_size_m, cloud_cover| SeaPreset {
         wind_speed_m_s,
         fetch_km,
         choppiness,
         patch_size_m,
+        cloud_cover,
     };
     match p {
-        PresetArg::Calm => sea(2.5, 10.0, 0.5, 400.0),
-        PresetArg::Breeze => sea(6.7, 50.0, 0.8, 400.0),
-        PresetArg::Moderate => sea(12.3, 200.0, 1.0, 400.0),
-        PresetArg::Storm => sea(26.5, 1000.0, 1.2, 1000.0),
+        PresetArg::Calm => sea(2.5, 10.0, 0.5, 400.0, 0.1),
+        PresetArg::Breeze => sea(6.7, 50.0, 0.8, 400.0, 0.3),
+        PresetArg::Moderate => sea(12.3, 200.0, 1.0, 400.0, 0.5),
+        PresetArg::Storm => sea(26.5, 1000.0, 1.2, 1000.0, 1.0),
     }
 }
 

@@ -88,8 +88,8 @@ pub fn parse_vec2(s: &str) -> Result<[f32; 2], String> {
 
 pub fn parse_sun(s: &str) -> Result<[f32; 2], String> {
     let v = parse_list(s, 2)?;
-    if !(0.0..=90.0).contains(&v[1]) {
-        return Err("the elevation must be from 0 to 90 degrees".to_string());
+    if !(-10.0..=90.0).contains(&v[1]) {
+        return Err("the elevation must be from -10 to 90 degrees".to_string());
     }
     Ok([v[0], v[1]])
 }

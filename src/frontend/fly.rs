@@ -11,8 +11,8 @@ pub const SPEED_M_S: f32 = 12.0;
 pub const FAST: f32 = 4.0;
 /// Look rotation per dragged pixel (radians).
 pub const LOOK_RAD_PER_PX: f32 = 0.004;
-/// The camera stays this far above the water (m).
-pub const MIN_HEIGHT_M: f32 = 0.5;
+/// The camera goes no lower than this (m): it may dive under the water.
+pub const MIN_HEIGHT_M: f32 = crate::render::camera::LOWEST_M;
 
 /// The movement keys, in the order of `FlyCamera::held`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -112,10 +112,10 @@ mod tests {
         let y = cam.position.y;
         fly.update(&mut cam, 0.1);
         assert!((cam.position.y - y - SPEED_M_S * FAST * 0.1).abs() < 1e-3);
-        // Down stops at the water.
+        // Down stops at the lowest height (under the water).
         fly.release_all();
         fly.key(Move::Down, true);
-        for _ in 0..20 {
+        for _ in 0..400 {
             fly.update(&mut cam, 0.25);
         }
         assert_eq!(cam.position.y, MIN_HEIGHT_M);

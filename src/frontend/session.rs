@@ -126,8 +126,14 @@ impl Session {
         }
         self.last_frame_start = Some(now);
         let slot = self.frames.next_slot();
+        let eye = self.renderer.camera().position;
         let inputs = &FrameInputs {
             buoy: self.buoy.pose(inputs.time_s),
+            camera_surface_m: self.buoy.surface_height_at(
+                eye.x as f64,
+                eye.z as f64,
+                inputs.time_s,
+            ),
             ..*inputs
         };
         let parts = FrameParts {

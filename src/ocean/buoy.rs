@@ -88,6 +88,12 @@ impl Buoy {
         self.surface.nodes_evaluated()
     }
 
+    /// Height of the surface the buoy floats on at the world point (x, z) at time `t` (s): the
+    /// same query, asked elsewhere (the camera's dive, `FrameInputs::camera_surface_m`).
+    pub fn surface_height_at(&mut self, x: f64, z: f64, t: f64) -> f64 {
+        self.surface.height_at(x, z, t)
+    }
+
     /// The pose at time `t` (s).
     pub fn pose(&mut self, t: f64) -> BuoyPose {
         let [x, z] = self.xz;

@@ -8,6 +8,10 @@
 use glam::{Mat4, Vec3};
 
 /// A perspective camera in world space (metres, y up).
+/// The lowest a camera may go (m): under the water from 0 down (the view from below); past
+/// 60 m the water has swallowed the daylight.
+pub const LOWEST_M: f32 = -60.0;
+
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Camera {
     pub position: Vec3,

@@ -131,10 +131,10 @@ pub fn record_frame(
             // Dropped now; the deletion queue keeps it alive until this frame is done.
         }
         let set = r.write_uniforms(frame.slot, output, inputs);
-        let sun = r.settings.sun_dir;
-        if r.sky_cube.is_stale(sun) {
+        let sky = r.settings.sky();
+        if r.sky_cube.is_stale(&sky) {
             let cube = &mut r.sky_cube;
-            profiler.pass(&rec, names::SKY_CUBE, || cube.update(&rec, sun));
+            profiler.pass(&rec, names::SKY_CUBE, || cube.update(&rec, &sky));
         }
         let t = &r.targets;
         // Each pass: its rendering scope's barriers, then its timestamps around the drawing.
@@ -209,7 +209,10 @@ pub fn record_frame(
         profiler.begin_pass(&rec, names::WATER);
         scope.record(|| {
             // Patches, tessellation-evaluation invocations, triangles and fragments.
-            profiler.statistics(&rec, || r.water.record(&rec, set, r.settings.view));
+            let underwater = inputs.camera_surface_m > camera.y as f64;
+            profiler.statistics(&rec, || {
+                r.water.record(&rec, set, r.settings.view, underwater)
+            });
         });
         profiler.end_pass(&rec);
         let scope = rec.rendering(&main, Some(keep(&t.main.depth)), &[]);

@@ -1,6 +1,7 @@
 //! The renderer: records one frame, pass by pass (`frame.rs`), with what `renderer.rs` holds. No `unsafe` here: passes
 //! record through `gpu::Recorder`.
 
+pub mod atmosphere;
 pub mod camera;
 pub mod frame;
 pub mod passes;
@@ -74,12 +75,24 @@ pub struct SceneSettings {
     pub layout: SceneLayout,
     /// Unit vector toward the sun.
     pub sun_dir: Vec3,
+    /// `--clouds`: share of the sky under cloud, 0 (clear) to 1 (overcast).
+    pub cloud_cover: f32,
     /// `--dudv FILE.png` instead of the generated map.
     pub dudv: Option<PathBuf>,
     /// `--skybox DIR` (six PNG faces) instead of the analytic sky.
     pub skybox: Option<PathBuf>,
     /// Test only: the main view's sky is this solid linear colour.
     pub background: Option<[f32; 3]>,
+}
+
+impl SceneSettings {
+    /// The sky these settings draw.
+    pub fn sky(&self) -> atmosphere::Sky {
+        atmosphere::Sky {
+            sun_dir: self.sun_dir,
+            cloud_cover: self.cloud_cover,
+        }
+    }
 }
 
 /// Default sun: low, ahead and to the right of the default camera, so its glitter path lies on
@@ -99,6 +112,7 @@ impl Default for SceneSettings {
             tess_edge_px: 16.0,
             layout: SceneLayout::default(),
             sun_dir: default_sun_dir(),
+            cloud_cover: 0.0,
             dudv: None,
             skybox: None,
             background: None,

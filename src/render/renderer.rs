@@ -8,13 +8,14 @@ use std::sync::Arc;
 
 use ash::vk;
 
+use super::atmosphere::Sky;
 use super::camera::Camera;
 use super::passes::water::WaterSamplers;
 use super::passes::{SkyCube, SkyPass, TerrainPass, TexturesViewPass, WaterPass};
 use super::scene::{generate_dudv, load_dudv, DUDV_SIDE};
 use super::targets::Targets;
 use super::targets::{DEPTH_FORMAT, HDR_FORMAT};
-use super::uniforms::{FrameInputs, FrameParams, FrameUniforms, OceanBindings};
+use super::uniforms::{sky_uniforms, FrameInputs, FrameParams, FrameUniforms, OceanBindings};
 use super::{SceneSettings, ViewMode};
 use crate::gpu::descriptors::{self, Write};
 use crate::gpu::oneshot::upload_image;
@@ -77,7 +78,9 @@ fn check_formats(ctx: &Context, display: vk::Format, scaled: bool) -> GpuResult<
     ])
 }
 
-/// Radiance of the sun disc relative to the sky.
+/// Radiance of the sun's disc above the atmosphere, in the scene's units. (The real disc's
+/// radiance, the irradiance over its 6.8·10⁻⁵ sr, would be 3·10⁵; anything past the tone map's
+/// white point looks the same, and a disc this bright keeps its anti-aliased edge.)
 pub const SUN_SCALE: f32 = 40.0;
 
 /// What the frame draws with: targets, frame uniforms, samplers, textures and passes. The
@@ -108,6 +111,9 @@ pub struct Renderer {
     pub(super) sky_cube: SkyCube,
     /// Samples the sky cube.
     _sky_sampler: Sampler,
+    /// The sun's and the sky's light for the frame uniforms, and the sky they are for
+    /// (`uniforms::sky_uniforms`, recomputed when it changes).
+    sky_light: (Sky, ([f32; 4], [f32; 4])),
     /// The DU/DV distortion map (generated, or `--dudv`).
     dudv: Image,
     /// Linear, clamped: reflection and refraction colour.
@@ -316,6 +322,7 @@ impl Renderer {
             ocean,
             _ocean_sampler: ocean_sampler,
             sky_cube,
+            sky_light: (settings.sky(), sky_uniforms(&settings.sky())),
             _sky_sampler: sky_sampler,
             dudv,
             clamp_sampler,
@@ -381,10 +388,15 @@ impl Renderer {
         // The main target's size (--render-scale of the output's).
         let extent = self.targets.main.extent();
         let s = &self.settings;
+        let sky = s.sky();
+        if self.sky_light.0 != sky {
+            self.sky_light = (sky, sky_uniforms(&sky));
+        }
         let uniforms = FrameUniforms::new(
             &self.camera,
             &FrameParams {
-                sun_dir: s.sun_dir,
+                sky,
+                sky_light: self.sky_light.1,
                 sun_scale: SUN_SCALE,
                 analytic_sky: s.skybox.is_none(),
                 time_s: inputs.time_s,

@@ -4,6 +4,7 @@
 
 use glam::{Mat4, Vec3, Vec4};
 
+use super::atmosphere::{reference_light, Sky, SUN_IRRADIANCE};
 use super::camera::Camera;
 use super::{FresnelModel, ViewMode};
 use crate::ocean::buoy::BuoyPose;
@@ -22,6 +23,9 @@ pub struct FrameInputs {
     pub ocean_window: bool,
     /// The buoy's heave and axis at `time_s` (`ocean::buoy`; the session fills it in).
     pub buoy: BuoyPose,
+    /// Height of the surface above the camera's (x, z) at `time_s` (m; the session fills it
+    /// in): below it the camera is under water.
+    pub camera_surface_m: f64,
 }
 
 /// What the scene passes sample of the ocean simulation.
@@ -178,14 +182,25 @@ pub struct FrameUniforms {
     /// Past the island's slope: x the open sea's floor depth (m, `SceneLayout::deep_floor_m`),
     /// y the shoaling coefficient there; zw: unused.
     pub open_sea: [f32; 4],
-    /// x: radiance of the sun's disc, drawn by the sky pass (shaders/sky/sky.frag): the sun
-    /// radiance scale, or 0 with `--skybox` (its faces hold their own sun); y: the sea's
-    /// mean-square slope (`OceanBindings::mean_square_slope`); z: the sun's irradiance on the
-    /// water (`SUN_IRRADIANCE` of the radiance scale); w: unused.
+    /// x: radiance of the sun's disc above the atmosphere, drawn by the sky pass
+    /// (shaders/sky/sky.frag), or 0 with `--skybox` (its faces hold their own sun); y: the sea's
+    /// mean-square slope (`OceanBindings::mean_square_slope`); z: the sun's irradiance above
+    /// the atmosphere (`atmosphere::SUN_IRRADIANCE`); w: unused.
     pub light: [f32; 4],
     /// Mean-square slope of each cascade's waves (`SeaMoments::slope_variance`): what the
     /// normal images resolve of the sea's roughness.
     pub slope_variance: [f32; 4],
+    /// rgb: the sun's irradiance at the sea on a surface facing it, through the clear air
+    /// (`Sky::sun_light`; the sky cube's alpha says what the clouds let through); w: the cloud
+    /// cover (0–1).
+    pub sun_light: [f32; 4],
+    /// rgb: the sun's and sky's irradiance on the sea over the default day's
+    /// (`Sky::global_irradiance`, `reference_light`): deep water's light; w: the display's
+    /// exposure (`Sky::exposure`).
+    pub sky_light: [f32; 4],
+    /// x: 1 when the camera is under the water (below `FrameInputs::camera_surface_m`), else 0;
+    /// y: its depth below the surface there (m, ≥ 0); zw: unused.
+    pub underwater: [f32; 4],
 }
 
 /// Side of a DU/DV tile on the water (m).
@@ -245,10 +260,6 @@ pub struct SceneLayout {
     pub buoy_xz: [f32; 2],
 }
 
-/// The sun's irradiance on the water relative to its disc's radiance scale (`sun_scale`):
-/// the sun's glitter (water.frag) is E·F·D·G/(4 cos θ_v).
-pub const SUN_IRRADIANCE: f32 = 0.15;
-
 /// The open sea's floor depth when the sea is deep (m): below `VISIBLE_DEPTH_M`, where the
 /// terrain is not drawn. Deeper floors would look the same.
 pub const DEEP_FLOOR_M: f32 = 200.0;
@@ -288,7 +299,9 @@ impl SceneLayout {
 /// Everything `FrameUniforms::new` needs besides the camera.
 #[derive(Clone, Copy, Debug)]
 pub struct FrameParams<'a> {
-    pub sun_dir: Vec3,
+    pub sky: Sky,
+    /// `sky_uniforms(&sky)`.
+    pub sky_light: ([f32; 4], [f32; 4]),
     pub sun_scale: f32,
     /// The sky is the analytic one (not `--skybox`): the sky pass draws the sun's disc.
     pub analytic_sky: bool,
@@ -307,6 +320,18 @@ pub struct FrameParams<'a> {
     pub background: Option<[f32; 3]>,
 }
 
+/// `FrameUniforms::sun_light` and `sky_light` of a sky. (Some milliseconds of integration:
+/// the renderer computes them when the sky changes, `Renderer::write_uniforms`.)
+pub fn sky_uniforms(sky: &Sky) -> ([f32; 4], [f32; 4]) {
+    let [r, g, b] = sky.sun_light();
+    let (global, reference) = (sky.global_irradiance(), reference_light());
+    let light: [f32; 3] = std::array::from_fn(|c| (global[c] / reference[c]) as f32);
+    (
+        [r, g, b, sky.cloud_cover],
+        [light[0], light[1], light[2], sky.exposure()],
+    )
+}
+
 impl FrameUniforms {
     pub fn new(camera: &Camera, p: &FrameParams) -> Self {
         let (w, h) = (p.size.0.max(1) as f32, p.size.1.max(1) as f32);
@@ -314,6 +339,7 @@ impl FrameUniforms {
         let projection = camera.projection(p.aspect);
         // |P[1][1]| = 1 / tan(fov/2): the focal length in pixels is that times half the height.
         let focal_px = projection.y_axis.y.abs() * h * 0.5;
+        let (sun_light, sky_light) = p.sky_light;
         FrameUniforms {
             views: frame_views(
                 camera,
@@ -327,7 +353,7 @@ impl FrameUniforms {
                 p.inputs.ocean_window.into(),
                 p.background.is_some().into(),
             ],
-            sun_dir: p.sun_dir.normalize().extend(0.0).to_array(),
+            sun_dir: p.sky.sun_dir.normalize().extend(0.0).to_array(),
             viewport: Vec4::new(w, h, 1.0 / w, 1.0 / h).to_array(),
             patch_m: p.ocean.patch_m,
             lod: [focal_px, p.tess_edge_px, p.ocean.max_displacement_m, 0.0],
@@ -386,9 +412,15 @@ impl FrameUniforms {
             light: [
                 if p.analytic_sky { p.sun_scale } else { 0.0 },
                 p.ocean.mean_square_slope,
-                p.sun_scale * SUN_IRRADIANCE,
+                SUN_IRRADIANCE,
                 0.0,
             ],
+            sun_light,
+            underwater: {
+                let depth = p.inputs.camera_surface_m - camera.position.y as f64;
+                [f32::from(depth > 0.0), depth.max(0.0) as f32, 0.0, 0.0]
+            },
+            sky_light,
             slope_variance: p.ocean.sea_moments.slope_variance.map(|v| v as f32),
             open_sea: {
                 let floor = p.scene.deep_floor_m;

@@ -6,7 +6,6 @@ use std::path::Path;
 use std::sync::Arc;
 
 use ash::vk;
-use glam::Vec3;
 
 use super::{bind_scene, scene_layout, scene_pipeline, Depth, PerTarget};
 use crate::gpu::oneshot::upload_image;
@@ -14,6 +13,7 @@ use crate::gpu::{
     Attachment, Context, DescriptorSetLayout, GpuResult, GraphicsDesc, Image, ImageDesc, Load,
     Pipeline, PipelineLayout, Recorder, Use,
 };
+use crate::render::atmosphere::{Sky, SUN_IRRADIANCE};
 use crate::render::targets::HDR_FORMAT;
 use crate::render::uniforms::ViewIndex;
 use crate::shaders;
@@ -77,6 +77,8 @@ impl SkyPass {
 #[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
 struct FacePush {
     sun_dir: [f32; 4],
+    /// x: cloud cover (0–1); y: the sun's irradiance above the atmosphere; zw: unused.
+    sky: [f32; 4],
     face: u32,
 }
 
@@ -86,7 +88,7 @@ pub struct SkyCube {
     /// Renders the analytic sky; `None` for a loaded skybox.
     render: Option<(PipelineLayout, Pipeline)>,
     /// Sun direction the cube was last rendered for.
-    rendered_for: Option<Vec3>,
+    rendered_for: Option<Sky>,
 }
 
 impl SkyCube {
@@ -153,15 +155,15 @@ impl SkyCube {
         })
     }
 
-    /// Whether `update` has to render the cube for this sun (never for a loaded skybox).
-    pub fn is_stale(&self, sun_dir: Vec3) -> bool {
-        self.render.is_some() && self.rendered_for != Some(sun_dir)
+    /// Whether `update` has to render the cube for this sky (never for a loaded skybox).
+    pub fn is_stale(&self, sky: &Sky) -> bool {
+        self.render.is_some() && self.rendered_for != Some(*sky)
     }
 
-    /// Renders the analytic sky into the six faces for this sun. Outside any rendering scope;
+    /// Renders the analytic sky into the six faces for this sun and cloud cover. Outside any rendering scope;
     /// leaves the cube in SHADER_READ_ONLY_OPTIMAL. Earlier frames sampling the cube are
     /// ordered before it by the barrier (same queue).
-    pub fn update(&mut self, rec: &Recorder, sun_dir: Vec3) {
+    pub fn update(&mut self, rec: &Recorder, sky: &Sky) {
         let Some((layout, pipeline)) = &self.render else {
             return;
         };
@@ -181,7 +183,8 @@ impl SkyCube {
             rec.push_constants(
                 layout,
                 &FacePush {
-                    sun_dir: sun_dir.normalize().extend(0.0).to_array(),
+                    sun_dir: sky.sun_dir.normalize().extend(0.0).to_array(),
+                    sky: [sky.cloud_cover, SUN_IRRADIANCE, 0.0, 0.0],
                     face: face as u32,
                 },
             );
@@ -190,7 +193,7 @@ impl SkyCube {
         }
         // Every pass samples the cube through the frame's descriptor set.
         rec.uses(&[(&self.image, Use::FragmentSampled)]);
-        self.rendered_for = Some(sun_dir);
+        self.rendered_for = Some(*sky);
     }
 }
 

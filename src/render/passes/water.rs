@@ -112,6 +112,10 @@ impl WaterTextures {
 pub struct WaterPass {
     layout: PipelineLayout,
     fill: Pipeline,
+    /// The surface seen from under the water (the camera below it): its own pipeline
+    /// (specialization constant 2 of water.frag), because lavapipe pays for a branch it does
+    /// not take (6 ms a frame at --quality low when one shader held both views).
+    from_below: Pipeline,
     /// Line rendering (`--view wireframe`), when the device has fillModeNonSolid.
     wireframe: Option<Pipeline>,
     textures: WaterTextures,
@@ -146,7 +150,7 @@ impl WaterPass {
             ),
             (vk::ShaderStageFlags::FRAGMENT, shaders::SURFACE_WATER_FRAG),
         ];
-        let pipeline = |name, polygon_mode| {
+        let pipeline = |name, polygon_mode, underwater: bool| {
             scene_pipeline(
                 ctx,
                 &layout,
@@ -156,22 +160,24 @@ impl WaterPass {
                     topology: vk::PrimitiveTopology::PATCH_LIST,
                     patch_control_points: 4,
                     polygon_mode,
-                    constants: &[cascades, manual_filter as u32],
+                    constants: &[cascades, manual_filter as u32, underwater as u32],
                     ..Default::default()
                 },
                 Depth::TestWrite,
                 target,
             )
         };
-        let fill = pipeline("water", vk::PolygonMode::FILL)?;
+        let fill = pipeline("water", vk::PolygonMode::FILL, false)?;
+        let from_below = pipeline("water from below", vk::PolygonMode::FILL, true)?;
         let wireframe = if ctx.info.fill_mode_non_solid {
-            Some(pipeline("water wireframe", vk::PolygonMode::LINE)?)
+            Some(pipeline("water wireframe", vk::PolygonMode::LINE, false)?)
         } else {
             None
         };
         Ok(WaterPass {
             layout,
             fill,
+            from_below,
             wireframe,
             textures,
         })
@@ -193,10 +199,18 @@ impl WaterPass {
     }
 
     /// Draws the ocean patches inside the main rendering scope: as lines for
-    /// `ViewMode::Wireframe` (where the device draws lines), filled otherwise.
-    pub fn record(&self, rec: &Recorder, frame_set: vk::DescriptorSet, view: ViewMode) {
+    /// `ViewMode::Wireframe` (where the device draws lines), filled otherwise, from below when
+    /// the camera is `underwater`.
+    pub fn record(
+        &self,
+        rec: &Recorder,
+        frame_set: vk::DescriptorSet,
+        view: ViewMode,
+        underwater: bool,
+    ) {
         let pipeline = match (&self.wireframe, view) {
             (Some(lines), ViewMode::Wireframe) => lines,
+            _ if underwater => &self.from_below,
             _ => &self.fill,
         };
         bind_scene(

@@ -1,0 +1,163 @@
+//! The light's picture tests (issue 17), headless on lavapipe, validation-clean: the sky at noon,
+//! sunset and under an overcast; the sun's path on the water toward a sun on the horizon; the
+//! view from under the water.
+
+mod common;
+
+use common::luma;
+
+const W: usize = 320;
+const H: usize = 180;
+
+fn shot(name: &str, args: &[&str]) -> Vec<u8> {
+    common::shot(&format!("sky-{name}"), (W as u32, H as u32), args, &[])
+}
+
+/// Mean (r, g, b) of the rows `rows` of a W-wide picture.
+fn mean_rgb(p: &[u8], rows: std::ops::Range<usize>) -> [f64; 3] {
+    let px = &p[rows.start * W * 4..rows.end * W * 4];
+    let mut sum = [0.0; 3];
+    for c in px.chunks(4) {
+        for i in 0..3 {
+            sum[i] += c[i] as f64;
+        }
+    }
+    sum.map(|s| s / (px.len() / 4) as f64)
+}
+
+/// (mean saturation (max − min)/max, luma standard deviation over its mean) over the rows
+/// `rows`.
+fn saturation_and_contrast(p: &[u8], rows: std::ops::Range<usize>) -> (f64, f64) {
+    let px = &p[rows.start * W * 4..rows.end * W * 4];
+    let sat = px
+        .chunks(4)
+        .map(|c| {
+            let (max, min) = (c[..3].iter().max().unwrap(), c[..3].iter().min().unwrap());
+            (max - min) as f64 / (*max).max(1) as f64
+        })
+        .sum::<f64>()
+        / (px.len() / 4) as f64;
+    let l = luma(px);
+    let mean = l.iter().sum::<f64>() / l.len() as f64;
+    (sat, common::std_dev(&l) / mean.max(1.0))
+}
+
+// Level, 10 m up, looking along azimuth 30° (the horizon at the middle row).
+const TOWARD_AZIMUTH_30: [&str; 4] = ["--camera", "0,10,0", "--look-at", "866,10,500"];
+
+#[test]
+fn sunset_and_overcast_skies_differ_from_noon_as_real_ones_do() {
+    let sky = |name: &str, sun: &str, clouds: &str| {
+        let mut args = vec!["--sun", sun, "--clouds", clouds];
+        args.extend_from_slice(&TOWARD_AZIMUTH_30);
+        shot(name, &args)
+    };
+    // Above the horizon, 20 rows (10°) of it: the band a sunset colours.
+    let band = H / 2 - 22..H / 2 - 2;
+    let sky_rows = 0..H / 2 - 2;
+    let noon = sky("noon", "30,60", "0");
+    let sunset = sky("sunset", "30,2", "0");
+    let overcast = sky("overcast", "30,20", "1");
+    // Hue: a noon sky is blue down to the horizon; at sunset the long path through the air
+    // leaves red and yellow near the sun (Rayleigh scattering ∝ λ⁻⁴ takes the blue).
+    let ratio = |p: &[u8]| {
+        let [r, _, b] = mean_rgb(p, band.clone());
+        r / b.max(1.0)
+    };
+    let (noon_rb, sunset_rb) = (ratio(&noon), ratio(&sunset));
+    assert!(
+        noon_rb < 0.95 && sunset_rb > 1.3,
+        "red/blue above the horizon: noon {noon_rb:.2} (expected < 0.95), sunset {sunset_rb:.2} (> 1.3)"
+    );
+    // An overcast is grey and even: little saturation and a fraction of the clear sky's
+    // contrast, and no sun (nothing saturates though the sun is in view).
+    let (noon_sat, noon_contrast) = saturation_and_contrast(&noon, sky_rows.clone());
+    let (grey_sat, grey_contrast) = saturation_and_contrast(&overcast, sky_rows.clone());
+    assert!(
+        grey_sat < 0.1 && grey_sat < 0.4 * noon_sat,
+        "saturation: overcast {grey_sat:.3}, noon {noon_sat:.3} (expected < 0.1 and < 0.4×)"
+    );
+    assert!(
+        grey_contrast < 0.5 * noon_contrast,
+        "luma deviation / mean: overcast {grey_contrast:.3}, noon {noon_contrast:.3} (expected < 0.5×)"
+    );
+    let sky_px = &overcast[..(H / 2 - 2) * W * 4];
+    let white = sky_px
+        .chunks(4)
+        .filter(|c| c[..3].iter().all(|&v| v >= 250))
+        .count();
+    assert_eq!(white, 0, "the overcast shows {white} white pixels (a sun)");
+}
+
+#[test]
+fn the_sun_on_the_horizon_draws_no_constant_column() {
+    // The mirror of before drew a straight white stripe from the horizon down (issue 17). The
+    // glitter's brightest column below the horizon must vary along its length: waves break the
+    // path into glints and gaps.
+    let mut args = vec!["--quality", "high", "--sun", "30,1", "--clouds", "0"];
+    args.extend_from_slice(&["--camera", "0,6,0", "--look-at", "866,0,500"]);
+    let p = luma(&shot("horizon-sun", &args));
+    let first = H / 2 + 3;
+    let column_mean = |x: usize| (first..H).map(|y| p[y * W + x]).sum::<f64>() / (H - first) as f64;
+    let brightest = (0..W)
+        .max_by(|&a, &b| column_mean(a).total_cmp(&column_mean(b)))
+        .unwrap();
+    let column: Vec<f64> = (first..H).map(|y| p[y * W + brightest]).collect();
+    let deviation = common::std_dev(&column);
+    let saturated = column.iter().filter(|&&v| v >= 250.0).count();
+    assert!(
+        deviation > 15.0 && saturated * 2 < column.len(),
+        "brightest column x = {brightest}: luma deviation {deviation:.1} (expected > 15), \
+         {saturated} of {} pixels saturated (expected under half)",
+        column.len()
+    );
+}
+
+#[test]
+fn under_the_water_the_surface_is_seen_from_below() {
+    // 4 m under a calm sea looking up 30°: the water's own blue fog, and the surface above it,
+    // bright within Snell's window (48.6° of the zenith) and a dark mirror outside it.
+    let p = shot(
+        "underwater",
+        &[
+            "--preset",
+            "calm",
+            "--camera",
+            "0,-4,0",
+            "--look-at",
+            "30,14,-10",
+        ],
+    );
+    let l = luma(&p);
+    let deviation = common::std_dev(&l);
+    let mut sorted = l.clone();
+    sorted.sort_by(f64::total_cmp);
+    let (median, top) = (sorted[sorted.len() / 2], sorted[sorted.len() * 97 / 100]);
+    let [r, g, b] = mean_rgb(&p, 0..H);
+    assert!(
+        deviation > 8.0 && top > median + 40.0,
+        "underwater luma: deviation {deviation:.1} (expected > 8), 97th percentile {top:.0} \
+         vs median {median:.0} (expected 40 brighter: the sky through the surface)"
+    );
+    assert!(
+        b > g && g > r,
+        "underwater mean colour {r:.0},{g:.0},{b:.0}: expected blue"
+    );
+    // Above the water at the same place the picture is a different one (sky, horizon).
+    let above = shot(
+        "above-water",
+        &[
+            "--preset",
+            "calm",
+            "--camera",
+            "0,4,0",
+            "--look-at",
+            "30,22,-10",
+        ],
+    );
+    let [ar, _, ab] = mean_rgb(&above, 0..H);
+    assert!(
+        (ar / ab) > 1.3 * (r / b),
+        "above {ar:.0}/{ab:.0} vs under {r:.0}/{b:.0}: expected the underwater picture bluer"
+    );
+}
