@@ -121,15 +121,14 @@ float cloud_shape(vec2 q) {
 // The sky along `dir` with `cover` (0–1) of it clouded, for a sun of irradiance `irradiance`
 // toward `sun`: rgb the radiance, a the share of the sun's light the clouds let through along
 // `dir` (the sun's disc and the direct light on the scene are multiplied by it at `sun`).
+// `sunlight` (the sun's irradiance at the sea) and `zenith` (the clear sky's radiance there)
+// are the same for every direction: src/render/atmosphere.rs computes them once per sky.
 // Broken clouds are a layer CLOUD_BASE_M up, lit by the sun through the air and by the sky;
 // from 7/8 of cover on, they close into an overcast whose radiance follows the CIE standard
 // overcast sky, L(θ) = L_z (1 + 2 sin θ)/3 (Moon & Spencer 1942), with its horizontal
 // irradiance (7π/9) L_z a quarter of the clear sky's global irradiance (OVERCAST_GLOBAL).
-vec4 sky_radiance(vec3 dir, vec3 sun, float cover, float irradiance) {
+vec4 sky_radiance(vec3 dir, vec3 sun, float cover, float irradiance, vec3 sunlight, vec3 zenith) {
     vec3 clear = clear_sky(dir, sun) * irradiance;
-    float r = EARTH_RADIUS_M + SKY_EYE_ALTITUDE_M;
-    vec3 sunlight = sun_transmittance(r, sun.y) * irradiance;
-    vec3 zenith = clear_sky(vec3(0.0, 1.0, 0.0), sun) * irradiance;
     // The clear sky's global irradiance on the sea: the sun's and (about) the sky's.
     vec3 global = sunlight * max(sun.y, 0.0) + SKY_PI * zenith;
     vec3 grey = vec3(dot(global, vec3(0.2126, 0.7152, 0.0722)));
@@ -151,7 +150,7 @@ vec4 sky_radiance(vec3 dir, vec3 sun, float cover, float irradiance) {
     cloud = mix(cloud, clear, 1.0 - exp(-dist / 40e3));
 
     float closed = smoothstep(0.85, 1.0, cover);
-    vec3 below_horizon = mix(1.0, 0.55, clamp(-dir.y * 6.0, 0.0, 1.0)) * vec3(1.0);
+    float below_horizon = mix(1.0, 0.55, clamp(-dir.y * 6.0, 0.0, 1.0));
     vec3 col = mix(mix(clear, cloud, alpha), overcast, closed) * below_horizon;
     float through = (1.0 - alpha) * (1.0 - closed);
     return vec4(col, through);

@@ -5,8 +5,15 @@
 // the sun or the cloud cover changes.
 #include "common/sky.glsl"
 
-// sky: x the cloud cover (0–1), y the sun's irradiance (SkyCube::update).
-layout(push_constant) uniform Face { vec4 sun_dir; vec4 sky; uint face; } pc;
+// sky: x the cloud cover (0–1), y the sun's irradiance; sunlight and zenith: the sun's light at
+// the sea and the clear sky's radiance at the zenith (rgb; SkyCube::update).
+layout(push_constant) uniform Face {
+    vec4 sun_dir;
+    vec4 sky;
+    vec4 sunlight;
+    vec4 zenith;
+    uint face;
+} pc;
 
 layout(location = 0) in vec2 in_uv;
 layout(location = 1) in vec2 in_ndc;
@@ -27,5 +34,5 @@ vec3 face_direction(uint face, vec2 st) {
 
 void main() {
     vec3 dir = normalize(face_direction(pc.face, in_uv));
-    out_colour = sky_radiance(dir, pc.sun_dir.xyz, pc.sky.x, pc.sky.y);
+    out_colour = sky_radiance(dir, pc.sun_dir.xyz, pc.sky.x, pc.sky.y, pc.sunlight.rgb, pc.zenith.rgb);
 }

@@ -170,9 +170,9 @@ float fresnel(float cos_theta) {
 // The surface seen from under the water (the camera's below it): within Snell's window,
 // arcsin(1/1.333) = 48.6° of the normal, the sky refracted through it (Snell, written out),
 // less what the surface reflects back down (Schlick's Fresnel at the angle in the air); outside
-// it total internal reflection, a mirror of the water below. Then the water between. Kept
-// short: lavapipe runs this above the water too (a branch not taken still costs), and the
-// general fresnel() with its exact model cost 6 ms a frame at --quality low there.
+// it total internal reflection, a mirror of the water below. Then the water between. Only the
+// pipeline for a camera under the water (UNDERWATER_VIEW) keeps this: as a branch not taken,
+// lavapipe still paid about 6 ms a frame for it at --quality low.
 vec3 from_below(vec3 n, vec3 v, float dist) {
     vec3 ray = -v; // from the eye up to the surface
     float c = max(dot(ray, n), 0.0); // cosine of the angle in the water

@@ -36,6 +36,12 @@ impl Sky {
         sun_transmittance(self.elevation_rad()).map(|t| (t * SUN_IRRADIANCE as f64) as f32)
     }
 
+    /// The clear sky's radiance at the zenith (`clear_sky_zenith` × SUN_IRRADIANCE).
+    pub fn zenith_radiance(&self) -> [f32; 3] {
+        clear_sky_zenith(self.sun_dir.normalize().as_dvec3())
+            .map(|l| (l * SUN_IRRADIANCE as f64) as f32)
+    }
+
     /// The irradiance on the level sea from the sun and the sky: the clear sky's (the sun's
     /// beam times sin of its elevation, plus π times the zenith's radiance standing in for the
     /// sky's hemisphere), times Kasten & Czeplak (1980)'s cloud factor 1 − 0.75 C^3.4.

@@ -209,7 +209,7 @@ pub fn record_frame(
         profiler.begin_pass(&rec, names::WATER);
         scope.record(|| {
             // Patches, tessellation-evaluation invocations, triangles and fragments.
-            let underwater = inputs.camera_surface_m > camera.y as f64;
+            let underwater = inputs.camera_depth_m(camera.y) > 0.0;
             profiler.statistics(&rec, || {
                 r.water.record(&rec, set, r.settings.view, underwater)
             });

@@ -28,6 +28,15 @@ pub struct FrameInputs {
     pub camera_surface_m: f64,
 }
 
+impl FrameInputs {
+    /// How deep a camera at height `eye_y` is under the surface (m; ≤ 0 above it): the water
+    /// pass draws the surface from below (`WaterPass::record`) and the uniforms say so where
+    /// it is > 0.
+    pub fn camera_depth_m(&self, eye_y: f32) -> f64 {
+        self.camera_surface_m - eye_y as f64
+    }
+}
+
 /// What the scene passes sample of the ocean simulation.
 #[derive(Clone, Debug)]
 pub struct OceanBindings {
@@ -417,7 +426,7 @@ impl FrameUniforms {
             ],
             sun_light,
             underwater: {
-                let depth = p.inputs.camera_surface_m - camera.position.y as f64;
+                let depth = p.inputs.camera_depth_m(camera.position.y);
                 [f32::from(depth > 0.0), depth.max(0.0) as f32, 0.0, 0.0]
             },
             sky_light,

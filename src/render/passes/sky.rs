@@ -79,6 +79,10 @@ struct FacePush {
     sun_dir: [f32; 4],
     /// x: cloud cover (0–1); y: the sun's irradiance above the atmosphere; zw: unused.
     sky: [f32; 4],
+    /// rgb: the sun's irradiance at the sea (`Sky::sun_light`); w: unused.
+    sunlight: [f32; 4],
+    /// rgb: the clear sky's radiance at the zenith (`Sky::zenith_radiance`); w: unused.
+    zenith: [f32; 4],
     face: u32,
 }
 
@@ -167,6 +171,9 @@ impl SkyCube {
         let Some((layout, pipeline)) = &self.render else {
             return;
         };
+        // What every texel's sky shares, once (common/sky.glsl `sky_radiance`).
+        let [sr, sg, sb] = sky.sun_light();
+        let [zr, zg, zb] = sky.zenith_radiance();
         // All six faces at once; each face is then a rendering scope of its own.
         rec.uses(&[(&self.image, Use::Colour { keep: false })]);
         for (face, view) in self.image.layer_views.iter().enumerate() {
@@ -185,6 +192,8 @@ impl SkyCube {
                 &FacePush {
                     sun_dir: sky.sun_dir.normalize().extend(0.0).to_array(),
                     sky: [sky.cloud_cover, SUN_IRRADIANCE, 0.0, 0.0],
+                    sunlight: [sr, sg, sb, 0.0],
+                    zenith: [zr, zg, zb, 0.0],
                     face: face as u32,
                 },
             );
