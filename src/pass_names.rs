@@ -17,7 +17,9 @@ pub const WATER: &str = "water";
 pub const SKY: &str = "sky";
 /// `--view reflection|refraction|dudv`: a texture over the whole main target.
 pub const TEXTURES_VIEW: &str = "textures view";
-/// The main target copied or scaled into the output.
+/// `--aa fxaa`: FXAA from the main target into the anti-aliased target.
+pub const ANTI_ALIASING: &str = "anti-aliasing";
+/// The main (or anti-aliased) target copied or scaled into the output.
 pub const OUTPUT: &str = "output";
 /// FFT model: the spectrum h0 evolved to this frame's time.
 pub const OCEAN_EVOLVE: &str = "ocean evolve";

@@ -269,6 +269,7 @@ fn help_and_device_list() {
         "--choppiness",
         "--cascades",
         "--seed",
+        "--aa",
     ] {
         assert!(help.contains(flag), "help lacks {flag}");
     }

@@ -25,7 +25,9 @@ use crate::ocean::{gerstner, OceanSettings, SeaState, SpectrumKind, Waves};
 use crate::profile::WARMUP_FRAMES;
 use crate::render::camera::LOWEST_M;
 use crate::render::uniforms::DEEP_FLOOR_M;
-use crate::render::{default_sun_dir, Camera, FresnelModel, SceneLayout, SceneSettings, ViewMode};
+use crate::render::{
+    default_sun_dir, AntiAliasing, Camera, FresnelModel, SceneLayout, SceneSettings, ViewMode,
+};
 use glam::Vec3;
 
 /// Largest accepted `--size` side; the device limit is checked again at run time.
@@ -215,6 +217,10 @@ pub struct Cli {
     #[arg(long, global = true, value_enum, value_name = "MODEL", default_value_t = FresnelModel::Schlick, help_heading = "Scene")]
     pub fresnel: FresnelModel,
 
+    /// Anti-aliasing of the final picture (the debug views are shown as drawn).
+    #[arg(long, global = true, value_enum, value_name = "MODE", default_value_t = AntiAliasing::Off, help_heading = "Scene")]
+    pub aa: AntiAliasing,
+
     /// Size of the reflection and refraction textures relative to the output (window or image; 0.1 to 1). [default: 0.25 low, 0.35 medium, 0.5 high]
     #[arg(long, global = true, value_name = "S", allow_hyphen_values = true,
           value_parser = |s: &str| parse_in(s, 0.1, 1.0), help_heading = "Scene")]
@@ -360,6 +366,7 @@ impl Cli {
         Ok(SceneSettings {
             view: self.view,
             fresnel: self.fresnel,
+            aa: self.aa,
             rtt_scale: self.rtt_scale.unwrap_or(quality.rtt_scale) as f32,
             render_scale: self.render_scale.unwrap_or(quality.render_scale) as f32,
             terrain_grid: self.terrain_grid.unwrap_or(quality.terrain_grid),

@@ -18,7 +18,9 @@
 //!                through the compute wait, the simulation images   writes main colour + depth
 //!    sky         where nothing else was drawn                        writes main colour
 //!    textures    --view reflection|refraction|dudv: that texture     writes main colour
-//!    output      main colour copied (or blitted) into the output image
+//!    anti-aliasing  --aa fxaa, final view: FXAA; samples main colour
+//!                writes anti-aliased colour (and its edge mask into main depth)
+//!    output      main (or anti-aliased) colour copied (or blitted) into the output image
 //!    readback    screenshots: the output into a host buffer; present: to PRESENT_SRC
 //! ```
 //!
@@ -226,8 +228,17 @@ pub fn record_frame(
                 scope.record(|| r.textures_view.record(&rec, set, r.water.textures()))
             });
         }
+        if let (Some(pass), Some(smooth)) = (&r.anti_aliasing, &t.anti_aliased) {
+            // The main depth, done with, holds the pass's edge mask (every pixel written).
+            let target = [Target::new(smooth, Load::DontCare)];
+            let mask = Target::new(&t.main.depth, Load::DontCare);
+            let scope = rec.rendering(&target, Some(mask), &[&t.main.colour]);
+            profiler.pass(&rec, names::ANTI_ALIASING, || {
+                scope.record(|| pass.record(&rec))
+            });
+        }
         profiler.pass(&rec, names::OUTPUT, || {
-            super::passes::output::record(&rec, &t.main.colour, output, r.scale_filter)
+            super::passes::output::record(&rec, t.final_colour(), output, r.scale_filter)
         });
         if let Some(buffer) = delivery.readback {
             record_readback(&rec, output, buffer);

@@ -58,11 +58,24 @@ pub enum FresnelModel {
     Power = shared::FRESNEL_POWER,
 }
 
+/// `--aa`: how the final picture is anti-aliased. (The variants' doc comments are `--help`'s
+/// descriptions of the values.)
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, clap::ValueEnum)]
+pub enum AntiAliasing {
+    /// FXAA (Lottes 2009) on the scene target, before it is scaled to the output.
+    Fxaa,
+    /// None: the scene target goes to the output as drawn.
+    #[default]
+    Off,
+}
+
 /// How the scene looks: everything the renderer takes from the command line.
 #[derive(Clone, Debug)]
 pub struct SceneSettings {
     pub view: ViewMode,
     pub fresnel: FresnelModel,
+    /// Applies to `--view final` only (`anti_aliased`).
+    pub aa: AntiAliasing,
     /// Reflection and refraction target size relative to the output (0 < s <= 1).
     pub rtt_scale: f32,
     /// Main (scene and water) target size relative to the output (0 < s <= 1); the output pass
@@ -93,6 +106,12 @@ impl SceneSettings {
             cloud_cover: self.cloud_cover,
         }
     }
+
+    /// Whether the frame runs the anti-aliasing pass: `--aa fxaa` with the final view (the
+    /// debug views show their data as drawn).
+    pub fn anti_aliased(&self) -> bool {
+        self.aa == AntiAliasing::Fxaa && self.view == ViewMode::Final
+    }
 }
 
 /// Default sun: low, ahead and to the right of the default camera, so its glitter path lies on
@@ -106,6 +125,7 @@ impl Default for SceneSettings {
         SceneSettings {
             view: ViewMode::Final,
             fresnel: FresnelModel::Schlick,
+            aa: AntiAliasing::default(),
             rtt_scale: 0.5,
             render_scale: 1.0,
             terrain_grid: 160,

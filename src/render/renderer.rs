@@ -11,7 +11,7 @@ use ash::vk;
 use super::atmosphere::Sky;
 use super::camera::Camera;
 use super::passes::water::WaterSamplers;
-use super::passes::{SkyCube, SkyPass, TerrainPass, TexturesViewPass, WaterPass};
+use super::passes::{AntiAliasingPass, SkyCube, SkyPass, TerrainPass, TexturesViewPass, WaterPass};
 use super::scene::{generate_dudv, load_dudv, DUDV_SIDE};
 use super::targets::Targets;
 use super::targets::{DEPTH_FORMAT, HDR_FORMAT};
@@ -46,12 +46,21 @@ impl OutputTarget<'_> {
 
 /// Checks every format the renderer creates images in for what it does with them (one line
 /// naming the format and the use when the device lacks a feature; `gpu::formats`).
-fn check_formats(ctx: &Context, display: vk::Format, scaled: bool) -> GpuResult<()> {
+fn check_formats(
+    ctx: &Context,
+    display: vk::Format,
+    scaled: bool,
+    anti_aliased: bool,
+) -> GpuResult<()> {
     use vk::FormatFeatureFlags as F;
     let mut display_features = F::COLOR_ATTACHMENT | F::TRANSFER_SRC;
     if scaled {
         // Blitted up to the output (linearly where it filters; `output::record`).
         display_features |= F::BLIT_SRC;
+    }
+    if anti_aliased {
+        // FXAA reads its edges' ends and blends with bilinear samples (shaders/post/fxaa.frag).
+        display_features |= F::SAMPLED_IMAGE | F::SAMPLED_IMAGE_FILTER_LINEAR;
     }
     ctx.require_formats(&[
         FormatUse {
@@ -68,7 +77,7 @@ fn check_formats(ctx: &Context, display: vk::Format, scaled: bool) -> GpuResult<
         FormatUse {
             format: display,
             features: display_features,
-            what: "the main view's target",
+            what: "the main view's target (and the anti-aliased one)",
         },
         FormatUse {
             format: vk::Format::R8G8B8A8_UNORM,
@@ -132,6 +141,8 @@ pub struct Renderer {
     pub(super) water: WaterPass,
     /// `--view reflection|refraction|dudv`.
     pub(super) textures_view: TexturesViewPass,
+    /// `--aa fxaa` with the final view (`SceneSettings::anti_aliased`).
+    pub(super) anti_aliasing: Option<AntiAliasingPass>,
     /// How the output pass scales the main target: linear where its format filters linearly
     /// (optional in Vulkan), else nearest.
     pub(super) scale_filter: vk::Filter,
@@ -150,13 +161,19 @@ impl Renderer {
         settings: &SceneSettings,
         camera: Camera,
     ) -> anyhow::Result<Renderer> {
-        check_formats(ctx, output_format, settings.render_scale < 1.0)?;
+        let anti_aliased = settings.anti_aliased();
+        check_formats(
+            ctx,
+            output_format,
+            settings.render_scale < 1.0,
+            anti_aliased,
+        )?;
         let targets = Targets::new(
             ctx,
             extent,
             output_format,
-            settings.render_scale,
-            settings.rtt_scale,
+            (settings.render_scale, settings.rtt_scale),
+            anti_aliased,
         )?;
         let graphics = vk::ShaderStageFlags::ALL_GRAPHICS;
         let sampled = vk::DescriptorType::COMBINED_IMAGE_SAMPLER;
@@ -305,6 +322,9 @@ impl Renderer {
             water.textures(),
             targets.display_format(),
         )?;
+        let anti_aliasing = anti_aliased
+            .then(|| AntiAliasingPass::new(ctx, &targets.main.colour, clamp_sampler.raw))
+            .transpose()?;
         if settings.view == ViewMode::Wireframe && !water.has_wireframe() {
             anyhow::bail!(
                 "--view wireframe: {} cannot draw lines (no fillModeNonSolid)",
@@ -332,6 +352,7 @@ impl Renderer {
             terrain,
             water,
             textures_view,
+            anti_aliasing,
             scale_filter: if ctx.filters_linearly(output_format) {
                 vk::Filter::LINEAR
             } else {
@@ -372,9 +393,13 @@ impl Renderer {
         self.ctx.wait_idle()?;
         let s = &self.settings;
         let format = self.targets.display_format();
-        self.targets = Targets::new(&self.ctx, extent, format, s.render_scale, s.rtt_scale)?;
+        let scales = (s.render_scale, s.rtt_scale);
+        self.targets = Targets::new(&self.ctx, extent, format, scales, s.anti_aliased())?;
         self.water
             .resize(&self.targets, self.dudv.view, &self.samplers());
+        if let Some(pass) = &self.anti_aliasing {
+            pass.resize(&self.targets.main.colour, self.clamp_sampler.raw);
+        }
         Ok(())
     }
 

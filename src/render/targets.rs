@@ -1,7 +1,8 @@
 //! Render targets the scene passes draw into: the main colour (display colour in the output's
 //! 8-bit sRGB format) and depth at `--render-scale` of the output's size, and the reflection and
 //! refraction textures (HDR colour + depth) at `--rtt-scale` of it (seed 001 §3.1: the
-//! frame-buffer objects). All are recreated on resize.
+//! frame-buffer objects); with `--aa fxaa`, the anti-aliased colour the anti-aliasing pass
+//! draws from the main colour. All are recreated on resize.
 
 use std::sync::Arc;
 
@@ -78,12 +79,16 @@ fn plain_image(
 
 pub struct Targets {
     /// The picture at `render_scale` of the output, in display colour, and its depth; copied
-    /// or scaled into the output (passes/output.rs).
+    /// or scaled into the output (passes/output.rs). Once the sky is drawn, the depth holds the
+    /// anti-aliasing pass's edge mask.
     pub main: ColourDepth,
     /// What the water reflects (mirrored camera, clipped below the water).
     pub reflection: ColourDepth,
     /// What lies under the water (clipped above it); its depth gives the water's thickness.
     pub refraction: ColourDepth,
+    /// `--aa fxaa`: the main colour anti-aliased (same size and format), copied or scaled into
+    /// the output in its place.
+    pub anti_aliased: Option<Image>,
     /// The output's size.
     output: vk::Extent2D,
 }
@@ -100,25 +105,46 @@ pub fn scaled(extent: vk::Extent2D, scale: f32) -> vk::Extent2D {
 impl Targets {
     /// `output`: the output's size; `render_scale` and `rtt_scale` size the main and the
     /// reflection/refraction targets relative to it; `display_format`: the main colour's (an
-    /// 8-bit sRGB format, the output's when the renderer was made).
+    /// 8-bit sRGB format, the output's when the renderer was made); `anti_aliased`: make the
+    /// anti-aliased colour (and let the anti-aliasing pass sample the main colour).
     pub fn new(
         ctx: &Arc<Context>,
         output: vk::Extent2D,
         display_format: vk::Format,
-        render_scale: f32,
-        rtt_scale: f32,
+        (render_scale, rtt_scale): (f32, f32),
+        anti_aliased: bool,
     ) -> GpuResult<Targets> {
         let rtt = scaled(output, rtt_scale);
+        let main_extent = scaled(output, render_scale);
         let hdr = (HDR_FORMAT, vk::ImageUsageFlags::SAMPLED);
-        let display = (display_format, vk::ImageUsageFlags::TRANSFER_SRC);
+        // The output pass copies the main colour, or the anti-aliasing pass samples it.
+        let main_usage = if anti_aliased {
+            vk::ImageUsageFlags::SAMPLED
+        } else {
+            vk::ImageUsageFlags::TRANSFER_SRC
+        };
         // The refraction depth is sampled by the water; the other depths are attachments only.
         let (only, sampled) = (vk::ImageUsageFlags::empty(), vk::ImageUsageFlags::SAMPLED);
+        let anti_aliased = anti_aliased
+            .then(|| {
+                let usage =
+                    vk::ImageUsageFlags::COLOR_ATTACHMENT | vk::ImageUsageFlags::TRANSFER_SRC;
+                let name = "anti-aliased colour";
+                plain_image(ctx, name, main_extent, display_format, usage)
+            })
+            .transpose()?;
         Ok(Targets {
-            main: ColourDepth::new(ctx, "main", scaled(output, render_scale), display, only)?,
+            main: ColourDepth::new(ctx, "main", main_extent, (display_format, main_usage), only)?,
             reflection: ColourDepth::new(ctx, "reflection", rtt, hdr, only)?,
             refraction: ColourDepth::new(ctx, "refraction", rtt, hdr, sampled)?,
+            anti_aliased,
             output,
         })
+    }
+
+    /// The colour the output pass puts into the output: the anti-aliased colour, else the main.
+    pub fn final_colour(&self) -> &Image {
+        self.anti_aliased.as_ref().unwrap_or(&self.main.colour)
     }
 
     /// The output's size.

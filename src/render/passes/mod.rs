@@ -5,9 +5,11 @@
 //! sky cube) and a push constant picking the view (`ViewIndex`). They draw linear HDR radiance
 //! into the reflection and refraction textures and tone-mapped display colour into the main
 //! target ([`SceneTarget`], shaders/common/display.glsl), so terrain and sky have a pipeline for
-//! each. `textures_view` shows a texture full screen (`--view`); `output` puts the main target
-//! into the output image.
+//! each. `textures_view` shows a texture full screen (`--view`); `anti_aliasing` smooths the
+//! main target's edges into a target of its own (`--aa fxaa`); `output` puts the main (or the
+//! anti-aliased) target into the output image.
 
+pub mod anti_aliasing;
 pub mod output;
 pub mod sky;
 pub mod terrain;
@@ -18,6 +20,7 @@ use std::sync::Arc;
 
 use ash::vk;
 
+pub use anti_aliasing::AntiAliasingPass;
 pub use sky::{SkyCube, SkyPass};
 pub use terrain::TerrainPass;
 pub use textures_view::TexturesViewPass;

@@ -1,0 +1,195 @@
+//! The anti-aliasing pass (`--aa`), headless on lavapipe: FXAA turns the stair steps of a
+//! high-contrast silhouette into blended pixels and leaves flat regions as they were; it runs
+//! validation-clean scaled, copied and into a UNORM output, only where it should (`--profile`);
+//! and the config file's `aa` is the flag.
+
+mod common;
+
+use common::{clean_run, luma, run, scratch};
+use vkocean::pass_names::{ANTI_ALIASING, FFT_FRAME, OUTPUT};
+
+const W: usize = 320;
+const H: usize = 180;
+
+/// Looking up at the island from its shore at `--quality high`, the main view's sky painted
+/// solid magenta (`--background`), at `--render-scale 1` (no scaling blit to blend pixels of
+/// its own): green hills, grey pillars and the sea against a colour found nowhere else.
+const SILHOUETTE: [&str; 12] = [
+    "--quality",
+    "high",
+    "--render-scale",
+    "1",
+    "--background",
+    "1,0,1",
+    "--time",
+    "5",
+    "--camera=-120,14,-560",
+    "--look-at=-400,10,-860",
+    "--fft-size",
+    "64",
+];
+
+fn shot(name: &str, args: &[&str]) -> Vec<u8> {
+    let mut all = SILHOUETTE.to_vec();
+    all.extend_from_slice(args);
+    common::shot(&format!("aa-{name}"), (W as u32, H as u32), &all, &[])
+}
+
+/// How magenta a pixel is: min(R, B) − G. The background (linear (1, 0, 1), tone-mapped:
+/// (232, 0, 232)) is 232; the island, the pillars, the sea and its haze are below 20.
+fn magenta(p: &[u8]) -> Vec<i32> {
+    p.chunks(4)
+        .map(|c| c[0].min(c[2]) as i32 - c[1] as i32)
+        .collect()
+}
+
+/// Pixels between the background and the scene in front of it: a blend of the two.
+fn blended(p: &[u8], background: i32) -> usize {
+    magenta(p)
+        .iter()
+        .filter(|&&m| m > 40 && m < background - 40)
+        .count()
+}
+
+/// Pixels whose 5x5 neighbourhood's luma spans less than 4 levels in `p`: far from any edge.
+fn flat_pixels(p: &[u8]) -> Vec<usize> {
+    let l = luma(p);
+    let at = |x: usize, y: usize| l[y * W + x];
+    let mut flat = Vec::new();
+    for y in 2..H - 2 {
+        for x in 2..W - 2 {
+            let (mut lo, mut hi) = (f64::MAX, f64::MIN);
+            for v in y - 2..=y + 2 {
+                for u in x - 2..=x + 2 {
+                    lo = lo.min(at(u, v));
+                    hi = hi.max(at(u, v));
+                }
+            }
+            if hi - lo < 4.0 {
+                flat.push(y * W + x);
+            }
+        }
+    }
+    flat
+}
+
+#[test]
+fn fxaa_blends_the_stair_steps_of_an_edge_and_leaves_flat_regions_alone() {
+    let off = shot("off", &["--aa", "off"]);
+    let fxaa = shot("fxaa", &["--aa", "fxaa"]);
+    let background = magenta(&off)[0];
+    assert_eq!(background, 232, "the top-left pixel is the magenta sky");
+    // The silhouette's length: scene pixels next to a background pixel.
+    let m = magenta(&off);
+    let is_bg = |i: usize| m[i] >= background - 8;
+    let edge = (W..W * (H - 1))
+        .filter(|&i| !is_bg(i) && [i - W, i + W, i - 1, i + 1].into_iter().any(is_bg))
+        .count();
+    // Measured (lavapipe): no blended pixel without anti-aliasing (every pixel is the sky or
+    // the scene: hard steps), 217 with FXAA along a 405-pixel silhouette.
+    let (hard, soft) = (blended(&off, background), blended(&fxaa, background));
+    eprintln!("silhouette {edge} px, blended: off {hard}, fxaa {soft}");
+    assert!(edge > 200, "the silhouette is {edge} pixels long");
+    assert!(
+        hard <= 2,
+        "--aa off: {hard} blended pixels along {edge} edge pixels (expected hard steps)"
+    );
+    assert!(
+        soft >= 100 && soft >= 20 * hard.max(1),
+        "--aa fxaa: {soft} blended pixels along {edge} edge pixels (--aa off: {hard}); expected ≥ 100"
+    );
+    // Away from edges FXAA returns the pixel as it was (measured: exactly, mean 0.0).
+    let flat = flat_pixels(&off);
+    assert!(flat.len() > W * H / 4, "{} flat pixels", flat.len());
+    let diff = flat
+        .iter()
+        .map(|&i| {
+            (0..3)
+                .map(|c| off[4 * i + c].abs_diff(fxaa[4 * i + c]) as f64)
+                .sum::<f64>()
+                / 3.0
+        })
+        .sum::<f64>()
+        / flat.len() as f64;
+    assert!(
+        diff < 0.1,
+        "flat regions differ by {diff:.3} levels on average (expected < 0.1)"
+    );
+}
+
+/// The pass names of a `--profile` run of 7 frames (validation on, asserted clean).
+fn profiled_passes(name: &str, args: &[&str]) -> Vec<String> {
+    let dir = scratch(&format!("aa-profile-{name}"));
+    let profile = dir.join("p.json");
+    let mut all = vec![
+        "--headless",
+        "--validation",
+        "--size",
+        "320x180",
+        "--frames",
+        "7",
+        "--profile",
+        profile.to_str().unwrap(),
+    ];
+    all.extend_from_slice(args);
+    clean_run(&run(&all), &format!("{all:?}"));
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&profile).unwrap()).unwrap();
+    let _ = std::fs::remove_dir_all(&dir);
+    json["passes"]
+        .as_array()
+        .expect("passes")
+        .iter()
+        .map(|p| p["name"].as_str().unwrap().to_string())
+        .collect()
+}
+
+#[test]
+fn fxaa_is_validation_clean_and_runs_only_with_the_final_view() {
+    // An FFT frame's passes without anti-aliasing, and with it just before the output.
+    let without: Vec<&str> = FFT_FRAME
+        .iter()
+        .copied()
+        .filter(|&n| n != ANTI_ALIASING)
+        .collect();
+    let mut with = without.clone();
+    with.insert(with.len() - 1, ANTI_ALIASING);
+    assert_eq!(with.last(), Some(&OUTPUT));
+    // Scaled up by the output's blit (--quality low: half size), copied (render scale 1), and
+    // into a UNORM output (the shader then works on encoded colour).
+    for (name, args) in [
+        ("low", &["--aa", "fxaa", "--quality", "low"][..]),
+        ("copy", &["--aa", "fxaa", "--render-scale", "1"]),
+        ("unorm", &["--aa", "fxaa", "--unorm-output"]),
+    ] {
+        assert_eq!(profiled_passes(name, args), with, "{name}");
+    }
+    assert_eq!(profiled_passes("off", &["--aa", "off"]), without);
+    // The debug views show their data as drawn.
+    assert_eq!(
+        profiled_passes("normals", &["--aa", "fxaa", "--view", "normals"]),
+        without
+    );
+}
+
+#[test]
+fn the_config_key_aa_is_the_flag() {
+    let dir = scratch("aa-config");
+    let picture = |value: &str| {
+        let config = dir.join(format!("{value}.toml"));
+        std::fs::write(&config, format!("aa = \"{value}\"\n")).unwrap();
+        let by_file = shot(
+            &format!("config-{value}"),
+            &["--config", config.to_str().unwrap()],
+        );
+        let by_flag = shot(&format!("flag-{value}"), &["--aa", value]);
+        assert!(
+            by_file == by_flag,
+            "aa = \"{value}\" draws what --aa {value} draws"
+        );
+        by_file
+    };
+    let (off, fxaa) = (picture("off"), picture("fxaa"));
+    let _ = std::fs::remove_dir_all(&dir);
+    assert!(off != fxaa, "the two values draw different pictures");
+}
