@@ -32,9 +32,9 @@ pub const OCEAN_GERSTNER: &str = "ocean gerstner";
 /// The first frame's foam warm-up steps (a debug label only, never timed).
 pub const OCEAN_WARMUP: &str = "ocean foam warm-up";
 
-/// The passes of an FFT frame with the final view (after the first frames, which also render the
-/// sky cube), in the order `--profile` reports them.
-pub const FFT_FRAME: [&str; 9] = [
+/// The passes of an FFT frame with the final view and the default `--aa fxaa` (after the first
+/// frames, which also render the sky cube), in the order `--profile` reports them.
+pub const FFT_FRAME: [&str; 10] = [
     OCEAN_EVOLVE,
     OCEAN_FFT,
     OCEAN_ASSEMBLE,
@@ -43,5 +43,6 @@ pub const FFT_FRAME: [&str; 9] = [
     SCENE,
     WATER,
     SKY,
+    ANTI_ALIASING,
     OUTPUT,
 ];

@@ -218,7 +218,7 @@ pub struct Cli {
     pub fresnel: FresnelModel,
 
     /// Anti-aliasing of the final picture (the debug views are shown as drawn).
-    #[arg(long, global = true, value_enum, value_name = "MODE", default_value_t = AntiAliasing::Off, help_heading = "Scene")]
+    #[arg(long, global = true, value_enum, value_name = "MODE", default_value_t = AntiAliasing::Fxaa, help_heading = "Scene")]
     pub aa: AntiAliasing,
 
     /// Size of the reflection and refraction textures relative to the output (window or image; 0.1 to 1). [default: 0.25 low, 0.35 medium, 0.5 high]

@@ -63,9 +63,9 @@ pub enum FresnelModel {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default, clap::ValueEnum)]
 pub enum AntiAliasing {
     /// FXAA (Lottes 2009) on the scene target, before it is scaled to the output.
+    #[default]
     Fxaa,
     /// None: the scene target goes to the output as drawn.
-    #[default]
     Off,
 }
 
