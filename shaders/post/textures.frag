@@ -9,14 +9,14 @@
 layout(location = 0) in vec2 in_uv;
 layout(location = 0) out vec4 out_colour;
 
-layout(set = 1, binding = 0) uniform sampler2D reflection_colour;
+layout(set = 1, binding = 0) uniform sampler2DArray reflection_colour; // layer 0: as drawn
 layout(set = 1, binding = 1) uniform sampler2D refraction_colour;
 layout(set = 1, binding = 3) uniform sampler2D dudv_map;
 
 void main() {
     uint view = debug_view();
     if (view == VIEW_REFLECTION) {
-        out_colour = target_colour(textureLod(reflection_colour, in_uv, 0.0).rgb);
+        out_colour = target_colour(textureLod(reflection_colour, vec3(in_uv, 0.0), 0.0).rgb);
     } else if (view == VIEW_REFRACTION) {
         out_colour = target_colour(textureLod(refraction_colour, in_uv, 0.0).rgb);
     } else {

@@ -30,7 +30,9 @@ layout(location = 0) out vec4 out_colour;
 // The pipeline that draws the surface from under the water (src/render/passes/water.rs).
 layout(constant_id = 2) const bool UNDERWATER_VIEW = false;
 
-layout(set = 1, binding = 0) uniform sampler2D reflection_colour;
+// Layer 0: the reflection as drawn; layer l: blurred over 2^l rows in its top H / 2^l rows
+// (Recorder::halve_down_layers).
+layout(set = 1, binding = 0) uniform sampler2DArray reflection_colour;
 layout(set = 1, binding = 1) uniform sampler2D refraction_colour;
 layout(set = 1, binding = 2) uniform sampler2D refraction_depth;
 layout(set = 1, binding = 3) uniform sampler2D dudv_map;
@@ -73,6 +75,14 @@ vec4 ocean_normal_foam(vec2 xz, float dist, float pixel_m, float scale, out floa
 }
 
 float fresnel(float cos_theta); // below
+
+// The reflection at `uv` (of the view) from layer `layer`, whose top max(⌊h / 2^layer⌋, 1) rows
+// of the `h` hold it (the rows below are not written: the lookup stays half a row inside).
+vec3 blurred_reflection(vec2 uv, float layer, float h) {
+    float rows = max(floor(h / exp2(layer)), 1.0);
+    float y = clamp(uv.y * rows, 0.5, rows - 0.5) / h;
+    return textureLod(reflection_colour, vec3(uv.x, y, layer), 0.0).rgb;
+}
 
 // Smith's masking for the Beckmann distribution of mean-square slope m2, at a direction whose
 // cosine to the normal is `c` (Walter et al. 2007's rational fit, eq. 27).
@@ -240,7 +250,25 @@ void main() {
     // up there keeps the reflections of the pillars and the buoy on the faces of big waves.
     vec4 mirror = VIEW.view_proj * vec4(in_rel_pos - vec3(0.0, 2.0 * in_displacement.y, 0.0), 1.0);
     vec2 mirror_uv = mirror.w > 0.0 ? mirror.xy / mirror.w * 0.5 + 0.5 : screen;
-    vec3 c_reflect = textureLod(reflection_colour, clamp(mirror_uv + offset, 0.001, 0.999), 0.0).rgb;
+    // The slopes the pixel does not resolve (Cox & Munk's mean square less what the cascades
+    // drawn here carry) scatter the reflected ray: a facet tilted by s in the plane of
+    // incidence turns it by 2s up or down, one tilted across it by 2s·cos θ sideways (θ the
+    // angle of incidence, near 90° where the sea meets the sky). So the mirror image spreads
+    // by 2σ·f texels up and down (σ² the unresolved mean square, f the reflection's texels
+    // per radian): vertical streaks. The reflection's layers blur it over 2^l rows (a kernel
+    // of standard deviation 2^l / 2 once filtered), so the lookup blends the two layers around
+    // l = log2(2 · 2σf). The sideways spread is left out (small but near the camera).
+    vec3 reflection_size = vec3(textureSize(reflection_colour, 0));
+    float unresolved = max(frame.light.y - resolved, 2e-3);
+    float texels_per_rad = frame.lod.x * reflection_size.y * frame.viewport.w;
+    float spread = 2.0 * sqrt(unresolved) * texels_per_rad;
+    float layer = clamp(log2(max(2.0 * spread, 1.0)), 0.0, reflection_size.z - 1.0);
+    vec2 reflect_uv = clamp(mirror_uv + offset, 0.001, 0.999);
+    float below = floor(layer);
+    vec3 c_reflect = mix(blurred_reflection(reflect_uv, below, reflection_size.y),
+                         blurred_reflection(reflect_uv, min(below + 1.0, reflection_size.z - 1.0),
+                                            reflection_size.y),
+                         layer - below);
 
     // Water thickness along the ray: refraction depth behind the surface minus the surface's.
     float near_m = frame.water.w; // Camera::near_m (depth = near / view distance)
@@ -277,7 +305,6 @@ void main() {
     colour = mix(colour, foam, opacity);
     // c_h: the sun's glitter from the slopes the normal does not resolve (the sea's mean-square
     // slope, Cox & Munk 1954, less what the cascades drawn here carry), none on the foam.
-    float unresolved = max(frame.light.y - resolved, 2e-3);
     float glitter = sun_glitter(n, v, sun, unresolved) * (1.0 - opacity);
     colour += sunlight * glitter;
 

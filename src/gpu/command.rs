@@ -334,6 +334,49 @@ impl<'a> Recorder<'a> {
         };
     }
 
+    /// Blits the top `half_height(layer − 1)` rows of layer `layer − 1` of a colour image
+    /// (TRANSFER_SRC_OPTIMAL) onto the top `half_height(layer)` rows of layer `layer`
+    /// (TRANSFER_DST_OPTIMAL), full width, with a linear filter: each row the mean of two.
+    pub fn blit_half_height(&self, image: &super::image::Image, layer: u32) {
+        let rows = |layer| {
+            [
+                vk::Offset3D::default(),
+                vk::Offset3D {
+                    x: image.extent.width as i32,
+                    y: half_height(image.extent.height, layer) as i32,
+                    z: 1,
+                },
+            ]
+        };
+        let subresource = |base_array_layer| vk::ImageSubresourceLayers {
+            aspect_mask: vk::ImageAspectFlags::COLOR,
+            mip_level: 0,
+            base_array_layer,
+            layer_count: 1,
+        };
+        let region = vk::ImageBlit {
+            src_subresource: subresource(layer - 1),
+            src_offsets: rows(layer - 1),
+            dst_subresource: subresource(layer),
+            dst_offsets: rows(layer),
+        };
+        // SAFETY: recording-state invariant; the two layers are in the layouts named above (the
+        // caller's barriers, which made layer − 1's contents visible to transfer reads), exist
+        // and are distinct subresources, the regions lie within them, and the format supports
+        // BLIT_SRC / BLIT_DST and linear filtering (the renderer's format check).
+        unsafe {
+            self.ctx.device.cmd_blit_image(
+                self.cmd,
+                image.raw,
+                vk::ImageLayout::TRANSFER_SRC_OPTIMAL,
+                image.raw,
+                vk::ImageLayout::TRANSFER_DST_OPTIMAL,
+                &[region],
+                vk::Filter::LINEAR,
+            )
+        };
+    }
+
     /// Copies every layer of a colour image (in `layout`: GENERAL or TRANSFER_SRC_OPTIMAL) into a
     /// buffer, tightly packed, layer after layer.
     pub fn copy_image_layers_to_buffer(
@@ -446,6 +489,12 @@ impl<'a> Recorder<'a> {
             )
         };
     }
+}
+
+/// The rows of layer `layer` that `Recorder::halve_down_layers` fills in an image `height`
+/// rows high: the height halved `layer` times (at least 1).
+pub fn half_height(height: u32, layer: u32) -> u32 {
+    (height >> layer).max(1)
 }
 
 /// A copy of the first `layers` layers of a colour image of `extent` to or from a tightly

@@ -29,7 +29,8 @@ pub struct ImageDesc<'a> {
     /// differ (correct by construction, no ownership transfers; `QueuePlan::sharing`).
     pub shared: bool,
     /// A cubemap: 6 layers (+x, -x, +y, -y, +z, -z), a cube view for sampling and one 2D view
-    /// per face for rendering into it (`Image::layer_views`).
+    /// per face for rendering into it (`Image::layer_views`). A colour attachment with more
+    /// than one layer gets the 2D views of its layers too.
     pub cube: bool,
 }
 
@@ -39,7 +40,8 @@ pub struct Image {
     ctx: Arc<Context>,
     pub raw: vk::Image,
     pub view: vk::ImageView,
-    /// One 2D view per layer (cubemaps only: render targets of the faces).
+    /// One 2D view per layer (cubemaps and layered colour attachments: render targets of the
+    /// faces or layers).
     pub layer_views: Vec<vk::ImageView>,
     allocation: Option<Allocation>,
     pub format: vk::Format,
@@ -173,7 +175,9 @@ impl Image {
             unsafe { ctx.device.create_image_view(&view_info, None) }.vk("vkCreateImageView")?;
         ctx.count_created(1);
         ctx.name(image.view, &format!("{} view", desc.name));
-        if desc.cube {
+        let layered_target =
+            layers > 1 && desc.usage.contains(vk::ImageUsageFlags::COLOR_ATTACHMENT);
+        if desc.cube || layered_target {
             for layer in 0..layers {
                 let info = view_info
                     .view_type(vk::ImageViewType::TYPE_2D)
@@ -186,7 +190,8 @@ impl Image {
                 let view =
                     unsafe { ctx.device.create_image_view(&info, None) }.vk("vkCreateImageView")?;
                 ctx.count_created(1);
-                ctx.name(view, &format!("{} face {layer}", desc.name));
+                let part = if desc.cube { "face" } else { "layer" };
+                ctx.name(view, &format!("{} {part} {layer}", desc.name));
                 image.layer_views.push(view);
             }
         }

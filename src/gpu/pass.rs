@@ -1,14 +1,38 @@
 //! Passes declare what they use; the recorder turns that into barriers (`track`) and, for
 //! rendering, into the scope's attachments: [`Recorder::uses`] and [`Recorder::rendering`].
 
+use std::cell::Cell;
+
 use ash::vk;
 
 use super::command::{Attachment, ImageBarrier, Load, Recorder};
 use super::image::Image;
-use super::track::{transition, Handle, Tracked, Use};
+use super::track::{transition, Handle, State, Tracked, Use};
 
-/// An attachment of [`Recorder::rendering`]: an image (through its default view or another one,
-/// e.g. a cube face) and what the scope does with its previous contents.
+/// One layer of an image, tracked on its own while `Recorder::halve_down_layers` runs.
+struct Layer<'a> {
+    image: &'a Image,
+    layer: u32,
+    state: Cell<State>,
+}
+
+impl Tracked for Layer<'_> {
+    fn handle(&self) -> Handle {
+        let range = vk::ImageSubresourceRange {
+            base_array_layer: self.layer,
+            layer_count: 1,
+            ..self.image.range()
+        };
+        Handle::Image(self.image.raw, range)
+    }
+    fn state(&self) -> &Cell<State> {
+        &self.state
+    }
+}
+
+/// An attachment of [`Recorder::rendering`]: an image (through its default view, layer 0 of a
+/// layered one, or another view, e.g. a cube face) and what the scope does with its previous
+/// contents.
 pub struct Target<'a> {
     pub image: &'a Image,
     pub view: vk::ImageView,
@@ -19,7 +43,7 @@ impl<'a> Target<'a> {
     pub fn new(image: &'a Image, load: Load) -> Target<'a> {
         Target {
             image,
-            view: image.view,
+            view: image.layer_views.first().copied().unwrap_or(image.view),
             load,
         }
     }
@@ -57,6 +81,38 @@ impl Recorder<'_> {
         if !images.is_empty() || !buffers.is_empty() {
             self.barrier(&images, &buffers);
         }
+    }
+
+    /// Fills layers 1.. of `image` from layer 0, each layer's top half-height rows the layer
+    /// before's rows averaged in vertical pairs (a linear blit): layer l blurs layer 0 over 2^l
+    /// rows and keeps its columns. The layers are tracked apart while the chain runs (layer
+    /// l − 1 a blit source while layer l is its destination) and end together in
+    /// TRANSFER_SRC_OPTIMAL, as one state again.
+    pub fn halve_down_layers(&self, image: &Image) {
+        if image.layers < 2 {
+            return;
+        }
+        let layers: Vec<Layer> = (0..image.layers)
+            .map(|layer| Layer {
+                image,
+                layer,
+                state: Cell::new(image.state.get()),
+            })
+            .collect();
+        // Layer 0 is read; the others are written (their old contents discarded).
+        let mut first: Vec<(&dyn Tracked, Use)> = vec![(&layers[0], Use::TransferSrc)];
+        first.extend(
+            layers[1..]
+                .iter()
+                .map(|l| (l as &dyn Tracked, Use::TransferDst)),
+        );
+        self.uses(&first);
+        for layer in &layers[1..] {
+            self.blit_half_height(image, layer.layer);
+            self.uses(&[(layer, Use::TransferSrc)]);
+        }
+        let parts: Vec<State> = layers.iter().map(|l| l.state.get()).collect();
+        image.state.set(State::merged(&parts));
     }
 
     /// Records the barriers a rendering scope needs (its attachments, loaded or not by `Load`,

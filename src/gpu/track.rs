@@ -246,6 +246,27 @@ impl State {
     }
 }
 
+impl State {
+    /// The state of an image whose parts (mip levels) were tracked apart and left in the same
+    /// layout: every write and use of any part, visible where it is visible for all of them.
+    pub fn merged(parts: &[State]) -> State {
+        let meet = |a: Access, b: Access| Access {
+            stage: a.stage & b.stage,
+            access: a.access & b.access,
+        };
+        let first = parts[0];
+        parts[1..].iter().fold(first, |m, p| {
+            debug_assert_eq!(m.layout, p.layout, "merged parts in different layouts");
+            State {
+                layout: m.layout,
+                written: m.written.or(p.written),
+                used: m.used.or(p.used),
+                visible: meet(m.visible, p.visible),
+            }
+        })
+    }
+}
+
 /// The barrier a transition needs: (old layout, new layout, src, dst).
 pub type Transition = (vk::ImageLayout, vk::ImageLayout, Access, Access);
 

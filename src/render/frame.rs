@@ -6,6 +6,7 @@
 //!    sky cube    the analytic sky into the cubemap's 6 faces        (only when the sun moved)
 //!    reflection  island + objects + sky, mirrored camera, clipped below the water
 //!                                                        writes reflection colour + depth
+//!                then the colour's layers 1.., each the one before halved in height
 //!    refraction  island + objects below the water        writes refraction colour + depth
 //!    scene       island + objects (main camera)          writes main colour + depth
 //!  compute     waits for the graphics timeline at f − 1 (frame f − 2 last sampled slot f % 2),
@@ -146,7 +147,9 @@ pub fn record_frame(
             scope.record(|| {
                 r.terrain.record(&rec, set, ViewIndex::Reflection);
                 r.sky.record(&rec, set, ViewIndex::Reflection);
-            })
+            });
+            // Its blurred layers, for the water to blur it by the slopes it does not resolve.
+            rec.halve_down_layers(&t.reflection.colour);
         });
         let deep = Load::Clear(vk::ClearValue {
             color: vk::ClearColorValue {

@@ -65,7 +65,12 @@ fn check_formats(
     ctx.require_formats(&[
         FormatUse {
             format: HDR_FORMAT,
-            features: F::COLOR_ATTACHMENT | F::SAMPLED_IMAGE | F::SAMPLED_IMAGE_FILTER_LINEAR,
+            // Blits: the reflection's mip chain (Targets::reflection).
+            features: F::COLOR_ATTACHMENT
+                | F::SAMPLED_IMAGE
+                | F::SAMPLED_IMAGE_FILTER_LINEAR
+                | F::BLIT_SRC
+                | F::BLIT_DST,
             what: "the reflection, refraction and sky textures",
         },
         FormatUse {

@@ -15,6 +15,10 @@ use crate::gpu::{Context, GpuResult, Image, ImageDesc};
 pub const HDR_FORMAT: vk::Format = vk::Format::R16G16B16A16_SFLOAT;
 /// Scene depth (reversed-Z).
 pub const DEPTH_FORMAT: vk::Format = vk::Format::D32_SFLOAT;
+/// Layers of the reflection colour at most: layer 0 is drawn, layer l holds it blurred over 2^l
+/// rows (`Recorder::halve_down_layers`), for the water to blur what it reflects up and down by
+/// the slopes it does not resolve (shaders/surface/water.frag), up to 32 rows (layer 5).
+pub const REFLECTION_LAYERS: u32 = 6;
 
 /// A colour + depth pair.
 pub struct ColourDepth {
@@ -23,29 +27,24 @@ pub struct ColourDepth {
 }
 
 impl ColourDepth {
-    /// `colour_format` and `colour_usage` beside COLOR_ATTACHMENT; `depth_usage` beside
-    /// DEPTH_STENCIL_ATTACHMENT (SAMPLED where a pass reads the depth).
+    /// `colour_format`, `colour_usage` beside COLOR_ATTACHMENT and the colour's layers;
+    /// `depth_usage` beside DEPTH_STENCIL_ATTACHMENT (SAMPLED where a pass reads the depth).
     fn new(
         ctx: &Arc<Context>,
         name: &str,
         extent: vk::Extent2D,
-        (colour_format, colour_usage): (vk::Format, vk::ImageUsageFlags),
+        (colour_format, colour_usage, layers): (vk::Format, vk::ImageUsageFlags, u32),
         depth_usage: vk::ImageUsageFlags,
     ) -> GpuResult<ColourDepth> {
-        let image = |suffix: &str, format, usage| {
-            plain_image(ctx, &format!("{name} {suffix}"), extent, format, usage)
+        let image = |suffix: &str, format, usage, layers| {
+            let name = format!("{name} {suffix}");
+            plain_image(ctx, &name, extent, format, usage, layers)
         };
+        let colour_usage = vk::ImageUsageFlags::COLOR_ATTACHMENT | colour_usage;
+        let depth_usage = vk::ImageUsageFlags::DEPTH_STENCIL_ATTACHMENT | depth_usage;
         Ok(ColourDepth {
-            colour: image(
-                "colour",
-                colour_format,
-                vk::ImageUsageFlags::COLOR_ATTACHMENT | colour_usage,
-            )?,
-            depth: image(
-                "depth",
-                DEPTH_FORMAT,
-                vk::ImageUsageFlags::DEPTH_STENCIL_ATTACHMENT | depth_usage,
-            )?,
+            colour: image("colour", colour_format, colour_usage, layers)?,
+            depth: image("depth", DEPTH_FORMAT, depth_usage, 1)?,
         })
     }
 
@@ -54,13 +53,14 @@ impl ColourDepth {
     }
 }
 
-/// A single-layer 2D image on the graphics queue.
+/// A 2D image on the graphics queue (`layers` > 1: an array, viewed as one).
 fn plain_image(
     ctx: &Arc<Context>,
     name: &str,
     extent: vk::Extent2D,
     format: vk::Format,
     usage: vk::ImageUsageFlags,
+    layers: u32,
 ) -> GpuResult<Image> {
     Image::new(
         ctx,
@@ -69,7 +69,7 @@ fn plain_image(
             extent,
             format,
             usage,
-            layers: 1,
+            layers,
             array_view: false,
             shared: false,
             cube: false,
@@ -82,7 +82,9 @@ pub struct Targets {
     /// or scaled into the output (passes/output.rs). Once the sky is drawn, the depth holds the
     /// anti-aliasing pass's edge mask.
     pub main: ColourDepth,
-    /// What the water reflects (mirrored camera, clipped below the water).
+    /// What the water reflects (mirrored camera, clipped below the water); its colour has
+    /// layers (REFLECTION_LAYERS), layer 0 drawn, the others filled from it blurred up and
+    /// down, for the water to blur what it reflects.
     pub reflection: ColourDepth,
     /// What lies under the water (clipped above it); its depth gives the water's thickness.
     pub refraction: ColourDepth,
@@ -116,7 +118,12 @@ impl Targets {
     ) -> GpuResult<Targets> {
         let rtt = scaled(output, rtt_scale);
         let main_extent = scaled(output, render_scale);
-        let hdr = (HDR_FORMAT, vk::ImageUsageFlags::SAMPLED);
+        let hdr = (HDR_FORMAT, vk::ImageUsageFlags::SAMPLED, 1);
+        // The reflection's layers halve its height down to REFLECTION_LAYERS or one row (at
+        // least 2 layers: the water samples an array).
+        let layers = (32 - rtt.height.leading_zeros()).clamp(2, REFLECTION_LAYERS);
+        let blits = vk::ImageUsageFlags::TRANSFER_SRC | vk::ImageUsageFlags::TRANSFER_DST;
+        let blurred = (HDR_FORMAT, vk::ImageUsageFlags::SAMPLED | blits, layers);
         // The output pass copies the main colour, or the anti-aliasing pass samples it.
         let main_usage = if anti_aliased {
             vk::ImageUsageFlags::SAMPLED
@@ -130,12 +137,18 @@ impl Targets {
                 let usage =
                     vk::ImageUsageFlags::COLOR_ATTACHMENT | vk::ImageUsageFlags::TRANSFER_SRC;
                 let name = "anti-aliased colour";
-                plain_image(ctx, name, main_extent, display_format, usage)
+                plain_image(ctx, name, main_extent, display_format, usage, 1)
             })
             .transpose()?;
         Ok(Targets {
-            main: ColourDepth::new(ctx, "main", main_extent, (display_format, main_usage), only)?,
-            reflection: ColourDepth::new(ctx, "reflection", rtt, hdr, only)?,
+            main: ColourDepth::new(
+                ctx,
+                "main",
+                main_extent,
+                (display_format, main_usage, 1),
+                only,
+            )?,
+            reflection: ColourDepth::new(ctx, "reflection", rtt, blurred, only)?,
             refraction: ColourDepth::new(ctx, "refraction", rtt, hdr, sampled)?,
             anti_aliased,
             output,
