@@ -247,7 +247,7 @@ impl State {
 }
 
 impl State {
-    /// The state of an image whose parts (mip levels) were tracked apart and left in the same
+    /// The state of an image whose parts (layers) were tracked apart and left in the same
     /// layout: every write and use of any part, visible where it is visible for all of them.
     pub fn merged(parts: &[State]) -> State {
         let meet = |a: Access, b: Access| Access {

@@ -65,7 +65,7 @@ fn check_formats(
     ctx.require_formats(&[
         FormatUse {
             format: HDR_FORMAT,
-            // Blits: the reflection's mip chain (Targets::reflection).
+            // Blits: the reflection's blurred layers (Targets::reflection).
             features: F::COLOR_ATTACHMENT
                 | F::SAMPLED_IMAGE
                 | F::SAMPLED_IMAGE_FILTER_LINEAR

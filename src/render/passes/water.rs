@@ -25,7 +25,7 @@ pub use crate::shared::PATCHES;
 
 /// Samplers the water's textures use.
 pub struct WaterSamplers {
-    /// Linear, clamped: reflection (its mip chain too) and refraction colour.
+    /// Linear, clamped: reflection (all its layers) and refraction colour.
     pub clamp: vk::Sampler,
     /// Nearest, clamped: refraction depth.
     pub depth: vk::Sampler,
