@@ -244,9 +244,7 @@ impl State {
             ..State::NEW
         }
     }
-}
 
-impl State {
     /// The state of an image whose parts (layers) were tracked apart and left in the same
     /// layout: every write and use of any part, visible where it is visible for all of them.
     pub fn merged(parts: &[State]) -> State {
@@ -492,5 +490,39 @@ mod tests {
                 Access::NONE
             ))
         );
+    }
+
+    #[test]
+    fn merged_layers_wait_for_every_write_and_see_only_what_all_see() {
+        // A blit chain's end: layer 0 read by a blit after a colour write, layer 1 written
+        // by that blit and then made a blit source.
+        let after = |uses: &[Use]| {
+            uses.iter()
+                .fold(State::NEW, |state, u| transition(state, *u, true).1)
+        };
+        let zero = after(&[Use::Colour { keep: false }, Use::TransferSrc]);
+        let one = after(&[Use::TransferDst, Use::TransferSrc]);
+        let merged = State::merged(&[zero, one]);
+        assert_eq!(merged.layout, L::TRANSFER_SRC_OPTIMAL);
+        assert_eq!(merged.written, zero.written.or(one.written));
+        assert_eq!(merged.used, zero.used.or(one.used));
+        // A fragment read then waits for the transfers (a layout change) as for one image.
+        let (barrier, _) = transition(merged, Use::FragmentSampled, true);
+        let (old, new, src, _) = barrier.expect("a layout transition");
+        assert_eq!(
+            (old, new),
+            (L::TRANSFER_SRC_OPTIMAL, L::SHADER_READ_ONLY_OPTIMAL)
+        );
+        assert!(src.stage.contains(vk::PipelineStageFlags2::ALL_TRANSFER));
+        // Visible only where every part is visible.
+        let seen = State {
+            visible: Access::COPY_READ,
+            ..one
+        };
+        let unseen = State {
+            visible: Access::NONE,
+            ..one
+        };
+        assert_eq!(State::merged(&[seen, unseen]).visible, Access::NONE);
     }
 }

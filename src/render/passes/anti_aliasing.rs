@@ -6,7 +6,7 @@
 //! depth-tested against the mark, anti-aliases only those. Lavapipe runs every pixel of a 4x4
 //! block through the whole shader whatever its branches, but skips a block no pixel of which
 //! passes the early depth test: one draw with FXAA's early exit cost 7.8 ms at 640x360, the two
-//! cost 4 ms (README, Anti-aliasing).
+//! 5.2–5.7 ms (README, Anti-aliasing).
 //!
 //! Why it runs at the main target's size (`--render-scale`), before the output pass scales up:
 //! a full-screen pass at the output's 1280x720 cost 12–14 ms on lavapipe (passes/output.rs);

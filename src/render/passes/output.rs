@@ -1,6 +1,7 @@
 //! Output pass: puts the main target (display colour at `--render-scale` of the output's size),
-//! or with `--aa fxaa` the anti-aliased target of the same size and format, into the output image (a swapchain image or the headless target). A copy when the two have
-//! the same size and format; otherwise a blit, bilinear when the sizes differ, which also
+//! or with `--aa fxaa` the anti-aliased target of the same size and format, into the output
+//! image (a swapchain image or the headless target). A copy when the two have the same size and
+//! format; otherwise a blit, bilinear when the sizes differ, which also
 //! converts between RGBA and BGRA byte orders (a recreated swapchain may change it).
 //!
 //! Why the tone map is not a pass of its own here: at 1280x720 on lavapipe a full-screen
@@ -15,7 +16,8 @@ use crate::gpu::{Image, Recorder, Use};
 use crate::render::OutputTarget;
 
 /// Records the copy or blit of `main` (the main or the anti-aliased colour, last written as a
-/// colour attachment) into `output`. Outside any rendering scope. A blit that scales filters with `scale_filter`.
+/// colour attachment) into `output`. Outside any rendering scope. A blit that scales filters
+/// with `scale_filter`.
 pub fn record(rec: &Recorder, main: &Image, output: &OutputTarget, scale_filter: vk::Filter) {
     rec.uses(&[(main, Use::TransferSrc), (output.image, Use::TransferDst)]);
     let raw = output.raw();

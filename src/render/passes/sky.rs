@@ -91,7 +91,7 @@ pub struct SkyCube {
     pub image: Image,
     /// Renders the analytic sky; `None` for a loaded skybox.
     render: Option<(PipelineLayout, Pipeline)>,
-    /// Sun direction the cube was last rendered for.
+    /// The sky (sun and clouds) the cube was last rendered for.
     rendered_for: Option<Sky>,
 }
 
@@ -164,9 +164,9 @@ impl SkyCube {
         self.render.is_some() && self.rendered_for != Some(*sky)
     }
 
-    /// Renders the analytic sky into the six faces for this sun and cloud cover. Outside any rendering scope;
-    /// leaves the cube in SHADER_READ_ONLY_OPTIMAL. Earlier frames sampling the cube are
-    /// ordered before it by the barrier (same queue).
+    /// Renders the analytic sky into the six faces for this sun and cloud cover. Outside any
+    /// rendering scope; leaves the cube in SHADER_READ_ONLY_OPTIMAL. Earlier frames sampling
+    /// the cube are ordered before it by the barrier (same queue).
     pub fn update(&mut self, rec: &Recorder, sky: &Sky) {
         let Some((layout, pipeline)) = &self.render else {
             return;
