@@ -21,6 +21,8 @@ pub const TEXTURES_VIEW: &str = "textures view";
 pub const ANTI_ALIASING: &str = "anti-aliasing";
 /// The main (or anti-aliased) target copied or scaled into the output.
 pub const OUTPUT: &str = "output";
+/// The overlay (F1, `--overlay`): egui's panel drawn into the output image.
+pub const OVERLAY: &str = "overlay";
 /// FFT model: the spectrum h0 evolved to this frame's time.
 pub const OCEAN_EVOLVE: &str = "ocean evolve";
 /// FFT model: the inverse FFTs of every cascade.

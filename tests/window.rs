@@ -230,3 +230,91 @@ fn window_stops_after_frames() {
         &px[..4]
     );
 }
+
+/// Mean absolute difference of RGB over the pixels of a `w`-wide picture inside (or outside)
+/// the rectangle `[x0, x1) × [y0, y1)`.
+fn region_diff(a: &[u8], b: &[u8], w: usize, rect: [usize; 4], inside: bool) -> f64 {
+    let [x0, y0, x1, y1] = rect;
+    let (mut sum, mut n) = (0.0, 0u64);
+    for (i, (p, q)) in a.chunks(4).zip(b.chunks(4)).enumerate() {
+        let (x, y) = (i % w, i / w);
+        if (x >= x0 && x < x1 && y >= y0 && y < y1) == inside {
+            sum += (0..3)
+                .map(|c| (p[c] as f64 - q[c] as f64).abs())
+                .sum::<f64>()
+                / 3.0;
+            n += 1;
+        }
+    }
+    sum / n.max(1) as f64
+}
+
+#[test]
+fn f1_shows_the_overlay_and_a_click_on_a_preset_changes_the_sea() {
+    let dir = scratch("window-overlay");
+    // Time stands still (--time-scale 0), so frames differ only by what the overlay does.
+    // "storm" in the panel's sea row and the "Save settings" button, in window pixels (the
+    // panel sits at 8,8 and is laid out the same at every size).
+    let script = format!(
+        r#"
+        cd '{dir}'
+        "$VKOCEAN" --validation --size 640x480 --fft-size 64 --cascades 2 --time-scale 0 &
+        pid=$!
+        {wait}
+        drawn_at 640x480
+        sleep 1.5
+        xdotool windowfocus --sync "$wid" 2>/dev/null || true
+        xdotool key --window "$wid" F12; sleep 1.5
+        xdotool key --window "$wid" F1; sleep 1.5
+        xdotool key --window "$wid" F12; sleep 1.5
+        xdotool mousemove --window "$wid" 235 79; sleep 0.5; xdotool click 1; sleep 3
+        xdotool mousemove --window "$wid" 137 58; sleep 0.5; xdotool click 1; sleep 1.5
+        xdotool key --window "$wid" F1; sleep 1.5
+        xdotool key --window "$wid" F12; sleep 1.5
+        xdotool key --window "$wid" Escape 2>/dev/null || true
+        for _ in $(seq 200); do kill -0 "$pid" 2>/dev/null || break; sleep 0.1; done
+        kill "$pid" 2>/dev/null && echo "vkocean did not exit on Esc" >&2
+        wait "$pid"
+        "#,
+        dir = dir.display(),
+        wait = WAIT_FOR_WINDOW
+    );
+    let out = under_xvfb(&script);
+    let err = clean_run(&out, "vkocean");
+    // F12 names its files by frame: in frame order, before F1, with the overlay, after.
+    let mut shots: Vec<(u64, std::path::PathBuf)> = std::fs::read_dir(&dir)
+        .unwrap()
+        .filter_map(|e| {
+            let path = e.unwrap().path();
+            let name = path.file_name()?.to_str()?.to_string();
+            let n = name
+                .strip_prefix("vkocean-")?
+                .strip_suffix(".png")?
+                .parse()
+                .ok()?;
+            Some((n, path))
+        })
+        .collect();
+    shots.sort();
+    assert_eq!(shots.len(), 3, "three F12 screenshots: {err}");
+    let [plain, overlay, storm] = [0, 1, 2].map(|i| read_png(&shots[i].1).2);
+    let panel = [8, 8, 8 + 306, 8 + 420];
+    let w = 640;
+    let outside = region_diff(&plain, &overlay, w, panel, false);
+    let inside = region_diff(&plain, &overlay, w, panel, true);
+    assert!(
+        outside < 1.0,
+        "F1 changed the picture outside the panel by {outside}"
+    );
+    assert!(inside > 10.0, "F1 drew no panel ({inside})");
+    let changed = region_diff(&plain, &storm, w, panel, false);
+    assert!(
+        changed > 10.0,
+        "the click on 'storm' did not change the sea ({changed})"
+    );
+    // The click on "Save settings" wrote the storm's settings.
+    let saved = std::fs::read_to_string(dir.join("vkocean-settings.toml"))
+        .unwrap_or_else(|e| panic!("settings saved: {e}: {err}"));
+    assert!(saved.contains("preset = \"storm\""), "{saved}");
+    assert!(saved.contains("wind-speed = 26.5"), "{saved}");
+}

@@ -140,7 +140,12 @@ pub fn measure(
     };
     let mut index = 0;
     while index == 0 || started.elapsed().as_secs_f64() < warmup_s {
-        session.frame(&output, &frame_inputs(run, index), &Delivery::default())?;
+        session.frame(
+            &output,
+            &frame_inputs(run, index),
+            &Delivery::default(),
+            None,
+        )?;
         index += 1;
         progress(format!(
             "warm-up {:.1}/{warmup_s:.1} s, {index} frames",
@@ -150,7 +155,12 @@ pub fn measure(
     let warmup_frames = session.start_measuring();
     let measuring = Instant::now();
     for k in 0..frames {
-        session.frame(&output, &frame_inputs(run, index), &Delivery::default())?;
+        session.frame(
+            &output,
+            &frame_inputs(run, index),
+            &Delivery::default(),
+            None,
+        )?;
         index += 1;
         let secs = measuring.elapsed().as_secs_f64();
         progress(format!(

@@ -7,14 +7,14 @@ use clap::{Args, Subcommand};
 use super::values::*;
 use super::{Cli, UsageError, WavesArg, MAX_SIDE};
 
-#[derive(Subcommand, Debug)]
+#[derive(Subcommand, Debug, Clone)]
 pub enum Command {
     /// Benchmarks (GPU timestamps, medians, a reference run in the same process).
     #[command(subcommand)]
     Bench(BenchCommand),
 }
 
-#[derive(Subcommand, Debug)]
+#[derive(Subcommand, Debug, Clone)]
 pub enum BenchCommand {
     /// Time our GPU FFT against rustfft (one CPU thread) on the same 2D transforms.
     Fft(BenchFftArgs),
@@ -26,7 +26,7 @@ pub enum BenchCommand {
     Gerstner(BenchGerstnerArgs),
 }
 
-#[derive(Args, Debug)]
+#[derive(Args, Debug, Clone)]
 pub struct BenchFramesArgs {
     /// Warm-up before measuring (s; at least one frame).
     #[arg(long, value_name = "S", default_value = "2", allow_hyphen_values = true,
@@ -47,7 +47,7 @@ pub struct BenchFramesArgs {
     pub csv: Option<PathBuf>,
 }
 
-#[derive(Args, Debug)]
+#[derive(Args, Debug, Clone)]
 pub struct BenchGerstnerArgs {
     /// Wave counts of the first table (grid width 200), 1 to 13 (seed 000's table).
     #[arg(long, value_name = "M,...", value_delimiter = ',', default_value = "1,3,6,10",
@@ -114,7 +114,7 @@ impl BenchGerstnerArgs {
     }
 }
 
-#[derive(Args, Debug)]
+#[derive(Args, Debug, Clone)]
 pub struct BenchFftArgs {
     /// FFT sizes, comma-separated powers of two from 64 to 1024.
     #[arg(long, value_name = "N,...", value_delimiter = ',', value_parser = parse_fft_size,

@@ -8,7 +8,9 @@ use clap::{Parser, ValueEnum};
 
 mod bench;
 mod config;
-mod presets;
+pub mod presets;
+mod retune;
+pub mod tuning;
 mod values;
 
 pub use bench::{BenchCommand, BenchFftArgs, BenchFramesArgs, BenchGerstnerArgs, Command};
@@ -35,14 +37,14 @@ pub const MAX_SIDE: u32 = 16384;
 /// `--size` when not given.
 pub const DEFAULT_SIZE: (u32, u32) = (1280, 720);
 
-#[derive(Parser, Debug)]
+#[derive(Parser, Debug, Clone)]
 #[command(
     name = "vkocean",
     version,
     // A flag given twice keeps the last value: --config's settings come first, the command line wins.
     args_override_self = true,
     about = "A real-time FFT ocean on hand-written Vulkan.",
-    after_help = "Window controls: W/S forward/back, A/D sideways, Q/E down/up, Shift faster, left mouse drag to look, F12 screenshot, Esc quit.\n\
+    after_help = "Window controls: W/S forward/back, A/D sideways, Q/E down/up, Shift faster, left mouse drag to look, F1 overlay (settings and GPU timings), F12 screenshot, Esc quit.\n\
                   Exit codes: 0 ok, 1 runtime error, 2 bad usage, 3 validation reported warnings or errors.\n\
                   Without a GPU, Mesa's lavapipe (CPU) driver is used; install it with tools/setup."
 )]
@@ -201,6 +203,17 @@ pub struct Cli {
           value_parser = |s: &str| parse_above(s, 0.0, 10.0), help_heading = "Scene")]
     pub dt: Option<f64>,
 
+    /// Simulation seconds per second of the run (per --dt step headless); 0 stops the waves
+    /// (0 to 100).
+    #[arg(long, global = true, value_name = "X", default_value = "1", allow_hyphen_values = true,
+          value_parser = |s: &str| parse_in(s, 0.0, tuning::MAX_TIME_SCALE), help_heading = "Scene")]
+    pub time_scale: f64,
+
+    /// Draw the overlay (frame timings and the settings; F1 in a window) into the picture:
+    /// shown from the start in a window, drawn into --headless screenshots.
+    #[arg(long)]
+    pub overlay: bool,
+
     /// Camera position in metres (y up, water at y = 0); default 0,12,0.
     #[arg(long, global = true, value_name = "X,Y,Z", value_parser = parse_vec3, allow_hyphen_values = true, help_heading = "Scene")]
     pub camera: Option<[f32; 3]>,
@@ -277,6 +290,11 @@ pub struct Cli {
     /// Test only: paint the main view's sky in this solid linear colour (0..1 each).
     #[arg(long, hide = true, value_name = "R,G,B", value_parser = parse_vec3)]
     pub background: Option<[f32; 3]>,
+
+    /// Test only: after the first headless frame, change each KEY (a flag's name) to VALUE
+    /// through the overlay's settings API.
+    #[arg(long, hide = true, value_name = "KEY=VALUE;...")]
+    pub live_set: Option<String>,
 
     /// Test only: record a deliberate synchronization hazard (validation must catch it).
     #[arg(long, hide = true)]
@@ -499,7 +517,13 @@ impl Cli {
         let camera = self.camera_setting()?;
         let quality = quality_level(self.quality_in_force());
         let sea = self.preset.map_or(DEFAULT_SEA, sea_preset);
+        let live_set = self.live_set_pairs()?;
         Ok(RunSettings {
+            tunables: self.tunables(),
+            retune: self.retune(),
+            overlay: self.overlay,
+            live_set,
+            time_scale: self.time_scale,
             quality: (self.quality_in_force().name(), self.quality_chosen_by()),
             scene,
             camera,

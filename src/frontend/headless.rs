@@ -6,11 +6,13 @@ use std::time::{Duration, Instant};
 
 use ash::vk;
 
+use super::clock::Clock;
+use super::overlay::Overlay;
 use super::session::{check_size, readback_buffer, Session};
 use super::{Outcome, RunSettings};
 use crate::gpu::{Context, Image, ImageDesc};
 use crate::output::{encode_png, PendingFile};
-use crate::render::{Delivery, FrameInputs, OutputTarget};
+use crate::render::{Delivery, FrameInputs, OutputTarget, OverlayDraw};
 
 /// Format of the offscreen target: 8-bit sRGB, the bytes a PNG stores.
 const OUTPUT_FORMAT: vk::Format = vk::Format::R8G8B8A8_SRGB;
@@ -22,6 +24,8 @@ const DUMP_FILES: [&str; 4] = ["h0.npy", "displacement.npy", "normals.npy", "par
 /// Simulation time step per frame (s).
 pub const FIXED_DT_S: f32 = 1.0 / 60.0;
 
+// Long: a run in the order its promises need (output paths checked before any work, frames,
+// everything encoded before the first file is committed); split, that order would be hidden.
 pub fn run(s: &RunSettings) -> anyhow::Result<Outcome> {
     let screenshot = PendingFile::create_if("--screenshot", s.screenshot.as_deref())?;
     let profile = PendingFile::create_if("--profile", s.profile.as_deref())?;
@@ -53,17 +57,36 @@ pub fn run(s: &RunSettings) -> anyhow::Result<Outcome> {
         None
     };
     let mut session = Session::new(&ctx, format, extent, s)?;
+    let mut overlay = if s.overlay {
+        session.keep_live_timings();
+        Some(Overlay::new(&ctx, format, &s.tunables, s.quality.0, true)?)
+    } else {
+        None
+    };
+    let dt = s.dt_s.unwrap_or(FIXED_DT_S as f64);
+    let mut clock = Clock::new(s.start_time_s, s.time_scale);
 
     let mut last_progress = Instant::now();
     let mut last_value = 0;
     for i in 0..frames {
         let capture = readback.as_ref().filter(|_| i + 1 == frames);
-        let inputs = frame_inputs(s, i);
+        if i == 1 && !s.live_set.is_empty() {
+            let time_scale = apply_live_set(s, &mut session)?;
+            clock.set(i as f64 * dt, time_scale, false);
+        }
+        let inputs = FrameInputs {
+            time_s: clock.at(i as f64 * dt),
+            ..FrameInputs::default()
+        };
         let delivery = Delivery {
             readback: capture,
             present: None,
         };
-        last_value = session.frame(&output, &inputs, &delivery)?;
+        let draw = match overlay.as_mut() {
+            Some(o) => Some(overlay_frame(o, &mut session, extent, i as f64 * dt)?),
+            None => None,
+        };
+        last_value = session.frame(&output, &inputs, &delivery, draw)?;
         if s.stats {
             session.print_stats()?;
         }
@@ -116,8 +139,42 @@ pub fn run(s: &RunSettings) -> anyhow::Result<Outcome> {
             file.commit(bytes)?;
         }
     }
+    if let Some([x, y, w, h]) = overlay.as_ref().and_then(|o| o.rect) {
+        eprintln!("vkocean: overlay drawn at {x:.0},{y:.0} size {w:.0}x{h:.0}");
+    }
+    drop(overlay);
     finished.commit(profile, "")?;
     Ok(Outcome { counters })
+}
+
+/// `--live-set`: the tunables changed as the overlay changes them, resolved as flags and
+/// applied between frames; returns the new time scale.
+fn apply_live_set(s: &RunSettings, session: &mut Session) -> anyhow::Result<f64> {
+    let mut tunables = s.tunables.clone();
+    for (key, value) in &s.live_set {
+        tunables.set(key, value).map_err(anyhow::Error::msg)?;
+    }
+    let retuned = (s.retune.0)(&tunables).map_err(anyhow::Error::msg)?;
+    session.retune(&retuned)?;
+    Ok(retuned.time_scale)
+}
+
+/// The overlay's panel for a headless frame at `time_s` (no input: it is laid out as shown).
+fn overlay_frame<'o>(
+    o: &'o mut Overlay,
+    session: &mut Session,
+    extent: vk::Extent2D,
+    time_s: f64,
+) -> anyhow::Result<OverlayDraw<'o>> {
+    let size = egui::vec2(extent.width as f32, extent.height as f32);
+    let input = egui::RawInput {
+        screen_rect: Some(egui::Rect::from_min_size(egui::Pos2::ZERO, size)),
+        time: Some(time_s),
+        ..egui::RawInput::default()
+    };
+    let (_, textures) = o.run(input, session);
+    o.upload(textures, session)?;
+    Ok(o.draw())
 }
 
 /// The offscreen colour target both the headless run and `bench frames` render into.
@@ -152,7 +209,10 @@ impl Offscreen {
                 name: "headless output",
                 extent,
                 format,
-                usage: vk::ImageUsageFlags::TRANSFER_DST | vk::ImageUsageFlags::TRANSFER_SRC,
+                // Colour attachment: the overlay draws into it (--overlay).
+                usage: vk::ImageUsageFlags::TRANSFER_DST
+                    | vk::ImageUsageFlags::TRANSFER_SRC
+                    | vk::ImageUsageFlags::COLOR_ATTACHMENT,
                 layers: 1,
                 array_view: false,
                 shared: false,
@@ -170,6 +230,7 @@ impl Offscreen {
     pub fn output(&self) -> OutputTarget<'_> {
         OutputTarget {
             image: &self.image,
+            view: self.image.view,
             extent: self.extent,
             format: self.format,
         }
@@ -180,7 +241,8 @@ impl Offscreen {
 /// [`FIXED_DT_S`]).
 pub fn frame_inputs(s: &RunSettings, i: u64) -> FrameInputs {
     FrameInputs {
-        time_s: s.start_time_s + i as f64 * s.dt_s.unwrap_or(FIXED_DT_S as f64),
+        time_s: Clock::new(s.start_time_s, s.time_scale)
+            .at(i as f64 * s.dt_s.unwrap_or(FIXED_DT_S as f64)),
         ..FrameInputs::default()
     }
 }

@@ -1,14 +1,17 @@
 //! Two frontends, one renderer: [`headless`] renders offscreen and reads the last frame back,
 //! [`windowed`] presents to a winit window. Both drive a [`session::Session`].
 
+pub mod clock;
 pub mod fly;
 pub mod headless;
+pub mod overlay;
 pub mod session;
 pub mod windowed;
 
 use std::path::PathBuf;
 use std::sync::Arc;
 
+use crate::cli::tuning::Tunables;
 use crate::gpu::{MessageCounters, PresentMode};
 
 /// Everything a run needs, validated by the command line.
@@ -45,6 +48,30 @@ pub struct RunSettings {
     pub start_time_s: f64,
     /// Time step per frame (s); `None`: 1/60 headless, wall-clock time in a window.
     pub dt_s: Option<f64>,
+    /// `--time-scale`: simulation seconds per second (or per `--dt` step).
+    pub time_scale: f64,
+    /// `--overlay`: the overlay is drawn from the first frame (headless screenshots too).
+    pub overlay: bool,
+    /// What the overlay can change, as resolved from the flags.
+    pub tunables: Tunables,
+    /// Turns changed tunables into the settings a restart with those flags would have.
+    pub retune: Retune,
+    /// Test only (`--live-set`): tunables changed after the first headless frame.
+    pub live_set: Vec<(String, String)>,
+}
+
+/// The settings a run with other tunables would have: the command line's resolution of its
+/// flags (`Cli::retuned`), so a live change and a restart with the flag agree.
+#[derive(Clone)]
+pub struct Retune(pub Arc<RetuneFn>);
+
+/// [`Retune`]'s function: changed tunables to settings, or the flags' error message.
+pub type RetuneFn = dyn Fn(&Tunables) -> Result<RunSettings, String> + Send + Sync;
+
+impl std::fmt::Debug for Retune {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("Retune")
+    }
 }
 
 /// What a finished run reports back to `main`.

@@ -8,7 +8,9 @@ use ash::vk;
 
 use super::RunSettings;
 use crate::gpu::selftest::SyncHazard;
-use crate::gpu::{Buffer, Context, Frames, GpuResult, GpuTimings, MemoryLocation, Profilers};
+use crate::gpu::{
+    Buffer, Context, FrameTimes, Frames, GpuResult, GpuTimings, MemoryLocation, Profilers,
+};
 use crate::ocean::buoy::Buoy;
 use crate::ocean::dump;
 use crate::ocean::simulation::Simulation;
@@ -17,7 +19,8 @@ use crate::output::PendingFile;
 use crate::profile::{ProfileReport, WARMUP_FRAMES};
 use crate::render::scene::shore_scale;
 use crate::render::{
-    record_frame, Delivery, FrameInputs, FrameParts, OceanBindings, OutputTarget, Renderer,
+    record_frame, Delivery, FrameInputs, FrameParts, OceanBindings, OutputTarget, OverlayDraw,
+    Renderer,
 };
 
 pub struct Session {
@@ -68,21 +71,9 @@ impl Session {
             );
         }
         let simulation = Simulation::new(ctx, &s.ocean)?;
-        let ocean = OceanBindings {
-            displacement: simulation.displacement.iter().map(|i| i.view).collect(),
-            normals: simulation.normals.iter().map(|i| i.view).collect(),
-            patch_m: simulation.patch_sizes(),
-            cascades: simulation.cascades.len() as u32,
-            texels: simulation.settings.fft_size as u32,
-            max_displacement_m: simulation.max_displacement_m as f32,
-            sea_moments: simulation.sea_moments,
-            mean_square_slope: simulation.mean_square_slope() as f32,
-        };
-        let [bx, bz] = s.scene.layout.buoy_xz;
-        // The buoy floats on the waves as the water draws them, shallows included.
-        let shore = shore_scale(s.scene.layout, simulation.sea_moments);
-        let buoy = Buoy::on(&s.ocean, [bx as f64, bz as f64], shore);
+        let buoy = buoy_on(s, &simulation);
         let camera = s.camera.unwrap_or_default();
+        let ocean = ocean_bindings(&simulation);
         let renderer = Renderer::new(ctx, output_format, extent, ocean, &s.scene, camera)?;
         let mut session = Session {
             ctx: ctx.clone(),
@@ -115,6 +106,7 @@ impl Session {
         output: &OutputTarget,
         inputs: &FrameInputs,
         delivery: &Delivery,
+        overlay: Option<OverlayDraw>,
     ) -> GpuResult<u64> {
         let now = Instant::now();
         if let Some(last) = self.last_frame_start {
@@ -142,10 +134,51 @@ impl Session {
             renderer: &mut self.renderer,
             simulation: &mut self.simulation,
             profilers: &mut self.profilers,
+            overlay,
         };
         let value = record_frame(parts, output, inputs, delivery, self.hazard.take())?;
         self.last = Some((slot, value, inputs.time_s));
         Ok(value)
+    }
+
+    /// Applies changed settings between two frames (the overlay, `--live-set`): a changed sea
+    /// or grid makes a new simulation (h0 computed and uploaded anew); a changed sea, grid,
+    /// scale, terrain grid or anti-aliasing a new renderer (targets, pipelines, frame sets);
+    /// anything else (sun, clouds, Fresnel, view, tessellation edge) is a uniform. Nothing waits
+    /// for the GPU: the replaced objects go to the deferred-deletion queue, and the frames in
+    /// flight finish with them. On an error the session keeps its old state.
+    pub fn retune(&mut self, s: &RunSettings) -> anyhow::Result<()> {
+        let ocean_changed = s.ocean != self.simulation.settings;
+        if !ocean_changed && !self.renderer.needs_rebuild(&s.scene) {
+            self.renderer.set_scene(&s.scene);
+            return Ok(());
+        }
+        let simulation = if ocean_changed {
+            Some(Simulation::new(&self.ctx, &s.ocean)?)
+        } else {
+            None
+        };
+        let bindings = ocean_bindings(simulation.as_ref().unwrap_or(&self.simulation));
+        self.renderer = self.renderer.remade(bindings, &s.scene)?;
+        if let Some(simulation) = simulation {
+            self.buoy = buoy_on(s, &simulation);
+            self.simulation = simulation;
+        }
+        Ok(())
+    }
+
+    /// Keeps the last finished frame's pass times of both queues (the overlay shows them).
+    pub fn keep_live_timings(&mut self) {
+        self.profilers.graphics.live = true;
+        self.profilers.compute.live = true;
+    }
+
+    /// The last finished frame's pass times: (graphics, compute), once `keep_live_timings`.
+    pub fn latest_timings(&self) -> (Option<&FrameTimes>, Option<&FrameTimes>) {
+        (
+            self.profilers.graphics.latest(),
+            self.profilers.compute.latest(),
+        )
     }
 
     /// Seconds since the session was made.
@@ -293,6 +326,28 @@ impl Finished {
         eprintln!("{}{summary_suffix}", self.summary);
         Ok(())
     }
+}
+
+/// What the renderer binds of a simulation: its images and cascade layout.
+fn ocean_bindings(simulation: &Simulation) -> OceanBindings {
+    OceanBindings {
+        displacement: simulation.displacement.iter().map(|i| i.view).collect(),
+        normals: simulation.normals.iter().map(|i| i.view).collect(),
+        patch_m: simulation.patch_sizes(),
+        cascades: simulation.cascades.len() as u32,
+        texels: simulation.settings.fft_size as u32,
+        max_displacement_m: simulation.max_displacement_m as f32,
+        sea_moments: simulation.sea_moments,
+        mean_square_slope: simulation.mean_square_slope() as f32,
+    }
+}
+
+/// The buoy where the settings put it, floating on the waves as the water draws them,
+/// shallows included.
+fn buoy_on(s: &RunSettings, simulation: &Simulation) -> Buoy {
+    let [bx, bz] = s.scene.layout.buoy_xz;
+    let shore = shore_scale(s.scene.layout, simulation.sea_moments);
+    Buoy::on(&s.ocean, [bx as f64, bz as f64], shore)
 }
 
 /// A host-visible buffer for reading back a `width x height` RGBA8 image.

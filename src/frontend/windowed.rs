@@ -21,6 +21,7 @@ use winit::raw_window_handle::{HasDisplayHandle, HasWindowHandle};
 use winit::window::{Window, WindowId};
 
 use super::fly::{FlyCamera, Move};
+use super::overlay::{Overlay, Requests};
 use super::session::{check_size, readback_buffer, Session};
 use super::{Outcome, RunSettings};
 use crate::gpu::image::full_range;
@@ -57,6 +58,7 @@ pub fn run(s: &RunSettings) -> anyhow::Result<Outcome> {
         capture_next: false,
         exit_after_capture: false,
         fly: FlyCamera::default(),
+        clock: super::clock::Clock::new(s.start_time_s, s.time_scale),
         last_frame: None,
         title_since: None,
     };
@@ -76,6 +78,9 @@ pub fn run(s: &RunSettings) -> anyhow::Result<Outcome> {
 /// GPU state tied to the window. Field order is drop order: GPU objects (and with the last of
 /// them the context and its surface) go before the window they present to.
 struct WindowState {
+    /// The overlay (F1) and the window input it reads; before the session (drop order).
+    overlay: Overlay,
+    egui_input: egui_winit::State,
     session: Session,
     swapchain: Swapchain,
     /// Screenshot staging, sized to the swapchain.
@@ -99,6 +104,8 @@ struct App {
     /// Exit once the captured frame is saved (Esc / close with --screenshot).
     exit_after_capture: bool,
     fly: FlyCamera,
+    /// Simulation time (`--time`, `--time-scale`, the overlay's pause).
+    clock: super::clock::Clock,
     /// When the previous frame started (camera motion uses the wall-clock step).
     last_frame: Option<std::time::Instant>,
     /// When the title was last updated, the frame count and the size it showed.
@@ -191,8 +198,21 @@ impl App {
                 "--screenshot: this window's swapchain images cannot be copied (no TRANSFER_SRC usage)"
             );
         }
-        let session = Session::new(&ctx, swapchain.format, swapchain.extent, &self.settings)?;
+        let mut session = Session::new(&ctx, swapchain.format, swapchain.extent, &self.settings)?;
+        session.keep_live_timings();
+        let s = &self.settings;
+        let overlay = Overlay::new(&ctx, swapchain.format, &s.tunables, s.quality.0, s.overlay)?;
+        let egui_input = egui_winit::State::new(
+            overlay.context().clone(),
+            egui::ViewportId::ROOT,
+            &window,
+            Some(window.scale_factor() as f32),
+            None,
+            Some(ctx.info.limits.max_image_dimension2_d as usize),
+        );
         Ok(WindowState {
+            overlay,
+            egui_input,
             session,
             swapchain,
             readback: None,
@@ -223,6 +243,29 @@ impl App {
             state.needs_recreate = false;
         }
         let extent = state.swapchain.extent;
+        if state.overlay.format() != state.swapchain.format {
+            // A recreated swapchain in another format: the overlay's pipeline follows it.
+            state.session.frames.wait_all()?;
+            let mut o = Overlay::new(
+                &state.session.ctx,
+                state.swapchain.format,
+                &state.overlay.applied,
+                self.settings.quality.0,
+                state.overlay.visible,
+            )?;
+            o.edit = state.overlay.edit.clone();
+            state.overlay = o;
+        }
+        apply_pending(&self.settings, state);
+        let progress = match self.settings.dt_s {
+            Some(dt) => state.session.frames.submitted() as f64 * dt,
+            None => state.session.elapsed_s(),
+        };
+        self.clock.set(
+            progress,
+            state.overlay.applied.time_scale,
+            state.overlay.paused,
+        );
 
         let Some((image, suboptimal)) = state.swapchain.acquire(&state.session.frames)? else {
             state.needs_recreate = true;
@@ -260,6 +303,7 @@ impl App {
         };
         let output = OutputTarget {
             image: &swapchain_image,
+            view: image.view,
             extent,
             format: state.swapchain.format,
         };
@@ -270,13 +314,18 @@ impl App {
         self.last_frame = Some(now);
         self.fly.update(state.session.renderer.camera_mut(), step);
         let inputs = FrameInputs {
-            time_s: match self.settings.dt_s {
-                Some(dt) => {
-                    self.settings.start_time_s + state.session.frames.submitted() as f64 * dt
-                }
-                None => self.settings.start_time_s + state.session.elapsed_s(),
-            },
+            time_s: self.clock.at(progress),
             ..FrameInputs::default()
+        };
+        let mut requests = Requests::default();
+        let draw = if state.overlay.visible {
+            let input = state.egui_input.take_egui_input(&state.window);
+            let (asked, textures) = state.overlay.run(input, &state.session);
+            state.overlay.upload(textures, &mut state.session)?;
+            requests = asked;
+            Some(state.overlay.draw())
+        } else {
+            None
         };
         let delivery = Delivery {
             readback,
@@ -285,7 +334,8 @@ impl App {
                 ready: image.ready,
             }),
         };
-        let value = state.session.frame(&output, &inputs, &delivery)?;
+        let value = state.session.frame(&output, &inputs, &delivery, draw)?;
+        self.capture_next |= requests.screenshot;
         state.needs_recreate |= state.swapchain.present(&image)?;
         self.frames_done += 1;
         match self.title_since {
@@ -341,6 +391,9 @@ impl App {
             }
             self.capture_next = false;
         }
+        if requests.save {
+            save_settings(state);
+        }
         if last || (self.exit_after_capture && self.screenshot.is_none()) {
             self.shutdown(event_loop);
         }
@@ -369,6 +422,63 @@ impl App {
     }
 }
 
+/// F1 pressed (not a repeat).
+fn is_f1(event: &WindowEvent) -> bool {
+    matches!(
+        event,
+        WindowEvent::KeyboardInput {
+            event: KeyEvent {
+                logical_key: Key::Named(NamedKey::F1),
+                state: ElementState::Pressed,
+                repeat: false,
+                ..
+            },
+            ..
+        }
+    )
+}
+
+/// Applies the overlay's changed tunables between frames (`Session::retune`); a setting the
+/// run refuses (e.g. wireframe without fillModeNonSolid) is undone and reported in the panel.
+fn apply_pending(settings: &RunSettings, state: &mut WindowState) {
+    let Some(tunables) = state.overlay.pending() else {
+        return;
+    };
+    let done = (settings.retune.0)(&tunables)
+        .map_err(anyhow::Error::msg)
+        .and_then(|s| state.session.retune(&s));
+    match done {
+        Ok(()) => {
+            state.overlay.applied = tunables;
+            state.overlay.status.clear();
+        }
+        Err(e) => {
+            state.overlay.edit = state.overlay.applied.clone();
+            state.overlay.status = format!("not applied: {e}");
+        }
+    }
+}
+
+/// The overlay's "Save settings": the settings in force and the camera, as a `--config` file
+/// in the working directory.
+fn save_settings(state: &mut WindowState) {
+    let mut t = state.overlay.applied.clone();
+    let camera = state.session.renderer.camera();
+    let at = camera.position + camera.forward * 100.0;
+    t.camera = Some((camera.position.to_array(), at.to_array()));
+    let path = std::path::Path::new(SETTINGS_FILE);
+    let saved = PendingFile::create("the overlay's settings file", path)
+        .and_then(|f| f.commit(t.to_toml().as_bytes()));
+    state.overlay.status = match saved {
+        Ok(()) => format!("saved {SETTINGS_FILE} (vkocean --config {SETTINGS_FILE})"),
+        Err(e) => format!("not saved: {e}"),
+    };
+    eprintln!("vkocean: {}", state.overlay.status);
+}
+
+/// Where the overlay saves the settings.
+const SETTINGS_FILE: &str = "vkocean-settings.toml";
+
 /// Swapchain bytes to RGBA (B8G8R8A8 formats swap red and blue).
 fn bgra_to_rgba(bytes: &[u8], format: vk::Format) -> Vec<u8> {
     let mut pixels = bytes.to_vec();
@@ -392,6 +502,22 @@ impl ApplicationHandler for App {
     }
 
     fn window_event(&mut self, event_loop: &ActiveEventLoop, _id: WindowId, event: WindowEvent) {
+        if let Some(state) = self.state.as_mut() {
+            if is_f1(&event) {
+                state.overlay.visible = !state.overlay.visible;
+                self.fly.release_all();
+                return;
+            }
+            // The overlay first: what it takes (a click on it, typing into it) goes no further.
+            if state.overlay.visible
+                && state
+                    .egui_input
+                    .on_window_event(&state.window, &event)
+                    .consumed
+            {
+                return;
+            }
+        }
         match event {
             WindowEvent::CloseRequested => self.request_exit(event_loop),
             WindowEvent::KeyboardInput {

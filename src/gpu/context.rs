@@ -65,7 +65,8 @@ pub struct Context {
     pub plan: QueuePlan,
     /// The graphics timeline: frame f's graphics submission signals f + 1.
     pub frame_timeline: vk::Semaphore,
-    allocator: ManuallyDrop<Mutex<Allocator>>,
+    /// Shared (an `Arc`) with the overlay's egui renderer, which allocates through it too.
+    allocator: ManuallyDrop<Arc<Mutex<Allocator>>>,
     /// Objects dropped by their owners, destroyed once `frame_timeline` passes their tag.
     garbage: Mutex<Vec<(u64, Garbage)>>,
     /// Timeline value the next graphics submission will signal (tag for new garbage).
@@ -234,7 +235,7 @@ impl Context {
             compute,
             plan,
             frame_timeline,
-            allocator: ManuallyDrop::new(Mutex::new(allocator)),
+            allocator: ManuallyDrop::new(Arc::new(Mutex::new(allocator))),
             garbage: Mutex::new(Vec::new()),
             pending_value: AtomicU64::new(1),
             signaled_value: AtomicU64::new(0),
@@ -276,6 +277,12 @@ impl Context {
         self.allocator
             .lock()
             .unwrap_or_else(|poisoned| poisoned.into_inner())
+    }
+
+    /// The allocator, for a renderer of another crate that allocates through it (the overlay's).
+    /// Its holder must be dropped before the context (it holds an `Arc<Context>` too).
+    pub(crate) fn shared_allocator(&self) -> Arc<Mutex<Allocator>> {
+        Arc::clone(&self.allocator)
     }
 
     /// Hands an object to the deletion queue: it is destroyed once the GPU has finished every

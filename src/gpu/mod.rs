@@ -8,6 +8,7 @@ pub mod compute;
 pub mod context;
 pub mod debug;
 pub mod descriptors;
+pub mod egui;
 pub mod error;
 pub mod formats;
 pub mod frame;

@@ -34,8 +34,9 @@ impl Tracked for Layer<'_> {
 /// layered one, or another view, e.g. a cube face) and what the scope does with its previous
 /// contents.
 pub struct Target<'a> {
-    pub image: &'a Image,
+    pub image: &'a dyn Tracked,
     pub view: vk::ImageView,
+    pub extent: vk::Extent2D,
     pub load: Load,
 }
 
@@ -44,6 +45,22 @@ impl<'a> Target<'a> {
         Target {
             image,
             view: image.layer_views.first().copied().unwrap_or(image.view),
+            extent: image.extent,
+            load,
+        }
+    }
+
+    /// An image the renderer does not own (a swapchain image), through `view`.
+    pub fn external(
+        image: &'a dyn Tracked,
+        view: vk::ImageView,
+        extent: vk::Extent2D,
+        load: Load,
+    ) -> Target<'a> {
+        Target {
+            image,
+            view,
+            extent,
             load,
         }
     }
@@ -149,7 +166,7 @@ impl Recorder<'_> {
             extent: colour
                 .first()
                 .or(depth.as_ref())
-                .map_or(vk::Extent2D::default(), |t| t.image.extent),
+                .map_or(vk::Extent2D::default(), |t| t.extent),
             colour: colour
                 .iter()
                 .map(|t| attachment(t, vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL))

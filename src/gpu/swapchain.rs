@@ -64,6 +64,8 @@ pub fn choose_surface_format(formats: &[vk::SurfaceFormatKHR]) -> Option<vk::Sur
 pub struct AcquiredImage {
     pub index: u32,
     pub image: vk::Image,
+    /// Its colour view (the overlay draws into the image).
+    pub view: vk::ImageView,
     /// Signalled when the image may be written (wait on it where the frame first touches the
     /// image: the output pass's copy or blit).
     pub acquired: vk::Semaphore,
@@ -74,6 +76,7 @@ pub struct AcquiredImage {
 /// A retired swapchain waiting for its presents to drain.
 struct Retired {
     raw: vk::SwapchainKHR,
+    views: Vec<vk::ImageView>,
     ready: Vec<vk::Semaphore>,
     /// `presents` count at which it may be destroyed.
     destroy_at: u64,
@@ -84,6 +87,8 @@ pub struct Swapchain {
     fns: ash::khr::swapchain::Device,
     raw: vk::SwapchainKHR,
     images: Vec<vk::Image>,
+    /// One colour view per image (the overlay pass renders into the image).
+    views: Vec<vk::ImageView>,
     ready: Vec<vk::Semaphore>,
     acquire: Vec<vk::Semaphore>,
     retired: Vec<Retired>,
@@ -107,6 +112,7 @@ impl Swapchain {
             fns: ash::khr::swapchain::Device::new(&ctx.instance, &ctx.device),
             raw: vk::SwapchainKHR::null(),
             images: Vec::new(),
+            views: Vec::new(),
             ready: Vec::new(),
             acquire: Vec::new(),
             retired: Vec::new(),
@@ -137,6 +143,20 @@ impl Swapchain {
         self.ctx.count_created(1);
         self.ctx.name(s, name);
         Ok(s)
+    }
+
+    fn view(&self, image: vk::Image, format: vk::Format, name: &str) -> GpuResult<vk::ImageView> {
+        let info = vk::ImageViewCreateInfo::default()
+            .image(image)
+            .view_type(vk::ImageViewType::TYPE_2D)
+            .format(format)
+            .subresource_range(super::image::full_range(vk::ImageAspectFlags::COLOR, 1));
+        // SAFETY: `image` is a live image of this device's swapchain, in `format`.
+        let view =
+            unsafe { self.ctx.device.create_image_view(&info, None) }.vk("vkCreateImageView")?;
+        self.ctx.count_created(1);
+        self.ctx.name(view, name);
+        Ok(view)
     }
 
     /// The surface's current extent, or `fallback` (the window size) when the surface lets the
@@ -232,7 +252,8 @@ impl Swapchain {
                 "the window surface's images cannot be copied into (no TRANSFER_DST usage), and vkocean's output pass copies every frame into them".into(),
             ));
         }
-        let mut usage = vk::ImageUsageFlags::TRANSFER_DST;
+        // Colour attachment: the overlay pass draws into the image (every surface supports it).
+        let mut usage = vk::ImageUsageFlags::TRANSFER_DST | vk::ImageUsageFlags::COLOR_ATTACHMENT;
         if can_copy {
             usage |= vk::ImageUsageFlags::TRANSFER_SRC;
         }
@@ -260,6 +281,7 @@ impl Swapchain {
         if old != vk::SwapchainKHR::null() {
             self.retired.push(Retired {
                 raw: old,
+                views: std::mem::take(&mut self.views),
                 ready: std::mem::take(&mut self.ready),
                 destroy_at: self.presents + RETIRE_AFTER_PRESENTS,
             });
@@ -276,6 +298,8 @@ impl Swapchain {
             self.ctx.name(image, &format!("swapchain image {i}"));
             let ready = self.semaphore(&format!("swapchain image {i} ready to present"))?;
             self.ready.push(ready);
+            let view = self.view(image, format.format, &format!("swapchain image {i} view"))?;
+            self.views.push(view);
         }
         self.format = format.format;
         self.extent = extent;
@@ -313,6 +337,7 @@ impl Swapchain {
                 let image = AcquiredImage {
                     index,
                     image: self.images[i],
+                    view: self.views[i],
                     acquired: semaphore,
                     ready: self.ready[i],
                 };
@@ -364,8 +389,12 @@ impl Swapchain {
         for r in done {
             // SAFETY: the swapchain was retired by a newer one and its presents have been
             // processed (module comment); the semaphores were only used by those presents.
-            self.ctx.count_destroyed(r.ready.len() as u64 + 1);
+            self.ctx
+                .count_destroyed((r.ready.len() + r.views.len()) as u64 + 1);
             unsafe {
+                for v in r.views {
+                    self.ctx.device.destroy_image_view(v, None);
+                }
                 for s in r.ready {
                     self.ctx.device.destroy_semaphore(s, None);
                 }
@@ -384,6 +413,10 @@ impl Drop for Swapchain {
         // SAFETY: the device is idle; at shutdown there is no later point to wait for pending
         // presents (without VK_EXT_swapchain_maintenance1), so this is the best available.
         unsafe {
+            for v in self.views.drain(..) {
+                self.ctx.device.destroy_image_view(v, None);
+                self.ctx.count_destroyed(1);
+            }
             for s in self.ready.drain(..).chain(self.acquire.drain(..)) {
                 self.ctx.device.destroy_semaphore(s, None);
                 self.ctx.count_destroyed(1);

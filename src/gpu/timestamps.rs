@@ -113,6 +113,9 @@ pub struct Profiler {
     period_ns: f64,
     valid_mask: u64,
     timings: GpuTimings,
+    /// Keep the last finished frame's times, warm-up or not (`latest`; the overlay).
+    pub live: bool,
+    latest: Option<FrameTimes>,
 }
 
 impl Profiler {
@@ -187,6 +190,8 @@ impl Profiler {
                 (1u64 << bits) - 1
             },
             timings: GpuTimings::default(),
+            live: false,
+            latest: None,
         };
         if bits > 0 {
             for i in 0..FRAMES_IN_FLIGHT {
@@ -202,6 +207,11 @@ impl Profiler {
             }
         }
         Ok(profiler)
+    }
+
+    /// The last finished frame's pass times (kept while `live`).
+    pub fn latest(&self) -> Option<&FrameTimes> {
+        self.latest.as_ref()
     }
 
     /// Discards the results of frames with an index below `frames` (warm-up), including frames
@@ -342,10 +352,13 @@ impl Profiler {
         let Some(&pool) = self.pools.get(slot) else {
             return Ok(());
         };
-        if index < self.warmup_frames || record.used == 0 {
+        let measured = index >= self.warmup_frames;
+        if record.used == 0 || !(measured || self.live) {
             return Ok(());
         }
-        if let (true, Some(&stats_pool)) = (record.statistics, self.statistics_pools.get(slot)) {
+        if let (true, true, Some(&stats_pool)) =
+            (measured, record.statistics, self.statistics_pools.get(slot))
+        {
             let mut counts = [0u64; 4];
             // SAFETY: as below; the query holds the four counters of STATISTICS, in bit order.
             unsafe {
@@ -382,15 +395,22 @@ impl Profiler {
             delta as f64 * self.period_ns / 1.0e6
         };
         let total = ms(0, 1) - record.gap.map_or(0.0, |(a, b)| ms(a, b));
-        self.timings.frames.push(total);
         let mut frame = FrameTimes {
             index,
             total_ms: total,
             passes: Vec::with_capacity(record.passes.len()),
         };
-        for &(name, submission, a, b) in &record.passes {
-            let value = ms(a, b);
-            frame.passes.push((name, value));
+        for &(name, _, a, b) in &record.passes {
+            frame.passes.push((name, ms(a, b)));
+        }
+        if self.live {
+            self.latest = Some(frame.clone());
+        }
+        if !measured {
+            return Ok(());
+        }
+        self.timings.frames.push(total);
+        for (&(name, submission, _, _), &(_, value)) in record.passes.iter().zip(&frame.passes) {
             match self.timings.passes.iter_mut().find(|(n, _)| *n == name) {
                 Some((_, samples)) => samples.push(value),
                 None => {

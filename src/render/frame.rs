@@ -30,12 +30,14 @@
 //! (README, "Across queues").
 
 use ash::vk;
+use egui::epaint::ClippedPrimitive;
 
 use super::passes::TexturesViewPass;
 use super::renderer::{OutputTarget, Renderer};
 use super::targets::ColourDepth;
 use super::uniforms::ViewIndex;
 use super::FrameInputs;
+use crate::gpu::egui::EguiPainter;
 use crate::gpu::selftest::SyncHazard;
 use crate::gpu::{
     Buffer, Context, Frames, GpuResult, Load, Profilers, Recorder, Rendering, Submission, Target,
@@ -80,6 +82,13 @@ pub struct SwapchainSync {
     pub ready: vk::Semaphore,
 }
 
+/// The overlay's part of a frame: egui's triangles, drawn last into the output image.
+pub struct OverlayDraw<'a> {
+    pub painter: &'a mut EguiPainter,
+    pub primitives: &'a [ClippedPrimitive],
+    pub pixels_per_point: f32,
+}
+
 /// What one frame records into: the frame loop, the renderer, the simulation and the
 /// profilers of the two queues.
 pub struct FrameParts<'a> {
@@ -88,6 +97,8 @@ pub struct FrameParts<'a> {
     pub renderer: &'a mut Renderer,
     pub simulation: &'a mut Simulation,
     pub profilers: &'a mut Profilers,
+    /// The overlay, when it is shown.
+    pub overlay: Option<OverlayDraw<'a>>,
 }
 
 /// Records and submits frame `frames.next`: the three submissions of the diagram above.
@@ -107,6 +118,7 @@ pub fn record_frame(
         renderer: r,
         simulation,
         profilers,
+        overlay,
     } = parts;
     let Profilers {
         graphics: profiler,
@@ -243,6 +255,26 @@ pub fn record_frame(
         profiler.pass(&rec, names::OUTPUT, || {
             super::passes::output::record(&rec, t.final_colour(), output, r.scale_filter)
         });
+        if let Some(o) = overlay {
+            // Over the finished picture: the output image is the attachment, loaded.
+            let target = [Target::external(
+                output.image,
+                output.view,
+                output.extent,
+                Load::Keep,
+            )];
+            let scope = rec.rendering(&target, None, &[]);
+            let extent = output.extent;
+            let mut drawn = Ok(());
+            profiler.pass(&rec, names::OVERLAY, || {
+                scope.record(|| {
+                    drawn = o
+                        .painter
+                        .draw(&rec, extent, o.pixels_per_point, o.primitives)
+                })
+            });
+            drawn?;
+        }
         if let Some(buffer) = delivery.readback {
             record_readback(&rec, output, buffer);
         }

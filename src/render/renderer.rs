@@ -25,11 +25,13 @@ use crate::gpu::{
 };
 use crate::ocean::simulation::IMAGE_FORMAT;
 
-/// The image a frame ends in: written by a copy or blit (it needs TRANSFER_DST usage), never
-/// rendered to. Its state (`gpu::track`) is where the frontend handed it over: a swapchain image
+/// The image a frame ends in: written by a copy or blit (it needs TRANSFER_DST usage), then
+/// drawn over by the overlay when it is shown. Its state (`gpu::track`) is where the frontend handed it over: a swapchain image
 /// after the acquire wait, the headless target after the previous frame.
 pub struct OutputTarget<'a> {
     pub image: &'a dyn Tracked,
+    /// Its colour view (the overlay pass renders into it; it needs COLOR_ATTACHMENT usage).
+    pub view: vk::ImageView,
     pub extent: vk::Extent2D,
     /// An 8-bit sRGB format (or UNORM, with the shaders encoding).
     pub format: vk::Format,
@@ -373,6 +375,40 @@ impl Renderer {
     /// The camera, to move (the fly camera, tests).
     pub fn camera_mut(&mut self) -> &mut Camera {
         &mut self.camera
+    }
+
+    /// Whether `new` settings need a new renderer (`remade`): other target scales, terrain
+    /// lattice, anti-aliasing pass or textures; the rest are uniforms (`set_scene`).
+    pub fn needs_rebuild(&self, new: &SceneSettings) -> bool {
+        let s = &self.settings;
+        s.render_scale != new.render_scale
+            || s.rtt_scale != new.rtt_scale
+            || s.terrain_grid != new.terrain_grid
+            || s.anti_aliased() != new.anti_aliased()
+            || s.dudv != new.dudv
+            || s.skybox != new.skybox
+            || (new.view == ViewMode::Wireframe && s.view != ViewMode::Wireframe)
+    }
+
+    /// Takes settings that change only uniforms (`needs_rebuild` is false): the next frame
+    /// draws with them (the sky cube follows a moved sun).
+    pub fn set_scene(&mut self, new: &SceneSettings) {
+        debug_assert!(!self.needs_rebuild(new));
+        self.settings = new.clone();
+    }
+
+    /// A renderer like this one (device, output, camera) for other ocean images or settings.
+    /// This one is dropped by the caller; the deferred-deletion queue keeps its objects until
+    /// the frames in flight are done with them.
+    pub fn remade(&self, ocean: OceanBindings, settings: &SceneSettings) -> anyhow::Result<Self> {
+        Renderer::new(
+            &self.ctx,
+            self.targets.display_format(),
+            self.extent(),
+            ocean,
+            settings,
+            self.camera,
+        )
     }
 
     /// Size of the output the renderer was made for.
