@@ -4,25 +4,12 @@
 
 mod common;
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::process::Output;
 
-use common::{clean_run, run, scratch, stderr};
+use common::{clean_run, read_npy_f32, run, scratch, stderr};
 use vkocean::ocean::cpu::CpuOcean;
 use vkocean::ocean::{OceanSettings, SeaState};
-
-/// Shape and little-endian f32 payload of an .npy file.
-fn read_npy_f32(path: &Path) -> (String, Vec<f32>) {
-    let bytes = std::fs::read(path).unwrap();
-    assert_eq!(&bytes[..8], b"\x93NUMPY\x01\x00", "{}", path.display());
-    let len = u16::from_le_bytes([bytes[8], bytes[9]]) as usize;
-    let header = String::from_utf8(bytes[10..10 + len].to_vec()).unwrap();
-    let data = bytes[10 + len..]
-        .chunks_exact(4)
-        .map(|c| f32::from_le_bytes([c[0], c[1], c[2], c[3]]))
-        .collect();
-    (header, data)
-}
 
 const ARGS: [&str; 14] = [
     "--headless",

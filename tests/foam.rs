@@ -4,22 +4,10 @@
 
 mod common;
 
-use std::path::Path;
-
-use common::{run, scratch, stderr};
+use common::{read_npy_f32, run, scratch, stderr};
 use vkocean::ocean::cpu::{surface_jacobian, CpuOcean};
 use vkocean::ocean::foam;
 use vkocean::ocean::{OceanSettings, SeaState};
-
-/// Little-endian f32 payload of an .npy file.
-fn read_npy_f32(path: &Path) -> Vec<f32> {
-    let bytes = std::fs::read(path).unwrap();
-    let len = u16::from_le_bytes([bytes[8], bytes[9]]) as usize;
-    bytes[10 + len..]
-        .chunks_exact(4)
-        .map(|c| f32::from_le_bytes([c[0], c[1], c[2], c[3]]))
-        .collect()
-}
 
 #[test]
 fn first_frame_foam_matches_the_cpu_reference() {
@@ -81,7 +69,7 @@ fn first_frame_foam_matches_the_cpu_reference() {
             *f = (*f * decay).max(*s);
         }
     }
-    let normals = read_npy_f32(&dir.join("normals.npy"));
+    let normals = read_npy_f32(&dir.join("normals.npy")).1;
     let gpu: Vec<f64> = (0..n * n).map(|i| normals[i * 4 + 3] as f64).collect();
     let max_err = gpu
         .iter()

@@ -152,7 +152,13 @@ impl Tunables {
         match key {
             "quality" => self.set_quality(pick(value).map_err(|e| bad(&e))?),
             "preset" => self.set_preset(pick(value).map_err(|e| bad(&e))?),
-            "waves" => self.gerstner = value == "gerstner",
+            "waves" => {
+                self.gerstner = match value {
+                    "fft" => false,
+                    "gerstner" => true,
+                    _ => return Err(bad("expected fft or gerstner")),
+                }
+            }
             "spectrum" => self.spectrum = pick(value).map_err(|e| bad(&e))?,
             "wind-speed" => self.wind_speed = num(1e-3, 100.0)?,
             "wind-dir" => self.wind_dir = num(-360.0, 360.0)?,

@@ -42,10 +42,6 @@ impl Clock {
         self.scale = scale;
         self.paused = paused;
     }
-
-    pub fn paused(&self) -> bool {
-        self.paused
-    }
 }
 
 #[cfg(test)]
