@@ -8,6 +8,8 @@ pub mod bench;
 pub mod cli;
 pub mod frontend;
 pub mod gpu;
+pub mod input;
+pub mod interrupt;
 pub mod ocean;
 pub mod output;
 pub mod pass_names;

@@ -571,7 +571,7 @@ fn a_loaded_skybox_and_dudv_map_are_used_and_bad_files_are_one_line_errors() {
         "top of the sky {r} {g} {b}"
     );
 
-    // Not PNGs: runtime errors (exit 1), one line naming the flag.
+    // Not PNGs: bad input (exit 2, as every input file's problem), one line naming the flag.
     let garbage = dir.join("garbage.png");
     std::fs::write(&garbage, b"not a png").unwrap();
     for (flag, value) in [("--dudv", &garbage), ("--skybox", &sky)] {
@@ -580,7 +580,7 @@ fn a_loaded_skybox_and_dudv_map_are_used_and_bad_files_are_one_line_errors() {
         }
         let out = run(&["--headless", flag, value.to_str().unwrap()]);
         let err = stderr(&out);
-        assert_eq!(out.status.code(), Some(1), "{err}");
+        assert_eq!(out.status.code(), Some(2), "{err}");
         assert_eq!(err.lines().count(), 1, "{err}");
         assert!(err.starts_with("vkocean: ") && err.contains(flag), "{err}");
     }

@@ -182,6 +182,7 @@ fn measure(
     let mut measuring_since = None;
     let mut cpu_times_before = None;
     for run in 0.. {
+        crate::interrupt::check()?;
         let measured = cpu_fft.len();
         let elapsed = measuring_since.map_or(Duration::ZERO, |t: Instant| t.elapsed());
         if measured >= max_runs || (measured >= min_runs && elapsed >= min_time) {

@@ -147,6 +147,7 @@ pub fn measure(
             None,
         )?;
         index += 1;
+        crate::interrupt::check()?;
         progress(format!(
             "warm-up {:.1}/{warmup_s:.1} s, {index} frames",
             started.elapsed().as_secs_f64()
@@ -162,6 +163,7 @@ pub fn measure(
             None,
         )?;
         index += 1;
+        crate::interrupt::check()?;
         let secs = measuring.elapsed().as_secs_f64();
         progress(format!(
             "frame {}/{frames}, {:.1} ms/frame",

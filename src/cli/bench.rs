@@ -2,7 +2,7 @@
 
 use std::path::PathBuf;
 
-use clap::{Args, Subcommand};
+use clap::{Args, CommandFactory, Subcommand};
 
 use super::values::*;
 use super::{Cli, UsageError, WavesArg, MAX_SIDE};
@@ -145,4 +145,50 @@ impl BenchFftArgs {
             gpu: cli.gpu,
         })
     }
+}
+
+/// The flags `bench fft` takes besides its own (`--config` may set them too).
+const FFT_GLOBALS: [&str; 3] = ["gpu", "validation", "config"];
+
+/// The command line's clap command, with `bench fft`'s help listing only the flags that apply
+/// there (clap would list every global scene and sea flag, which `bench fft` rejects).
+pub fn command() -> clap::Command {
+    let cli = Cli::command();
+    let mut fft = BenchFftArgs::augment_args(
+        clap::Command::new("fft")
+            .bin_name("vkocean bench fft")
+            .about("Time our GPU FFT against rustfft (one CPU thread) on the same 2D transforms."),
+    );
+    for id in FFT_GLOBALS {
+        if let Some(arg) = cli.get_arguments().find(|a| a.get_id() == id) {
+            fft = fft.arg(arg.clone().global(false));
+        }
+    }
+    let help = fft.render_help().to_string();
+    cli.mut_subcommand("bench", |b| {
+        b.mut_subcommand("fft", |f| f.override_help(help))
+    })
+}
+
+/// `bench fft` times the FFT alone: a scene or sea flag on its command line is an error, not
+/// silently ignored. (Settings from a `--config` file it does not use are ignored, so one file
+/// serves every command.)
+pub fn check_bench_fft_flags(user_args: &[std::ffi::OsString]) -> Result<(), UsageError> {
+    let own = ["sizes", "batch", "runs", "json", "help"];
+    for arg in user_args.iter().skip(1) {
+        let arg = arg.to_string_lossy();
+        if arg == "--" {
+            break;
+        }
+        let Some(name) = arg.strip_prefix("--") else {
+            continue;
+        };
+        let name = name.split('=').next().unwrap_or(name);
+        if !own.contains(&name) && !FFT_GLOBALS.contains(&name) {
+            return Err(UsageError(format!(
+                "--{name} does not apply to bench fft (it times the FFT alone; it takes --sizes, --batch, --runs, --json, --gpu, --validation and --config)"
+            )));
+        }
+    }
+    Ok(())
 }

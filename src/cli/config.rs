@@ -7,40 +7,60 @@ use clap::Parser;
 use super::values::require_extension;
 use super::{Cli, UsageError};
 
+/// Largest `--config` file read (bytes).
+const MAX_CONFIG_BYTES: u64 = 1 << 20;
+
 /// Expands `--config FILE.toml` (anywhere in `args`): the file's settings become flags inserted
 /// right after the program name, so the command line's own flags, coming later, win.
 pub fn with_config(args: Vec<std::ffi::OsString>) -> Result<Vec<std::ffi::OsString>, UsageError> {
     use clap::CommandFactory;
-    let mut path = None;
+    let mut paths = Vec::new();
     let mut iter = args.iter().skip(1);
     while let Some(arg) = iter.next() {
         let arg = arg.to_string_lossy();
         if arg == "--" {
             break;
         } else if arg == "--config" {
-            path = iter.next().map(PathBuf::from);
+            paths.extend(iter.next().map(PathBuf::from));
         } else if let Some(value) = arg.strip_prefix("--config=") {
-            path = Some(PathBuf::from(value));
+            paths.push(PathBuf::from(value));
         }
     }
-    let Some(path) = path else { return Ok(args) };
+    if paths.len() > 1 {
+        return Err(UsageError(
+            "--config given more than once: one file per run (put the settings in one file; flags on the command line override it)".to_string(),
+        ));
+    }
+    let Some(path) = paths.pop() else {
+        return Ok(args);
+    };
     require_extension("--config", Some(&path), "toml")?;
     let shown = path.display().to_string();
     let fail = |what: String| UsageError(format!("--config {shown}: {what}"));
-    let text = std::fs::read_to_string(&path).map_err(|e| fail(e.to_string()))?;
+    let text = crate::input::read_text("--config", &path, MAX_CONFIG_BYTES)
+        .map_err(|e| UsageError(e.0))?;
     let doc: toml_edit::DocumentMut = text.parse().map_err(|e: toml_edit::TomlError| {
-        fail(
-            e.to_string()
-                .lines()
-                .next()
-                .unwrap_or("not TOML")
-                .to_string(),
-        )
+        let mut reason = crate::ocean::gerstner::toml_error_line(&e);
+        if reason.contains("overflow") {
+            reason.push_str(&format!(
+                " (TOML integers stop at {}: write a larger seed as a string, e.g. seed = \"{}\")",
+                i64::MAX,
+                u64::MAX
+            ));
+        }
+        fail(reason)
     })?;
     let command = Cli::command();
     let mut extra: Vec<std::ffi::OsString> = Vec::new();
+    let mut seen: Vec<(String, &str)> = Vec::new();
     for (key, item) in doc.as_table().iter() {
         let long = key.replace('_', "-");
+        if let Some((_, first)) = seen.iter().find(|(l, _)| *l == long) {
+            return Err(fail(format!(
+                "keys '{first}' and '{key}' name the same setting"
+            )));
+        }
+        seen.push((long.clone(), key));
         let arg = command
             .get_arguments()
             .find(|a| a.get_long() == Some(long.as_str()) && !a.is_hide_set())

@@ -13,7 +13,10 @@ mod retune;
 pub mod tuning;
 mod values;
 
-pub use bench::{BenchCommand, BenchFftArgs, BenchFramesArgs, BenchGerstnerArgs, Command};
+pub use bench::{
+    check_bench_fft_flags, command, BenchCommand, BenchFftArgs, BenchFramesArgs, BenchGerstnerArgs,
+    Command,
+};
 pub use config::with_config;
 pub use presets::{
     quality_level, sea_preset, PresetArg, Quality, QualityArg, SeaPreset, DEFAULT_SEA,
@@ -74,8 +77,10 @@ pub struct Cli {
     #[arg(long, value_name = "PATH")]
     pub profile: Option<PathBuf>,
 
-    /// Use Vulkan device N (see --list-gpus); default: the best one (discrete > integrated > virtual > cpu).
-    #[arg(long, value_name = "N", global = true)]
+    /// Use Vulkan device N, 0 to 255 (see --list-gpus); default: the best one (discrete >
+    /// integrated > virtual > cpu).
+    #[arg(long, value_name = "N", global = true, allow_hyphen_values = true,
+          value_parser = |s: &str| parse_whole(s, 0, 255).map(|n| n as usize))]
     pub gpu: Option<usize>,
 
     /// List the Vulkan devices and exit.
@@ -86,9 +91,10 @@ pub struct Cli {
     #[arg(long, value_enum, value_name = "MODE", default_value_t = PresentMode::Fifo)]
     pub present_mode: PresentMode,
 
-    /// Read settings from a TOML file: `flag-name = value` for any option above, e.g.
-    /// `wind-speed = 14`, `camera = [0, 12, 0]`, `validation = true`. Flags given on the
-    /// command line win; unknown keys and bad values are errors naming the key.
+    /// Read settings from a TOML file (a regular file, at most 1 MiB; one per run):
+    /// `flag-name = value` for any option above, e.g. `wind-speed = 14`, `camera = [0, 12, 0]`,
+    /// `validation = true`. Flags given on the command line win; unknown or repeated keys and
+    /// bad values are errors naming the key.
     #[arg(long, global = true, value_name = "FILE.toml")]
     pub config: Option<PathBuf>,
 
@@ -118,9 +124,10 @@ pub struct Cli {
     #[arg(long, global = true, value_enum, value_name = "MODEL", default_value_t = WavesArg::Fft, help_heading = "Ocean")]
     pub waves: WavesArg,
 
-    /// Gerstner wave table: CSV (kx,kz,amplitude,phase[,steepness]) or TOML ([[wave]] tables).
-    /// Steepness defaults to 1; a table with Σ Q·k·a > 1 has every Q scaled down to Σ = 1 (it
-    /// would fold over).
+    /// Gerstner wave table: CSV (kx,kz,amplitude,phase[,steepness]) or TOML ([[wave]] tables),
+    /// at most 4 MiB. |k| from 0.001 to 1000 rad/m, amplitude 0 to 100 m, steepness Q 0 to 10
+    /// (default 1), |phase| at most 1000 rad; a table with Σ Q·k·a > 1 has every Q scaled down
+    /// to Σ = 1 (it would fold over).
     #[arg(long, global = true, value_name = "FILE", help_heading = "Ocean")]
     pub gerstner_waves: Option<PathBuf>,
 
@@ -138,7 +145,7 @@ pub struct Cli {
           value_parser = |s: &str| parse_above(s, 0.0, 100.0), help_heading = "Ocean")]
     pub wind_speed: Option<f64>,
 
-    /// Direction the wind blows toward, degrees from +x toward +z.
+    /// Direction the wind blows toward, degrees from +x toward +z (-360 to 360).
     #[arg(long, global = true, value_name = "DEG", default_value = "0", allow_hyphen_values = true,
           value_parser = |s: &str| parse_in(s, -360.0, 360.0), help_heading = "Ocean")]
     pub wind_dir: f64,
@@ -173,7 +180,8 @@ pub struct Cli {
           value_parser = |s: &str| parse_whole(s, 1, 4).map(|n| n as usize), help_heading = "Ocean")]
     pub cascades: Option<usize>,
 
-    /// Seed of the initial spectrum (same seed, same sea on every machine).
+    /// Seed of the initial spectrum, 0 to 18446744073709551615 (same seed, same sea on every
+    /// machine; in a --config file a seed above 2^63 - 1 is written as a string).
     #[arg(long, global = true, value_name = "S", default_value = "1", allow_hyphen_values = true,
           value_parser = |s: &str| parse_whole(s, 0, u64::MAX), help_heading = "Ocean")]
     pub seed: u64,
@@ -193,12 +201,13 @@ pub struct Cli {
     #[arg(long, value_name = "DIR")]
     pub dump: Option<PathBuf>,
 
-    /// Simulation time of the first frame (s); with --dt, pictures are reproducible.
+    /// Simulation time of the first frame (s, 0 to 1e6); with --dt, pictures are reproducible.
     #[arg(long, global = true, value_name = "T", default_value = "0", allow_hyphen_values = true,
           value_parser = |s: &str| parse_in(s, 0.0, 1.0e6), help_heading = "Scene")]
     pub time: f64,
 
-    /// Simulation time step per frame (s); default 1/60 headless, wall-clock time in a window.
+    /// Simulation time step per frame (s, 0 < DT <= 10); default 1/60 headless, wall-clock time
+    /// in a window.
     #[arg(long, global = true, value_name = "DT", allow_hyphen_values = true,
           value_parser = |s: &str| parse_above(s, 0.0, 10.0), help_heading = "Scene")]
     pub dt: Option<f64>,
@@ -214,7 +223,8 @@ pub struct Cli {
     #[arg(long)]
     pub overlay: bool,
 
-    /// Camera position in metres (y up, water at y = 0); default 0,12,0.
+    /// Camera position in metres (y up, water at y = 0; y >= -60, each value at most 1e6 in
+    /// size); default 0,12,0.
     #[arg(long, global = true, value_name = "X,Y,Z", value_parser = parse_vec3, allow_hyphen_values = true, help_heading = "Scene")]
     pub camera: Option<[f32; 3]>,
 
@@ -266,13 +276,13 @@ pub struct Cli {
           value_parser = |s: &str| parse_in(s, 0.0, 1.0), help_heading = "Scene")]
     pub clouds: Option<f64>,
 
-    /// DU/DV map PNG (red = du, green = dv, 128 = no offset), tiled over the water; default:
-    /// generated at start-up.
+    /// DU/DV map PNG (red = du, green = dv, 128 = no offset), tiled over the water, at most the
+    /// device's largest 2D image (16384 on lavapipe); default: generated at start-up.
     #[arg(long, global = true, value_name = "FILE.png", help_heading = "Scene")]
     pub dudv: Option<PathBuf>,
 
-    /// Skybox: a directory of six PNG faces px nx py ny pz nz (square, same size); default: the
-    /// analytic sky.
+    /// Skybox: a directory of six PNG faces px nx py ny pz nz (square, same size, at most the
+    /// device's largest cube face); default: the analytic sky.
     #[arg(long, global = true, value_name = "DIR", help_heading = "Scene")]
     pub skybox: Option<PathBuf>,
 
@@ -320,6 +330,11 @@ pub enum WavesArg {
 #[error("{0}")]
 pub struct UsageError(pub String);
 
+/// An input file's problem as a usage error.
+fn input(e: crate::input::InputError) -> UsageError {
+    UsageError(e.0)
+}
+
 impl Cli {
     /// The camera of `--camera` / `--look-at` (`None`: the default camera).
     fn camera_setting(&self) -> Result<Option<Camera>, UsageError> {
@@ -349,23 +364,13 @@ impl Cli {
     fn scene_settings(&self) -> Result<SceneSettings, UsageError> {
         let quality = quality_level(self.quality_in_force());
         require_extension("--dudv", self.dudv.as_deref(), "png")?;
-        if let Some(path) = self.dudv.as_deref().filter(|p| !p.is_file()) {
-            return Err(UsageError(format!(
-                "--dudv {}: no such file",
-                path.display()
-            )));
+        // The headers now (a bad file is bad usage, before any GPU work); the sizes against
+        // this device's limits when the textures are made.
+        if let Some(path) = &self.dudv {
+            crate::render::scene::dudv_size(path, MAX_SIDE).map_err(input)?;
         }
         if let Some(dir) = &self.skybox {
-            for face in crate::render::passes::sky::SKYBOX_FACES {
-                let file = dir.join(format!("{face}.png"));
-                if !file.is_file() {
-                    return Err(UsageError(format!(
-                        "--skybox {}: missing face {}",
-                        dir.display(),
-                        file.display()
-                    )));
-                }
-            }
+            crate::render::passes::sky::skybox_side(dir, MAX_SIDE).map_err(input)?;
         }
         if let Some(c) = self.background {
             if c.iter().any(|v| !(0.0..=1.0).contains(v)) {
@@ -463,9 +468,12 @@ impl Cli {
                 let mut table = match &self.gerstner_waves {
                     None => gerstner::default_waves(),
                     Some(path) => {
-                        let text = std::fs::read_to_string(path).map_err(|e| {
-                            UsageError(format!("--gerstner-waves {}: {e}", path.display()))
-                        })?;
+                        let text = crate::input::read_text(
+                            "--gerstner-waves",
+                            path,
+                            gerstner::MAX_TABLE_BYTES,
+                        )
+                        .map_err(input)?;
                         let format = gerstner::TableFormat::of_path(path);
                         gerstner::parse_waves(&text, format).map_err(|e| {
                             UsageError(format!("--gerstner-waves {}: {e}", path.display()))

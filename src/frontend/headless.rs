@@ -11,7 +11,7 @@ use super::overlay::Overlay;
 use super::session::{check_size, readback_buffer, Session};
 use super::{Outcome, RunSettings};
 use crate::gpu::{Context, Image, ImageDesc};
-use crate::output::{encode_png, PendingFile};
+use crate::output::{encode_png, place_all, PendingDir, PendingFile};
 use crate::render::{Delivery, FrameInputs, OutputTarget, OverlayDraw};
 
 /// Format of the offscreen target: 8-bit sRGB, the bytes a PNG stores.
@@ -19,8 +19,6 @@ const OUTPUT_FORMAT: vk::Format = vk::Format::R8G8B8A8_SRGB;
 /// The same bytes in a UNORM format (`--unorm-output`, a test of the path windows without an
 /// sRGB surface format take: the shaders encode sRGB).
 const UNORM_OUTPUT_FORMAT: vk::Format = vk::Format::R8G8B8A8_UNORM;
-/// Files `--dump DIR` writes, in the order `Session::dump_contents` returns them.
-const DUMP_FILES: [&str; 4] = ["h0.npy", "displacement.npy", "normals.npy", "params.json"];
 /// Simulation time step per frame (s).
 pub const FIXED_DT_S: f32 = 1.0 / 60.0;
 
@@ -29,17 +27,11 @@ pub const FIXED_DT_S: f32 = 1.0 / 60.0;
 pub fn run(s: &RunSettings) -> anyhow::Result<Outcome> {
     let screenshot = PendingFile::create_if("--screenshot", s.screenshot.as_deref())?;
     let profile = PendingFile::create_if("--profile", s.profile.as_deref())?;
-    let dump = match &s.dump {
-        Some(dir) => {
-            std::fs::create_dir_all(dir)
-                .map_err(|e| anyhow::anyhow!("cannot create --dump {}: {e}", dir.display()))?;
-            DUMP_FILES
-                .iter()
-                .map(|name| PendingFile::create("--dump", &dir.join(name)))
-                .collect::<anyhow::Result<Vec<_>>>()?
-        }
-        None => Vec::new(),
-    };
+    let dump = s
+        .dump
+        .as_deref()
+        .map(|dir| PendingDir::create("--dump", dir))
+        .transpose()?;
     let frames = s.frames.unwrap_or(1);
 
     let ctx = Context::headless(s.validation, s.gpu)?;
@@ -89,7 +81,9 @@ pub fn run(s: &RunSettings) -> anyhow::Result<Outcome> {
         last_value = session.frame(&output, &inputs, &delivery, draw)?;
         if s.stats {
             session.print_stats()?;
+            crate::output::stdout_status()?;
         }
+        crate::interrupt::check()?;
         if s.log_resources.is_some_and(|n| (i + 1) % n == 0) {
             let kib = |key| proc_status_kib(key).map_or("unknown".into(), |v| format!("{v} kB"));
             eprintln!(
@@ -110,10 +104,9 @@ pub fn run(s: &RunSettings) -> anyhow::Result<Outcome> {
         }
     }
     let finished = session.finish(s.size)?;
-    let dump_contents = if dump.is_empty() {
-        Vec::new()
-    } else {
-        session.dump_contents()?
+    let dump_contents = match dump {
+        Some(_) => session.dump_contents()?,
+        None => Vec::new(),
     };
     // Encode before writing anything, so a failure leaves no file at all.
     let png = match &readback {
@@ -123,27 +116,24 @@ pub fn run(s: &RunSettings) -> anyhow::Result<Outcome> {
         }
         None => None,
     };
+    // Every output staged, then all moved into place together (or none, after a signal).
+    let mut staged = Vec::new();
     if let (Some(file), Some(png)) = (screenshot, png) {
-        file.commit(&png)?;
+        staged.push(file.stage(&png)?);
     }
-    // Gerstner dumps have no h0.npy: commit the files by name.
-    for file in dump {
-        let name = file
-            .path()
-            .file_name()
-            .map(|n| n.to_string_lossy().into_owned());
-        if let Some((_, bytes)) = dump_contents
-            .iter()
-            .find(|(n, _)| Some(n.to_string()) == name)
-        {
-            file.commit(bytes)?;
-        }
+    if let Some(dir) = dump {
+        // Gerstner dumps have no h0.npy: the files are the ones the session returns.
+        let files: Vec<(&str, Vec<u8>)> = dump_contents.into_iter().collect();
+        staged.extend(dir.stage(&files)?);
     }
+    let with_table = profile.is_some();
+    staged.extend(finished.stage_profile(profile)?);
+    place_all(staged)?;
+    finished.report(with_table, "");
     if let Some([x, y, w, h]) = overlay.as_ref().and_then(|o| o.rect) {
         eprintln!("vkocean: overlay drawn at {x:.0},{y:.0} size {w:.0}x{h:.0}");
     }
     drop(overlay);
-    finished.commit(profile, "")?;
     Ok(Outcome { counters })
 }
 

@@ -15,7 +15,7 @@ use crate::ocean::buoy::Buoy;
 use crate::ocean::dump;
 use crate::ocean::simulation::Simulation;
 use crate::ocean::stats::stats_line;
-use crate::output::PendingFile;
+use crate::output::{PendingFile, Staged};
 use crate::profile::{ProfileReport, WARMUP_FRAMES};
 use crate::render::scene::shore_scale;
 use crate::render::{
@@ -314,17 +314,31 @@ impl Finished {
     /// Writes the profile (when asked for), then prints the table and `summary_suffix`-extended
     /// summary line. Call after every other output of the run has succeeded.
     pub fn commit(self, profile: Option<PendingFile>, summary_suffix: &str) -> anyhow::Result<()> {
-        if let Some(file) = profile {
-            if self.measured_frames == 0 {
-                anyhow::bail!(
-                    "--profile: no frame was measured (the first {WARMUP_FRAMES} frames are warm-up)"
-                );
-            }
-            file.commit(self.profile_json.as_bytes())?;
+        let with_table = profile.is_some();
+        crate::output::place_all(self.stage_profile(profile)?.into_iter().collect())?;
+        self.report(with_table, summary_suffix);
+        Ok(())
+    }
+
+    /// The profile written to its temporary file, for [`crate::output::place_all`].
+    pub fn stage_profile(&self, profile: Option<PendingFile>) -> anyhow::Result<Option<Staged>> {
+        let Some(file) = profile else {
+            return Ok(None);
+        };
+        if self.measured_frames == 0 {
+            anyhow::bail!(
+                "--profile: no frame was measured (the first {WARMUP_FRAMES} frames are warm-up)"
+            );
+        }
+        Ok(Some(file.stage(self.profile_json.as_bytes())?))
+    }
+
+    /// Prints the per-pass table (`with_table`: the run wrote a profile) and the summary line.
+    pub fn report(&self, with_table: bool, summary_suffix: &str) {
+        if with_table {
             eprint!("{}", self.table);
         }
         eprintln!("{}{summary_suffix}", self.summary);
-        Ok(())
     }
 }
 

@@ -86,6 +86,9 @@ struct WindowState {
     /// Screenshot staging, sized to the swapchain.
     readback: Option<Buffer>,
     needs_recreate: bool,
+    /// The window's inner size, from `Resized` events: asking winit every frame costs an X
+    /// round trip (and panics inside winit once the X connection is gone).
+    size: PhysicalSize<u32>,
     window: Arc<Window>,
 }
 
@@ -173,6 +176,7 @@ impl App {
                 .create_window(attributes)
                 .map_err(|e| anyhow::anyhow!("cannot open a window: {e}"))?,
         );
+        crate::gpu::x11::report_lost_connection();
         let display = window
             .display_handle()
             .map_err(|e| anyhow::anyhow!("window display handle: {e}"))?
@@ -188,11 +192,8 @@ impl App {
         })?;
         self.counters = Some(ctx.counters());
         check_size(&ctx, self.settings.size)?;
-        let swapchain = Swapchain::new(
-            &ctx,
-            physical_size(window.inner_size()),
-            self.settings.present_mode,
-        )?;
+        let size = window.inner_size();
+        let swapchain = Swapchain::new(&ctx, physical_size(size), self.settings.present_mode)?;
         if self.screenshot.is_some() && !swapchain.can_copy {
             anyhow::bail!(
                 "--screenshot: this window's swapchain images cannot be copied (no TRANSFER_SRC usage)"
@@ -217,6 +218,7 @@ impl App {
             swapchain,
             readback: None,
             needs_recreate: false,
+            size,
             window,
         })
     }
@@ -229,7 +231,7 @@ impl App {
         let Some(state) = self.state.as_mut() else {
             return Ok(());
         };
-        let window_size = physical_size(state.window.inner_size());
+        let window_size = physical_size(state.size);
         let extent = state.swapchain.surface_extent(window_size)?;
         if extent.width == 0 || extent.height == 0 {
             self.title_since = None; // the title's next frame time starts after the pause
@@ -402,10 +404,10 @@ impl App {
 
     /// Esc or close: with --screenshot, render one more frame to capture it, then exit.
     fn request_exit(&mut self, event_loop: &ActiveEventLoop) {
-        let minimised = self.state.as_ref().is_some_and(|s| {
-            let size = s.window.inner_size();
-            size.width == 0 || size.height == 0
-        });
+        let minimised = self
+            .state
+            .as_ref()
+            .is_some_and(|s| s.size.width == 0 || s.size.height == 0);
         match (&self.state, self.screenshot.is_some()) {
             (Some(state), true) if !minimised => {
                 self.exit_after_capture = true;
@@ -557,6 +559,7 @@ impl ApplicationHandler for App {
                 // A resize often reaches the swapchain first (out of date at the next acquire,
                 // recreated at the new size); the event arriving after that needs nothing more.
                 if let Some(state) = self.state.as_mut() {
+                    state.size = size;
                     state.needs_recreate |= physical_size(size) != state.swapchain.extent;
                 }
             }
@@ -569,10 +572,14 @@ impl ApplicationHandler for App {
         }
     }
 
-    fn about_to_wait(&mut self, _event_loop: &ActiveEventLoop) {
+    fn about_to_wait(&mut self, event_loop: &ActiveEventLoop) {
+        // Ctrl-C or SIGTERM: stop between frames, without the outputs (--screenshot, --profile).
+        if let Err(interrupted) = crate::interrupt::check() {
+            self.fail(event_loop, interrupted.into());
+            return;
+        }
         if let Some(state) = &self.state {
-            let size = state.window.inner_size();
-            if size.width > 0 && size.height > 0 {
+            if state.size.width > 0 && state.size.height > 0 {
                 state.window.request_redraw();
             }
         }

@@ -88,6 +88,17 @@ impl Buffer {
             .map(|s| &s[..self.size as usize])
     }
 
+    /// The mapped bytes of a host-visible buffer, to write. Panics if the buffer is not mapped
+    /// (a programming error).
+    pub fn mapped_mut(&mut self) -> &mut [u8] {
+        let size = self.size as usize;
+        &mut self
+            .allocation
+            .as_mut()
+            .and_then(|a| a.mapped_slice_mut())
+            .expect("buffer is host-visible")[..size]
+    }
+
     /// Copies `bytes` to the start of a host-visible buffer. Panics if the buffer is not mapped
     /// or too small (both are programming errors).
     pub fn write(&mut self, bytes: &[u8]) {

@@ -38,6 +38,29 @@ pub enum GpuError {
     Timeout { seconds: u64 },
     #[error("{0}")]
     Unsupported(String),
+    /// The loader failed before any driver ran (in practice: a driver manifest it could not
+    /// parse, which it reports as out of host memory).
+    #[error("{call} failed: {result}: {}", loader_hint())]
+    Loader {
+        call: &'static str,
+        result: vk::Result,
+    },
+}
+
+/// Where the Vulkan loader found its driver manifests, for [`GpuError::Loader`].
+fn loader_hint() -> String {
+    let set: Vec<String> = ["VK_DRIVER_FILES", "VK_ICD_FILENAMES", "VK_ADD_DRIVER_FILES"]
+        .iter()
+        .filter_map(|v| std::env::var(v).ok().map(|value| format!("{v}={value}")))
+        .collect();
+    if set.is_empty() {
+        "the Vulkan loader could not read the installed driver manifests (/usr/share/vulkan/icd.d, /etc/vulkan/icd.d); check that they are valid JSON".to_string()
+    } else {
+        format!(
+            "the Vulkan loader could not use the driver manifests of {}; check that each is valid JSON naming an installed driver",
+            set.join(", ")
+        )
+    }
 }
 
 impl GpuError {

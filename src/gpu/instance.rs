@@ -40,8 +40,13 @@ pub(crate) fn create_instance(
     counters: &Arc<MessageCounters>,
 ) -> GpuResult<(ash::Instance, bool)> {
     // SAFETY: enumerating properties only reads loader state.
-    let available_ext = unsafe { entry.enumerate_instance_extension_properties(None) }
-        .vk("vkEnumerateInstanceExtensionProperties")?;
+    let available_ext =
+        unsafe { entry.enumerate_instance_extension_properties(None) }.map_err(|result| {
+            GpuError::Loader {
+                call: "vkEnumerateInstanceExtensionProperties",
+                result,
+            }
+        })?;
     let has_ext = |name: &CStr| {
         available_ext
             .iter()

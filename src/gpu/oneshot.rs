@@ -127,21 +127,36 @@ pub fn upload_on(ctx: &Arc<Context>, queue: Queue, dst: &Buffer, bytes: &[u8]) -
 /// Fills every layer of a colour image from tightly packed texels (layer after layer), leaving it
 /// in SHADER_READ_ONLY_OPTIMAL for fragment shaders. Waits.
 pub fn upload_image(ctx: &Arc<Context>, image: &Image, bytes: &[u8]) -> GpuResult<()> {
+    upload_image_with(ctx, image, bytes.len(), |staging| {
+        staging.copy_from_slice(bytes);
+        Ok(())
+    })
+}
+
+/// [`upload_image`] of `len` bytes that `fill` writes straight into the mapped staging buffer
+/// (a decoder, so the texels exist once on the host); `fill`'s error ends the upload.
+pub fn upload_image_with<E: From<GpuError>>(
+    ctx: &Arc<Context>,
+    image: &Image,
+    len: usize,
+    fill: impl FnOnce(&mut [u8]) -> Result<(), E>,
+) -> Result<(), E> {
     let mut staging = Buffer::new(
         ctx,
         "image upload staging",
-        bytes.len().max(4) as u64,
+        len.max(4) as u64,
         vk::BufferUsageFlags::TRANSFER_SRC,
         MemoryLocation::CpuToGpu,
     )?;
-    staging.write(bytes);
+    fill(&mut staging.mapped_mut()[..len])?;
     run_once(ctx, "image upload", |rec| {
         rec.uses(&[(image, Use::CopyDst)]);
         rec.copy_buffer_to_image_layers(&staging, image);
         // Sampled by fragment shaders (the water, the texture debug views), in the layout
         // `copy_buffer_to_image_layers` cannot leave it in.
         rec.uses(&[(image, Use::FragmentSampled)]);
-    })
+    })?;
+    Ok(())
 }
 
 /// Reads the first `len` bytes of a device buffer (through a staging buffer).

@@ -39,6 +39,29 @@ pub const THREADS_ENV: &str = "VKOCEAN_FFT_THREADS";
 /// Environment variable forcing a kernel: `shared` or `registers` (experiments, comparisons).
 pub const KERNEL_ENV: &str = "VKOCEAN_FFT_KERNEL";
 
+/// Checks `VKOCEAN_FFT_KERNEL` and `VKOCEAN_FFT_THREADS` when set: a value that would be
+/// ignored is an error (the message names the variable), not a silent fallback.
+pub fn check_env() -> Result<(), String> {
+    if let Some(v) = std::env::var_os(KERNEL_ENV) {
+        let v = v.to_string_lossy();
+        if v != "shared" && v != "registers" {
+            return Err(format!("{KERNEL_ENV}={v}: must be shared or registers"));
+        }
+    }
+    if let Some(v) = std::env::var_os(THREADS_ENV) {
+        let v = v.to_string_lossy();
+        match v.trim().parse::<u32>() {
+            Ok(n) if n.is_power_of_two() && n <= 1024 => {}
+            _ => {
+                return Err(format!(
+                    "{THREADS_ENV}={v}: must be a power of two from 1 to 1024 (the device's limit and N/8 cap it further)"
+                ))
+            }
+        }
+    }
+    Ok(())
+}
+
 /// Column pairs per workgroup of the register kernel (one SIMD vector of lanes).
 const REGISTER_PAIRS: u32 = 8;
 /// Longest column the register kernel keeps in the registers of one invocation (which holds

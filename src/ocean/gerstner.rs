@@ -79,6 +79,19 @@ impl TableFormat {
     }
 }
 
+/// Largest wave table file read (bytes): 10 000 waves of 80 characters fit with room to spare.
+pub const MAX_TABLE_BYTES: u64 = 4 << 20;
+/// Accepted wave numbers |k| (rad/m): wavelengths 2π/|k| from 6.3 mm (capillary ripples) to
+/// 6.3 km (swell); outside, a wave is finer than any texel or a flat tilt of the whole sea.
+pub const K_RANGE: (f64, f64) = (1.0e-3, 1.0e3);
+/// Largest accepted amplitude (m): beyond any sea wave (the highest measured is 30 m).
+pub const MAX_AMPLITUDE_M: f64 = 100.0;
+/// Largest accepted steepness Q. The surface folds once Σ Q·k·a > 1 (then every Q is scaled
+/// down, `limit_steepness`); a Q far above 1 only means a wave of tiny k·a, so 10 bounds it.
+pub const MAX_STEEPNESS: f64 = 10.0;
+/// Largest accepted |phase| (rad): f32 keeps the phase's fraction of a cycle to 1e-4 there.
+pub const MAX_PHASE_RAD: f64 = 1000.0;
+
 /// Parses a wave table written in `format`. Errors name the line.
 pub fn parse_waves(text: &str, format: TableFormat) -> Result<Vec<Wave>, String> {
     let number = |v: &str, line: usize| -> Result<f64, String> {
@@ -93,14 +106,26 @@ pub fn parse_waves(text: &str, format: TableFormat) -> Result<Vec<Wave>, String>
         }
     };
     let check = |w: Wave, line: usize| -> Result<Wave, String> {
-        if w.kx == 0.0 && w.kz == 0.0 {
+        let k = w.kx.hypot(w.kz);
+        if !(K_RANGE.0..=K_RANGE.1).contains(&k) {
             return Err(format!(
-                "line {line}: the wave vector (kx, kz) must not be zero"
+                "line {line}: the wave number |(kx, kz)| = {k:.3e} rad/m must be from {} to {} (wavelengths 6.3 mm to 6.3 km)",
+                K_RANGE.0, K_RANGE.1
             ));
         }
-        if w.amplitude < 0.0 || w.steepness < 0.0 {
+        if !(0.0..=MAX_AMPLITUDE_M).contains(&w.amplitude) {
             return Err(format!(
-                "line {line}: amplitude and steepness must not be negative"
+                "line {line}: the amplitude must be from 0 to {MAX_AMPLITUDE_M} m"
+            ));
+        }
+        if !(0.0..=MAX_STEEPNESS).contains(&w.steepness) {
+            return Err(format!(
+                "line {line}: the steepness Q must be from 0 to {MAX_STEEPNESS}"
+            ));
+        }
+        if w.phase.abs() > MAX_PHASE_RAD {
+            return Err(format!(
+                "line {line}: the phase must be from -{MAX_PHASE_RAD} to {MAX_PHASE_RAD} rad"
             ));
         }
         Ok(w)
@@ -393,7 +418,19 @@ mod tests {
             .contains("line 1"));
         assert!(parse_waves("0,0,1,0\n", TableFormat::Csv)
             .unwrap_err()
-            .contains("zero"));
+            .contains("line 1: the wave number |(kx, kz)| = 0.000e0 rad/m must be from 0.001"));
+        // The bounds themselves are accepted; just beyond them is not.
+        assert!(parse_waves("1000,0,100,1000,10\n0.001,0,0,-1000,0\n", TableFormat::Csv).is_ok());
+        for bad in [
+            "1000.1,0,1,0",
+            "0,0.0009,1,0",
+            "1,0,100.1,0",
+            "1,0,1,0,10.1",
+            "1,0,1,1000.1",
+            "1,0,-1,0",
+        ] {
+            assert!(parse_waves(bad, TableFormat::Csv).is_err(), "{bad}");
+        }
         assert!(parse_waves("[[wave]]\nkx=1\n", TableFormat::Toml)
             .unwrap_err()
             .contains("the [[wave]] at line 1 lacks kz"));

@@ -12,13 +12,13 @@ use super::atmosphere::Sky;
 use super::camera::Camera;
 use super::passes::water::WaterSamplers;
 use super::passes::{AntiAliasingPass, SkyCube, SkyPass, TerrainPass, TexturesViewPass, WaterPass};
-use super::scene::{generate_dudv, load_dudv, DUDV_SIDE};
+use super::scene::{dudv_size, generate_dudv, load_dudv, DUDV_SIDE};
 use super::targets::Targets;
 use super::targets::{DEPTH_FORMAT, HDR_FORMAT};
 use super::uniforms::{sky_uniforms, FrameInputs, FrameParams, FrameUniforms, OceanBindings};
 use super::{SceneSettings, ViewMode};
 use crate::gpu::descriptors::{self, Write};
-use crate::gpu::oneshot::upload_image;
+use crate::gpu::oneshot::upload_image_with;
 use crate::gpu::{
     Buffer, Context, DescriptorPool, DescriptorSetLayout, FormatUse, GpuResult, Handle, Image,
     ImageDesc, MemoryLocation, Sampler, Tracked, FRAMES_IN_FLIGHT,
@@ -272,9 +272,9 @@ impl Renderer {
             frame_uniforms.push((buffer, set));
         }
 
-        let (w, h, texels) = match &settings.dudv {
-            Some(path) => load_dudv(path)?,
-            None => (DUDV_SIDE, DUDV_SIDE, generate_dudv(DUDV_SIDE)),
+        let (w, h) = match &settings.dudv {
+            Some(path) => dudv_size(path, ctx.info.limits.max_image_dimension2_d)?,
+            None => (DUDV_SIDE, DUDV_SIDE),
         };
         let dudv = Image::new(
             ctx,
@@ -292,7 +292,14 @@ impl Renderer {
                 cube: false,
             },
         )?;
-        upload_image(ctx, &dudv, &texels)?;
+        let len = w as usize * h as usize * 4;
+        upload_image_with(ctx, &dudv, len, |out| -> anyhow::Result<()> {
+            match &settings.dudv {
+                Some(path) => load_dudv(path, (w, h), out)?,
+                None => out.copy_from_slice(&generate_dudv(DUDV_SIDE)),
+            }
+            Ok(())
+        })?;
 
         let clamp_sampler = Sampler::linear(ctx, "render target sampler (clamp)", clamp)?;
         let depth_sampler = Sampler::new(

@@ -3,6 +3,8 @@
 
 use std::path::Path;
 
+use crate::input::{decode_png_rgba8, png_size, InputError};
+
 use super::uniforms::{SceneLayout, WATER_LEVEL_M};
 use crate::ocean::moments::SeaMoments;
 use crate::ocean::shore::shore_waves;
@@ -49,13 +51,22 @@ pub fn generate_dudv(side: u32) -> Vec<u8> {
     texels
 }
 
-/// Loads a DU/DV map from a PNG (red = du, green = dv, 128 = no offset): (width, height, RGBA8).
-pub fn load_dudv(path: &Path) -> anyhow::Result<(u32, u32, Vec<u8>)> {
-    let img = image::open(path)
-        .map_err(|e| anyhow::anyhow!("--dudv {}: {e}", path.display()))?
-        .to_rgba8();
-    let (w, h) = img.dimensions();
-    Ok((w, h, img.into_raw()))
+/// The size of `--dudv`'s PNG (read from its header), checked against the device's largest
+/// 2D image before a byte of it is decoded.
+pub fn dudv_size(path: &Path, max_side: u32) -> Result<(u32, u32), InputError> {
+    let (w, h) = png_size("--dudv", path)?;
+    if w > max_side || h > max_side {
+        return Err(InputError(format!(
+            "--dudv {}: {w}x{h} is larger than this device's largest 2D image ({max_side}x{max_side})",
+            path.display()
+        )));
+    }
+    Ok((w, h))
+}
+
+/// Decodes `--dudv`'s PNG (red = du, green = dv, 128 = no offset) as RGBA8 into `out`.
+pub fn load_dudv(path: &Path, size: (u32, u32), out: &mut [u8]) -> Result<(), InputError> {
+    decode_png_rgba8("--dudv", path, size, out)
 }
 
 /// Height of the island terrain at world (x, z) (m): `terrain_height` of

@@ -8,11 +8,12 @@ use std::sync::Arc;
 use ash::vk;
 
 use super::{bind_scene, scene_layout, scene_pipeline, Depth, PerTarget};
-use crate::gpu::oneshot::upload_image;
+use crate::gpu::oneshot::upload_image_with;
 use crate::gpu::{
     Attachment, Context, DescriptorSetLayout, GpuResult, GraphicsDesc, Image, ImageDesc, Load,
     Pipeline, PipelineLayout, Recorder, Use,
 };
+use crate::input::{decode_png_rgba8, png_size, regular_file, InputError};
 use crate::render::atmosphere::{Sky, SUN_IRRADIANCE};
 use crate::render::targets::HDR_FORMAT;
 use crate::render::uniforms::ViewIndex;
@@ -20,6 +21,50 @@ use crate::shaders;
 
 /// Side of each face of the rendered sky cubemap (px).
 pub const CUBE_SIDE: u32 = 256;
+/// The side of `--skybox DIR`'s faces, from their PNG headers: each face must exist as a file
+/// and be square, all of one size, at most `max_side` (the device's largest cube; the command
+/// line checks against the largest any device has).
+pub fn skybox_side(dir: &Path, max_side: u32) -> Result<u32, InputError> {
+    let shown = dir.display();
+    if !dir.is_dir() {
+        let what = if dir.exists() {
+            "not a directory"
+        } else {
+            "no such directory"
+        };
+        return Err(InputError(format!(
+            "--skybox {shown}: {what} (it takes a directory of six faces: {}.png)",
+            SKYBOX_FACES.join(".png ")
+        )));
+    }
+    let mut side = None;
+    for face in SKYBOX_FACES {
+        let path = dir.join(format!("{face}.png"));
+        if !path.exists() {
+            return Err(InputError(format!(
+                "--skybox {shown}: missing face {}",
+                path.display()
+            )));
+        }
+        regular_file("--skybox", &path)?;
+        let (w, h) = png_size("--skybox", &path)?;
+        if w != h || side.is_some_and(|s| s != w) {
+            return Err(InputError(format!(
+                "--skybox {}: is {w}x{h}; the six faces must be square and the same size",
+                path.display()
+            )));
+        }
+        if w > max_side {
+            return Err(InputError(format!(
+                "--skybox {}: {w}x{h} is larger than this device's largest cube face ({max_side}x{max_side})",
+                path.display()
+            )));
+        }
+        side = Some(w);
+    }
+    Ok(side.unwrap_or(1))
+}
+
 /// Face file names of `--skybox DIR`, in Vulkan's layer order.
 pub const SKYBOX_FACES: [&str; 6] = ["px", "nx", "py", "ny", "pz", "nz"];
 
@@ -131,27 +176,20 @@ impl SkyCube {
         })
     }
 
-    /// A cube loaded from `DIR/{px,nx,py,ny,pz,nz}.png` (square, equal sizes, sRGB colour).
+    /// A cube loaded from `DIR/{px,nx,py,ny,pz,nz}.png` (square, equal sizes, sRGB colour):
+    /// every face's header is checked (and the side against the device's largest cube) before
+    /// the faces are decoded, one after the other, into the upload buffer.
     pub fn load(ctx: &Arc<Context>, dir: &Path) -> anyhow::Result<SkyCube> {
-        let mut side = 0;
-        let mut texels = Vec::new();
-        for face in SKYBOX_FACES {
-            let path = dir.join(format!("{face}.png"));
-            let img = image::open(&path)
-                .map_err(|e| anyhow::anyhow!("--skybox: {}: {e}", path.display()))?
-                .to_rgba8();
-            let (w, h) = img.dimensions();
-            if w != h || (side != 0 && w != side) {
-                anyhow::bail!(
-                    "--skybox: {} is {w}x{h}; the six faces must be square and the same size",
-                    path.display()
-                );
-            }
-            side = w;
-            texels.extend_from_slice(img.as_raw());
-        }
+        let side = skybox_side(dir, ctx.info.limits.max_image_dimension_cube)?;
         let image = cube_image(ctx, "skybox", side, vk::Format::R8G8B8A8_SRGB, UPLOADED)?;
-        upload_image(ctx, &image, &texels)?;
+        let face_len = side as usize * side as usize * 4;
+        upload_image_with(ctx, &image, face_len * 6, |out| -> anyhow::Result<()> {
+            for (face, out) in SKYBOX_FACES.iter().zip(out.chunks_exact_mut(face_len)) {
+                let path = dir.join(format!("{face}.png"));
+                decode_png_rgba8("--skybox", &path, (side, side), out)?;
+            }
+            Ok(())
+        })?;
         Ok(SkyCube {
             image,
             render: None,
