@@ -318,3 +318,56 @@ fn f1_shows_the_overlay_and_a_click_on_a_preset_changes_the_sea() {
     assert!(saved.contains("preset = \"storm\""), "{saved}");
     assert!(saved.contains("wind-speed = 26.5"), "{saved}");
 }
+
+/// The X server's connection killed under a running window (`xdotool windowkill`, with the
+/// overlay shown: egui reads the window too), then Ctrl-C to a second window: each ends with one
+/// `vkocean:` line and its exit code (1, 130), no panic, and neither leaves its --screenshot or
+/// --profile (nor a temporary) behind.
+#[test]
+fn a_killed_x_connection_and_ctrl_c_end_a_window_with_one_line() {
+    let dir = scratch("window-kill");
+    let script = format!(
+        r#"
+        cd '{dir}'
+        "$VKOCEAN" --size 320x240 --fft-size 64 --cascades 1 --overlay --screenshot a.png 2> kill.err &
+        pid=$!
+        {wait}
+        drawn_at 320x240
+        xdotool windowkill "$wid"
+        code=0; wait "$pid" || code=$?
+        echo "windowkill exit $code" >&2
+        "$VKOCEAN" --size 320x240 --fft-size 64 --cascades 1 --screenshot b.png --profile b.json 2> int.err &
+        pid=$!
+        {wait}
+        drawn_at 320x240
+        kill -INT "$pid"
+        code=0; wait "$pid" || code=$?
+        echo "sigint exit $code" >&2
+        "#,
+        dir = dir.display(),
+        wait = WAIT_FOR_WINDOW
+    );
+    let out = under_xvfb(&script);
+    let err = String::from_utf8_lossy(&out.stderr).into_owned();
+    assert!(err.contains("windowkill exit 1"), "{err}");
+    assert!(err.contains("sigint exit 130"), "{err}");
+    let read = |name: &str| std::fs::read_to_string(dir.join(name)).unwrap_or_default();
+    let (kill_err, int_err) = (read("kill.err"), read("int.err"));
+    assert_eq!(
+        kill_err.trim_end(),
+        "vkocean: lost the connection to the X server (the window was killed or the display closed)",
+        "{kill_err}"
+    );
+    assert_eq!(
+        int_err.trim_end(),
+        "vkocean: stopped by SIGINT (Ctrl-C); no output was written",
+        "{int_err}"
+    );
+    let mut left: Vec<String> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    left.sort();
+    assert_eq!(left, ["int.err", "kill.err"], "files left: {left:?}");
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -197,7 +197,7 @@ pub struct Cli {
     pub log_resources: Option<u64>,
 
     /// With --headless: write the last frame's h0.npy, displacement.npy, normals.npy and
-    /// params.json into DIR (created if missing). Layout in README.
+    /// params.json into DIR (created if missing; its parent must exist). Layout in README.
     #[arg(long, value_name = "DIR")]
     pub dump: Option<PathBuf>,
 
