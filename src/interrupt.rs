@@ -1,13 +1,14 @@
-//! SIGINT, SIGTERM and SIGHUP: the first one sets a flag that the frame loops and the output
+//! SIGINT and SIGTERM: the first one sets a flag that the frame loops and the output
 //! commits check ([`check`]), so a run stops after the frame it is in, removes its temporary
 //! files, writes no output and exits with 128 + the signal's number (130 for Ctrl-C, 143 for
-//! SIGTERM). A second signal of any of the three kills the process at once (the signal's
-//! default action), for a run stuck where no check is reached.
+//! SIGTERM). A second signal of either kills the process at once (the signal's default action),
+//! for a run stuck where no check is reached. SIGHUP keeps its default (or, under `nohup`, its
+//! ignored) disposition: signal-hook would replace an inherited "ignore".
 
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::{Arc, OnceLock};
 
-use signal_hook::consts::{SIGHUP, SIGINT, SIGTERM};
+use signal_hook::consts::{SIGINT, SIGTERM};
 
 /// The first signal caught (0: none) and whether one was.
 struct Caught {
@@ -35,7 +36,6 @@ fn signal_name(signal: i32) -> &'static str {
     match signal {
         SIGINT => "SIGINT (Ctrl-C)",
         SIGTERM => "SIGTERM",
-        SIGHUP => "SIGHUP",
         _ => "a signal",
     }
 }
@@ -49,12 +49,13 @@ pub fn install() -> std::io::Result<()> {
         signal: Arc::new(AtomicUsize::new(0)),
         any: Arc::new(AtomicBool::new(false)),
     };
-    for signal in [SIGINT, SIGTERM, SIGHUP] {
+    for signal in [SIGINT, SIGTERM] {
         // The second signal: the default action (terminate). Registered first, so the first
-        // signal finds the flag still clear.
+        // signal finds the flag still clear; the signal's number is stored before the flag is
+        // set, so `caught` never sees the flag without it.
         signal_hook::flag::register_conditional_default(signal, caught.any.clone())?;
-        signal_hook::flag::register(signal, caught.any.clone())?;
         signal_hook::flag::register_usize(signal, caught.signal.clone(), signal as usize)?;
+        signal_hook::flag::register(signal, caught.any.clone())?;
     }
     let _ = CAUGHT.set(caught);
     Ok(())

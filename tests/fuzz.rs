@@ -391,8 +391,9 @@ fn wave_table(rng: &mut Rng, toml: bool) -> String {
 /// Runs one case in an empty directory: its exit code and a description of what broke, if
 /// anything.
 fn check(case: &Case, work: &Path) -> (Option<i32>, Option<String>) {
+    // -k: vkocean catches SIGTERM (it stops between frames), so a hang needs SIGKILL after it.
     let out = Command::new("timeout")
-        .arg("60")
+        .args(["-k", "5", "60"])
         .arg(bin())
         .args(&case.args)
         .current_dir(work)

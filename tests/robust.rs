@@ -166,6 +166,7 @@ fn oversized_png_headers_are_refused_before_decoding() {
 fn needed_kib(args: &[&str]) -> u64 {
     let ok = |kib: u64| {
         let mut cmd = Command::new("bash");
+        cmd.env("MALLOC_ARENA_MAX", "1");
         cmd.args(["-c", &format!("ulimit -v {kib}; exec \"$0\" \"$@\""), bin()]);
         cmd.args(args).output().unwrap().status.success()
     };
@@ -186,7 +187,9 @@ fn needed_kib(args: &[&str]) -> u64 {
 /// 64 MiB of staging) runs under the limit a run without it needs plus 2 × 64 MiB plus the
 /// stated margin (`vkocean::input::PNG_DECODER_BYTES`, 64 MiB, and 32 MiB of search step).
 /// Hostile headers (16384² faces with no data: 6 GiB each for the cube and its staging) under
-/// the plain limit fail with one line (exit 1: out of memory), no abort.
+/// the plain limit + 512 MiB fail with one line (exit 1: out of memory), no abort. glibc's
+/// allocation arenas (64 MiB of address space each, made when threads contend) would make the
+/// need vary from run to run: every run here has MALLOC_ARENA_MAX=1.
 #[test]
 fn memory_under_hostile_input_is_the_picture_plus_a_fixed_margin() {
     let dir = scratch("robust-memory");
@@ -202,6 +205,7 @@ fn memory_under_hostile_input_is_the_picture_plus_a_fixed_margin() {
     eprintln!("plain run: {plain} KiB; with the 4096² map: limit {limit} KiB");
     let script = format!("ulimit -v {limit}; exec \"$0\" \"$@\"");
     let out = Command::new("bash")
+        .env("MALLOC_ARENA_MAX", "1")
         .args(["-c", &script, bin()])
         .args(base)
         .args(["--dudv", dudv.to_str().unwrap()])
@@ -218,8 +222,10 @@ fn memory_under_hostile_input_is_the_picture_plus_a_fixed_margin() {
     skybox(&sky, |p| {
         std::fs::write(p, png_header_only(16384, 16384)).unwrap()
     });
-    let script = format!("ulimit -v {plain}; exec \"$0\" \"$@\"");
+    // The hostile faces under the plain limit plus 512 MiB: far below their 12 GiB.
+    let script = format!("ulimit -v {}; exec \"$0\" \"$@\"", plain + 512 * 1024);
     let out = Command::new("bash")
+        .env("MALLOC_ARENA_MAX", "1")
         .args(["-c", &script, bin()])
         .args(base)
         .args(["--skybox", sky.to_str().unwrap()])
@@ -235,7 +241,7 @@ fn memory_under_hostile_input_is_the_picture_plus_a_fixed_margin() {
 }
 
 /// A FIFO as --config (it would block forever), a directory, a device: one line, exit 2, at
-/// once (the run is killed after 20 s if it hangs).
+/// once (the run is killed after 20 s if it hangs: SIGTERM, which vkocean catches, then SIGKILL).
 #[test]
 fn config_must_be_a_regular_file() {
     let dir = scratch("robust-fifo");
@@ -247,6 +253,8 @@ fn config_must_be_a_regular_file() {
         .success());
     let out = Command::new("timeout")
         .args([
+            "-k",
+            "5",
             "20",
             bin(),
             "--headless",

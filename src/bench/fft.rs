@@ -122,6 +122,8 @@ pub fn fft(s: &FftBenchSettings) -> anyhow::Result<Outcome> {
                        "kernel": r.kernel, "runs": r.runs, "steal_pct": r.steal_pct})
             })
             .collect();
+        // The table went to stdout row by row: a failed write fails the run before the JSON.
+        crate::output::stdout_status()?;
         file.commit((serde_json::to_string_pretty(&value)? + "\n").as_bytes())?;
     }
     Ok(Outcome { counters })

@@ -264,14 +264,17 @@ pub fn frames(s: &FramesBenchSettings) -> anyhow::Result<Outcome> {
     );
     let table = table(&m, &cpu);
     drop(ctx);
-    // Outputs are written only once the whole run has succeeded.
+    // Outputs are written only once the whole run (stdout included) has succeeded, together.
+    let mut staged = Vec::new();
     if let Some(file) = json_file {
-        file.commit((serde_json::to_string_pretty(&value)? + "\n").as_bytes())?;
+        staged.push(file.stage((serde_json::to_string_pretty(&value)? + "\n").as_bytes())?);
     }
     if let Some(file) = csv_file {
-        file.commit(m.csv().as_bytes())?;
+        staged.push(file.stage(m.csv().as_bytes())?);
     }
     crate::output::write_stdout(&table);
+    crate::output::stdout_status()?;
+    crate::output::place_all(staged)?;
     Ok(Outcome { counters })
 }
 

@@ -159,9 +159,10 @@ pub fn gerstner(s: &GerstnerBenchSettings) -> anyhow::Result<Outcome> {
         "grid_width": s.grid_widths.iter().map(|&g| to_json(find(FIXED_WAVES, g))).collect::<Vec<_>>(),
     });
     drop(ctx);
+    crate::output::write_stdout(&out);
+    crate::output::stdout_status()?;
     if let Some(file) = json_file {
         file.commit((serde_json::to_string_pretty(&value)? + "\n").as_bytes())?;
     }
-    crate::output::write_stdout(&out);
     Ok(Outcome { counters })
 }

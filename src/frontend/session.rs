@@ -311,15 +311,6 @@ pub struct Finished {
 }
 
 impl Finished {
-    /// Writes the profile (when asked for), then prints the table and `summary_suffix`-extended
-    /// summary line. Call after every other output of the run has succeeded.
-    pub fn commit(self, profile: Option<PendingFile>, summary_suffix: &str) -> anyhow::Result<()> {
-        let with_table = profile.is_some();
-        crate::output::place_all(self.stage_profile(profile)?.into_iter().collect())?;
-        self.report(with_table, summary_suffix);
-        Ok(())
-    }
-
     /// The profile written to its temporary file, for [`crate::output::place_all`].
     pub fn stage_profile(&self, profile: Option<PendingFile>) -> anyhow::Result<Option<Staged>> {
         let Some(file) = profile else {

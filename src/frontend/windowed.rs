@@ -26,7 +26,7 @@ use super::session::{check_size, readback_buffer, Session};
 use super::{Outcome, RunSettings};
 use crate::gpu::image::full_range;
 use crate::gpu::{Buffer, Context, ContextDesc, ExternalImage, MessageCounters, State, Swapchain};
-use crate::output::{encode_png, PendingFile};
+use crate::output::{encode_png, PendingFile, Staged};
 use crate::render::{Delivery, FrameInputs, OutputTarget, SwapchainSync, ACQUIRE_WAIT_STAGE};
 
 pub fn run(s: &RunSettings) -> anyhow::Result<Outcome> {
@@ -51,6 +51,7 @@ pub fn run(s: &RunSettings) -> anyhow::Result<Outcome> {
         settings: s.clone(),
         profile,
         screenshot,
+        exit_shot: None,
         state: None,
         error: None,
         counters: None,
@@ -97,6 +98,8 @@ struct App {
     profile: Option<PendingFile>,
     /// `--screenshot`: written with the last frame at exit.
     screenshot: Option<PendingFile>,
+    /// The exit screenshot (its path, and the staged file), placed with the profile at shutdown.
+    exit_shot: Option<(String, Staged)>,
     state: Option<WindowState>,
     /// First error; the event loop exits and `run` returns it.
     error: Option<anyhow::Error>,
@@ -154,10 +157,23 @@ impl App {
         if let Some(mut state) = self.state.take() {
             let size = (state.swapchain.extent.width, state.swapchain.extent.height);
             let suffix = format!("; swapchain created {} times", state.swapchain.generation);
-            let done = state
-                .session
-                .finish(size)
-                .and_then(|finished| finished.commit(self.profile.take(), &suffix));
+            let profile = self.profile.take();
+            let with_table = profile.is_some();
+            let shot = self.exit_shot.take();
+            let done = state.session.finish(size).and_then(|finished| {
+                let mut staged: Vec<Staged> =
+                    finished.stage_profile(profile)?.into_iter().collect();
+                let path = shot.map(|(path, file)| {
+                    staged.push(file);
+                    path
+                });
+                crate::output::place_all(staged)?;
+                if let Some(path) = path {
+                    eprintln!("vkocean: saved {path}");
+                }
+                finished.report(with_table, &suffix);
+                Ok(())
+            });
             if let Err(e) = done {
                 self.error.get_or_insert(e);
             }
@@ -374,9 +390,8 @@ impl App {
                     .screenshot
                     .take()
                     .expect("exit_shot implies --screenshot");
-                let path = file.path().display().to_string();
-                file.commit(&png)?;
-                eprintln!("vkocean: saved {path}");
+                // Placed with the profile at shutdown (both or neither).
+                self.exit_shot = Some((file.path().display().to_string(), file.stage(&png)?));
             } else {
                 // F12: to --screenshot's path if given (the exit screenshot overwrites it
                 // later), else to vkocean-<frame>.png in the working directory.
