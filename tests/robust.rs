@@ -29,10 +29,11 @@ fn signal_after_frames(dir: &Path, args: &[&str], frames: usize, signal: &str) -
         let n = stdout.read_line(&mut line).expect("stdout readable");
         assert!(n > 0, "vkocean ended before frame {}", i + 1);
     }
-    let status = Command::new("kill")
-        .args([&format!("-{signal}"), &child.id().to_string()])
+    // bash's own kill: Debian 13's bare root (tools/debian13) has no kill(1).
+    let status = Command::new("bash")
+        .args(["-c", &format!("kill -{signal} {}", child.id())])
         .status()
-        .expect("kill runs");
+        .expect("bash runs");
     assert!(status.success());
     let mut rest = Vec::new();
     let _ = stdout.read_to_end(&mut rest);
@@ -320,7 +321,8 @@ fn misleading_inputs_get_messages_that_name_the_problem() {
             s(&["--headless", "--size", "32x32"]),
             vec![("VK_ICD_FILENAMES", d("icd.json"))],
             1,
-            "driver manifests of VK_ICD_FILENAMES=",
+            // The loader of Debian 12 fails on the manifest, Debian 13's skips it.
+            "JSON naming an installed driver",
         ),
         (
             s(&["--headless", "--dudv", &d("adir.png")]),

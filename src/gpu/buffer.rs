@@ -74,7 +74,11 @@ impl Buffer {
             size,
             state: Cell::new(State::NEW),
         };
-        bound.vk("vkBindBufferMemory")?;
+        bound.map_err(|result| GpuError::Bind {
+            name: name.to_string(),
+            call: "vkBindBufferMemory",
+            result,
+        })?;
         ctx.name(raw, name);
         Ok(buffer)
     }

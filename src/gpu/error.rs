@@ -15,10 +15,16 @@ pub enum GpuError {
          vulkan-validationlayers (tools/setup) or run without --validation"
     )]
     ValidationLayerMissing,
-    #[error(
-        "no Vulkan device found; without a GPU install Mesa's lavapipe (mesa-vulkan-drivers, tools/setup)"
-    )]
+    #[error("no Vulkan device found; {}", no_device_hint())]
     NoDevice,
+    /// Memory for a named object that the driver failed to bind (Mesa 25's lavapipe fails
+    /// here, not at allocation, when the address space runs out).
+    #[error("GPU memory for {name}: {call} failed: {result}")]
+    Bind {
+        name: String,
+        call: &'static str,
+        result: vk::Result,
+    },
     #[error("no usable Vulkan device: {0}")]
     NoSuitableDevice(String),
     #[error("--gpu {index}: there {} only {count} Vulkan device{} (indices 0..{}); see --list-gpus",
@@ -47,12 +53,31 @@ pub enum GpuError {
     },
 }
 
-/// Where the Vulkan loader found its driver manifests, for [`GpuError::Loader`].
-fn loader_hint() -> String {
-    let set: Vec<String> = ["VK_DRIVER_FILES", "VK_ICD_FILENAMES", "VK_ADD_DRIVER_FILES"]
+/// [`GpuError::NoDevice`]'s advice: the driver manifests the environment names, if any, else
+/// how to install lavapipe.
+fn no_device_hint() -> String {
+    let set = driver_variables();
+    if set.is_empty() {
+        "without a GPU install Mesa's lavapipe (mesa-vulkan-drivers, tools/setup)".to_string()
+    } else {
+        format!(
+            "the Vulkan loader found no usable driver in {}; check that each manifest is valid JSON naming an installed driver",
+            set.join(", ")
+        )
+    }
+}
+
+/// The loader's driver-manifest variables that are set, as `NAME=value`.
+fn driver_variables() -> Vec<String> {
+    ["VK_DRIVER_FILES", "VK_ICD_FILENAMES", "VK_ADD_DRIVER_FILES"]
         .iter()
         .filter_map(|v| std::env::var(v).ok().map(|value| format!("{v}={value}")))
-        .collect();
+        .collect()
+}
+
+/// Where the Vulkan loader found its driver manifests, for [`GpuError::Loader`].
+fn loader_hint() -> String {
+    let set = driver_variables();
     if set.is_empty() {
         "the Vulkan loader could not read the installed driver manifests (/usr/share/vulkan/icd.d, /etc/vulkan/icd.d); check that they are valid JSON".to_string()
     } else {

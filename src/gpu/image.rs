@@ -149,7 +149,11 @@ impl Image {
             ctx.device
                 .bind_image_memory(raw, allocation.memory(), allocation.offset())
         }
-        .vk("vkBindImageMemory")?;
+        .map_err(|result| GpuError::Bind {
+            name: desc.name.to_string(),
+            call: "vkBindImageMemory",
+            result,
+        })?;
         ctx.name(raw, desc.name);
         // Copy-only images (transfer usage alone) cannot have views; `view` stays null.
         let viewable = vk::ImageUsageFlags::SAMPLED
