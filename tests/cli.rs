@@ -3,32 +3,13 @@
 
 mod common;
 
-use common::{entries, run, run_with_env, scratch, stderr};
+use common::{assert_one_line, entries, run, run_with_env, scratch, stderr};
 
-/// Asserts exit `code`, exactly one stderr line starting `vkocean: ` that contains `needle`.
+/// Asserts exit `code`, exactly one stderr line starting `vkocean: ` that contains `needle`
+/// (`common::assert_one_line`), and nothing on stdout.
 fn assert_fails(args: &[&str], env: &[(&str, &str)], code: i32, needle: &str) {
     let out = run_with_env(args, env);
-    let err = stderr(&out);
-    assert_eq!(
-        out.status.code(),
-        Some(code),
-        "{args:?}: exit code; stderr:\n{err}"
-    );
-    let lines: Vec<&str> = err.lines().collect();
-    assert_eq!(
-        lines.len(),
-        1,
-        "{args:?}: expected one stderr line, got:\n{err}"
-    );
-    assert!(lines[0].starts_with("vkocean: "), "{args:?}: {err}");
-    assert!(
-        lines[0].contains(needle),
-        "{args:?}: {err:?} lacks {needle:?}"
-    );
-    assert!(
-        !err.contains("panicked") && !err.contains("RUST_BACKTRACE"),
-        "{args:?}: {err}"
-    );
+    assert_one_line(&out, code, needle, &format!("{args:?}"));
     assert!(out.stdout.is_empty(), "{args:?}: stdout should be empty");
 }
 
