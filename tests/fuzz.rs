@@ -299,11 +299,20 @@ fn odd_path(rng: &mut Rng, inputs: &Path, i: usize, ext: &str) -> PathBuf {
             .status()
             .unwrap()
             .success()),
-        2 => std::os::unix::fs::symlink("/dev/zero", &path).unwrap(),
-        3 => std::os::unix::fs::symlink(&path, &path).unwrap(),
-        _ => std::os::unix::fs::symlink(inputs.join("missing"), &path).unwrap(),
+        2 => symlink(Path::new("/dev/zero"), &path),
+        3 => symlink(&path, &path),
+        _ => symlink(&inputs.join("missing"), &path),
     }
     path
+}
+
+/// A symbolic link at `path` to `target` (the suite runs on Linux; on Windows it compiles, with
+/// the file links that need no administrator in developer mode).
+fn symlink(target: &Path, path: &Path) {
+    #[cfg(unix)]
+    std::os::unix::fs::symlink(target, path).unwrap();
+    #[cfg(windows)]
+    std::os::windows::fs::symlink_file(target, path).unwrap();
 }
 
 fn file_cases(rng: &mut Rng, n: usize, inputs: &Path) -> Vec<Case> {

@@ -30,9 +30,7 @@ use crate::output::{encode_png, PendingFile, Staged};
 use crate::render::{Delivery, FrameInputs, OutputTarget, SwapchainSync, ACQUIRE_WAIT_STAGE};
 
 pub fn run(s: &RunSettings) -> anyhow::Result<Outcome> {
-    if std::env::var_os("DISPLAY").is_none() {
-        anyhow::bail!("no X display to open a window on (DISPLAY is not set); run with --headless, or under xvfb-run");
-    }
+    crate::platform::check_display()?;
     let profile = s
         .profile
         .as_deref()
@@ -192,7 +190,7 @@ impl App {
                 .create_window(attributes)
                 .map_err(|e| anyhow::anyhow!("cannot open a window: {e}"))?,
         );
-        crate::gpu::x11::report_lost_connection();
+        crate::platform::watch_display();
         let display = window
             .display_handle()
             .map_err(|e| anyhow::anyhow!("window display handle: {e}"))?

@@ -121,7 +121,7 @@ impl Context {
             // (the windowed frontend drops the context first).
             let surface =
                 unsafe { ash_window::create_surface(&entry, &instance, display, window, None) }
-                    .vk("vkCreateXlibSurfaceKHR")?;
+                    .vk("vkCreate*SurfaceKHR (ash_window::create_surface)")?;
             partial.surface = Some((ash::khr::surface::Instance::new(&entry, &instance), surface));
         }
 

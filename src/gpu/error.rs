@@ -3,17 +3,17 @@
 
 use ash::vk;
 
+use crate::platform;
+
 /// Everything that can go wrong below the renderer.
 #[derive(Debug, thiserror::Error)]
 pub enum GpuError {
     #[error(
-        "cannot load the Vulkan loader ({library}): {reason}; install libvulkan1 (tools/setup)"
+        "cannot load the Vulkan loader ({library}): {reason}; {}",
+        platform::INSTALL_LOADER
     )]
     LoaderMissing { library: String, reason: String },
-    #[error(
-        "the validation layer VK_LAYER_KHRONOS_validation is not installed; install \
-         vulkan-validationlayers (tools/setup) or run without --validation"
-    )]
+    #[error("{}", platform::validation_layer_missing())]
     ValidationLayerMissing,
     #[error("no Vulkan device found; {}", no_device_hint())]
     NoDevice,
@@ -58,7 +58,7 @@ pub enum GpuError {
 fn no_device_hint() -> String {
     let set = driver_variables();
     if set.is_empty() {
-        "without a GPU install Mesa's lavapipe (mesa-vulkan-drivers, tools/setup)".to_string()
+        platform::INSTALL_DRIVER.to_string()
     } else {
         format!(
             "the Vulkan loader found no usable driver in {}; check that each manifest is valid JSON naming an installed driver",
@@ -79,7 +79,10 @@ fn driver_variables() -> Vec<String> {
 fn loader_hint() -> String {
     let set = driver_variables();
     if set.is_empty() {
-        "the Vulkan loader could not read the installed driver manifests (/usr/share/vulkan/icd.d, /etc/vulkan/icd.d); check that they are valid JSON".to_string()
+        format!(
+            "the Vulkan loader could not read {}; check that they are valid JSON",
+            platform::DRIVER_MANIFESTS
+        )
     } else {
         format!(
             "the Vulkan loader could not use the driver manifests of {}; check that each is valid JSON naming an installed driver",

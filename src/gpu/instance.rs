@@ -12,12 +12,14 @@ use super::debug::{self, MessageCounters};
 use super::error::{GpuError, GpuResult, VkResultExt};
 
 pub(crate) const VALIDATION_LAYER: &CStr = c"VK_LAYER_KHRONOS_validation";
-/// Environment variable naming the Vulkan loader library to load instead of `libvulkan.so.1`.
+/// Environment variable naming the Vulkan loader library to load instead of the system's
+/// (`libvulkan.so.1`, `vulkan-1.dll`).
 pub const LOADER_ENV: &str = "VKOCEAN_VULKAN_LIBRARY";
 
 /// Loads the Vulkan loader (or the library named by `VKOCEAN_VULKAN_LIBRARY`).
 pub(crate) fn load_entry() -> GpuResult<ash::Entry> {
-    let library = std::env::var(LOADER_ENV).unwrap_or_else(|_| "libvulkan.so.1".to_string());
+    let library =
+        std::env::var(LOADER_ENV).unwrap_or_else(|_| crate::platform::VULKAN_LOADER.to_string());
     // SAFETY: loading the Vulkan loader runs its initialisers; it is the library's documented use.
     let entry = unsafe {
         if std::env::var_os(LOADER_ENV).is_some() {

@@ -25,7 +25,6 @@ mod submit;
 pub mod swapchain;
 pub mod timestamps;
 pub mod track;
-pub mod x11;
 
 pub use ash::vk;
 pub use buffer::{Buffer, BufferView};

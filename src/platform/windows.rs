@@ -1,0 +1,117 @@
+//! Windows: console control events (`SetConsoleCtrlHandler`) in place of POSIX signals, and
+//! advice that names `vulkan-1.dll`, the GPU driver and the Vulkan SDK. A window needs no
+//! display check, and a window closed by the system arrives as winit's `CloseRequested`, so
+//! there is no lost connection to report.
+
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::{Arc, OnceLock};
+use std::time::Duration;
+
+use windows_sys::core::BOOL;
+use windows_sys::Win32::System::Console::{SetConsoleCtrlHandler, CTRL_BREAK_EVENT, CTRL_C_EVENT};
+use windows_sys::Win32::System::LibraryLoader::{GetModuleHandleA, GetProcAddress};
+
+use super::{STOP_INTERRUPT, STOP_TERMINATE};
+
+/// The Vulkan loader `ash::Entry::load` opens (installed with every GPU driver that has Vulkan).
+pub const VULKAN_LOADER: &str = "vulkan-1.dll";
+/// How to get the Vulkan loader.
+pub const INSTALL_LOADER: &str =
+    "install the GPU's driver (it brings the Vulkan loader), or the Vulkan Runtime from the Vulkan SDK";
+/// The line for `--validation` without the layer. Under Wine the loader lists no layers at
+/// all, but the host's layer can run below it (README, Windows: what tools/windows does).
+pub fn validation_layer_missing() -> String {
+    if under_wine() {
+        "Wine's vulkan-1.dll lists no layers, so --validation cannot enable \
+         VK_LAYER_KHRONOS_validation; run without it and enable the host's layer where wine \
+         runs (VK_INSTANCE_LAYERS=VK_LAYER_KHRONOS_validation \
+         VK_LAYER_ENABLES=VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT \
+         VK_KHRONOS_VALIDATION_DEBUG_ACTION=VK_DBG_LAYER_ACTION_LOG_MSG)"
+            .to_string()
+    } else {
+        "the validation layer VK_LAYER_KHRONOS_validation is not installed; install the Vulkan \
+         SDK (it carries the layer) or run without --validation"
+            .to_string()
+    }
+}
+
+/// Whether this process runs under Wine: Wine's ntdll exports `wine_get_version`.
+fn under_wine() -> bool {
+    // SAFETY: ntdll.dll is loaded in every Windows process; both calls take NUL-terminated
+    // names and only look the module and the symbol up (the result is not called).
+    unsafe {
+        let ntdll = GetModuleHandleA(c"ntdll.dll".as_ptr().cast());
+        !ntdll.is_null() && GetProcAddress(ntdll, c"wine_get_version".as_ptr().cast()).is_some()
+    }
+}
+/// What to do when no device exists at all.
+pub const INSTALL_DRIVER: &str = "install or update the GPU's driver (vkocean needs Vulkan 1.3)";
+/// Where the loader reads the installed drivers' manifests.
+pub const DRIVER_MANIFESTS: &str =
+    "the drivers registered under HKEY_LOCAL_MACHINE\\SOFTWARE\\Khronos\\Vulkan\\Drivers";
+
+/// The user-facing name of a stop (`stopped by ...`).
+pub fn stop_name(stop: i32) -> &'static str {
+    match stop {
+        STOP_INTERRUPT => "Ctrl-C",
+        STOP_TERMINATE => "closing the console (or logging off)",
+        _ => "a console event",
+    }
+}
+
+/// The flags the handler sets: the stop's number, then whether one came.
+static FLAGS: OnceLock<(Arc<AtomicUsize>, Arc<AtomicBool>)> = OnceLock::new();
+
+/// How long the handler holds a closing console open for the run to stop cleanly: Windows ends
+/// the process when the handler returns, and itself after 5 s (close) or 20 s (log-off,
+/// shutdown); the run's own exit ends the process, this thread with it, long before.
+const CLOSE_GRACE: Duration = Duration::from_secs(20);
+
+/// The console control handler. It runs on a thread the system starts for each event.
+/// Ctrl-C and Ctrl-Break: the first sets the flags and is handled (`TRUE`); a second one is left
+/// to the default handler, which ends the process at once (as a second signal does on Unix).
+/// Closing the console, log-off and shutdown: the flags, then wait for the run to exit.
+unsafe extern "system" fn on_console_event(event: u32) -> BOOL {
+    let Some((stop, any)) = FLAGS.get() else {
+        return 0;
+    };
+    let number = match event {
+        CTRL_C_EVENT | CTRL_BREAK_EVENT => STOP_INTERRUPT,
+        _ => STOP_TERMINATE,
+    };
+    if any.load(Ordering::SeqCst) {
+        return 0; // the second event: the default handler ends the process
+    }
+    // The number before the flag, so a reader never sees the flag without it.
+    stop.store(number as usize, Ordering::SeqCst);
+    any.store(true, Ordering::SeqCst);
+    if number == STOP_TERMINATE {
+        std::thread::sleep(CLOSE_GRACE);
+    }
+    1
+}
+
+/// Ctrl-C, Ctrl-Break, closing the console, log-off and shutdown: the first stores its stop
+/// number in `stop` and then sets `any`.
+pub fn install_stop_handlers(
+    stop: &Arc<AtomicUsize>,
+    any: &Arc<AtomicBool>,
+) -> std::io::Result<()> {
+    if FLAGS.set((stop.clone(), any.clone())).is_err() {
+        return Ok(()); // installed before
+    }
+    // SAFETY: the handler is a plain function that lives as long as the process; it only
+    // touches atomics in a static that is set before the handler is registered.
+    if unsafe { SetConsoleCtrlHandler(Some(on_console_event), 1) } == 0 {
+        return Err(std::io::Error::last_os_error());
+    }
+    Ok(())
+}
+
+/// A window can always be tried on Windows (no display variable to check).
+pub fn check_display() -> anyhow::Result<()> {
+    Ok(())
+}
+
+/// Nothing to watch: a window the system closes arrives as winit's `CloseRequested`.
+pub fn watch_display() {}
