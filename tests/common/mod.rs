@@ -91,8 +91,28 @@ pub fn read_png(path: &Path) -> (u32, u32, Vec<u8>) {
     (img.width(), img.height(), img.into_raw())
 }
 
+/// One in-process Vulkan device at a time: Debian 13's Vulkan loader (1.4.309) walks its device
+/// list without the writers' lock (Vulkan-Loader issue 2018), so a test naming an object while
+/// another test thread destroys its device crashes (SIGSEGV in libvulkan.so.1). vkocean itself
+/// has one device per process; tests that make their own hold this from [`gpu_context`] until
+/// [`assert_validation_clean`] (or the test's end).
+static DEVICE_LOCK: std::sync::Mutex<()> = std::sync::Mutex::new(());
+
+std::thread_local! {
+    /// This test thread's hold on [`DEVICE_LOCK`].
+    static DEVICE_HELD: std::cell::RefCell<Option<std::sync::MutexGuard<'static, ()>>> =
+        const { std::cell::RefCell::new(None) };
+}
+
 /// A validation-enabled Vulkan context; its messages go to the log, shown when a test fails.
+/// The thread holds the device lock ([`DEVICE_LOCK`]) until [`assert_validation_clean`].
 pub fn gpu_context() -> std::sync::Arc<vkocean::gpu::Context> {
+    DEVICE_HELD.with(|held| {
+        if held.borrow().is_none() {
+            let guard = DEVICE_LOCK.lock().unwrap_or_else(|p| p.into_inner());
+            *held.borrow_mut() = Some(guard);
+        }
+    });
     let _ = env_logger::builder()
         .is_test(true)
         .filter_level(log::LevelFilter::Warn)
@@ -109,6 +129,7 @@ pub fn gpu_context() -> std::sync::Arc<vkocean::gpu::Context> {
 pub fn assert_validation_clean(ctx: std::sync::Arc<vkocean::gpu::Context>) {
     let counters = ctx.counters();
     drop(ctx);
+    DEVICE_HELD.with(|held| held.borrow_mut().take());
     assert_eq!(
         (counters.warnings(), counters.errors()),
         (0, 0),
