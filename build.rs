@@ -32,9 +32,13 @@ fn main() {
     let release = std::env::var("PROFILE")
         .map(|p| p == "release")
         .unwrap_or(false);
-    let glslc = std::env::var("GLSLC").unwrap_or_else(|_| "glslc".to_string());
+    let glslc = std::env::var("GLSLC")
+        .ok()
+        .or_else(sdk_glslc)
+        .unwrap_or_else(|| "glslc".to_string());
 
     println!("cargo:rerun-if-env-changed=GLSLC");
+    println!("cargo:rerun-if-env-changed=VULKAN_SDK");
     println!("cargo:rerun-if-changed={}", shader_dir.display());
     println!("cargo:rerun-if-changed=src/shared.rs");
     std::fs::write(out_dir.join("shared.glsl"), shared::glsl_declarations())
@@ -86,8 +90,9 @@ fn main() {
             Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
                 eprintln!(
                     "error: the shader compiler `{glslc}` was not found. Install it with \
-                     `apt-get install glslc` (Debian/Ubuntu; tools/setup does this), or the Vulkan SDK, \
-                     or set GLSLC=/path/to/glslc."
+                     `apt-get install glslc` (Debian/Ubuntu; tools/setup does this), or the Vulkan SDK \
+                     (Windows: it sets VULKAN_SDK, whose Bin\\glslc.exe is used), or set \
+                     GLSLC=/path/to/glslc."
                 );
                 exit(1);
             }
@@ -141,4 +146,16 @@ fn collect(dir: &Path, out: &mut Vec<PathBuf>) {
             out.push(path);
         }
     }
+}
+
+/// The Vulkan SDK's glslc when `VULKAN_SDK` names an SDK that has one (its installer sets the
+/// variable on Windows; `Bin` there, `bin` in the Linux and macOS SDKs). Used when GLSLC is not
+/// set, before the `glslc` on PATH.
+fn sdk_glslc() -> Option<String> {
+    let sdk = PathBuf::from(std::env::var_os("VULKAN_SDK")?);
+    ["Bin/glslc.exe", "Bin/glslc", "bin/glslc"]
+        .iter()
+        .map(|rel| sdk.join(rel))
+        .find(|path| path.is_file())
+        .map(|path| path.to_string_lossy().into_owned())
 }

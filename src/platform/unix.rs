@@ -15,19 +15,19 @@ const _: () = assert!(SIGINT == STOP_INTERRUPT && SIGTERM == STOP_TERMINATE);
 pub const VULKAN_LOADER: &str = "libvulkan.so.1";
 /// How to get the Vulkan loader.
 pub const INSTALL_LOADER: &str = "install libvulkan1 (tools/setup)";
+/// What to do when no device exists at all.
+pub const INSTALL_DRIVER: &str =
+    "without a GPU install Mesa's lavapipe (mesa-vulkan-drivers, tools/setup)";
+/// Where the loader reads the installed drivers' manifests.
+pub const DRIVER_MANIFESTS: &str =
+    "the installed driver manifests (/usr/share/vulkan/icd.d, /etc/vulkan/icd.d)";
+
 /// The line for `--validation` without the layer.
 pub fn validation_layer_missing() -> String {
     "the validation layer VK_LAYER_KHRONOS_validation is not installed; install \
      vulkan-validationlayers (tools/setup) or run without --validation"
         .to_string()
 }
-
-// What to do when no device exists at all.
-pub const INSTALL_DRIVER: &str =
-    "without a GPU install Mesa's lavapipe (mesa-vulkan-drivers, tools/setup)";
-/// Where the loader reads the installed drivers' manifests.
-pub const DRIVER_MANIFESTS: &str =
-    "the installed driver manifests (/usr/share/vulkan/icd.d, /etc/vulkan/icd.d)";
 
 /// The user-facing name of a stop (`stopped by ...`).
 pub fn stop_name(stop: i32) -> &'static str {

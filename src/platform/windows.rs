@@ -18,6 +18,12 @@ pub const VULKAN_LOADER: &str = "vulkan-1.dll";
 /// How to get the Vulkan loader.
 pub const INSTALL_LOADER: &str =
     "install the GPU's driver (it brings the Vulkan loader), or the Vulkan Runtime from the Vulkan SDK";
+/// What to do when no device exists at all.
+pub const INSTALL_DRIVER: &str = "install or update the GPU's driver (vkocean needs Vulkan 1.3)";
+/// Where the loader reads the installed drivers' manifests.
+pub const DRIVER_MANIFESTS: &str =
+    "the drivers registered under HKEY_LOCAL_MACHINE\\SOFTWARE\\Khronos\\Vulkan\\Drivers";
+
 /// The line for `--validation` without the layer. Under Wine the loader lists no layers at
 /// all, but the host's layer can run below it (README, Windows: what tools/windows does).
 pub fn validation_layer_missing() -> String {
@@ -34,21 +40,6 @@ pub fn validation_layer_missing() -> String {
             .to_string()
     }
 }
-
-/// Whether this process runs under Wine: Wine's ntdll exports `wine_get_version`.
-fn under_wine() -> bool {
-    // SAFETY: ntdll.dll is loaded in every Windows process; both calls take NUL-terminated
-    // names and only look the module and the symbol up (the result is not called).
-    unsafe {
-        let ntdll = GetModuleHandleA(c"ntdll.dll".as_ptr().cast());
-        !ntdll.is_null() && GetProcAddress(ntdll, c"wine_get_version".as_ptr().cast()).is_some()
-    }
-}
-/// What to do when no device exists at all.
-pub const INSTALL_DRIVER: &str = "install or update the GPU's driver (vkocean needs Vulkan 1.3)";
-/// Where the loader reads the installed drivers' manifests.
-pub const DRIVER_MANIFESTS: &str =
-    "the drivers registered under HKEY_LOCAL_MACHINE\\SOFTWARE\\Khronos\\Vulkan\\Drivers";
 
 /// The user-facing name of a stop (`stopped by ...`).
 pub fn stop_name(stop: i32) -> &'static str {
@@ -115,3 +106,13 @@ pub fn check_display() -> anyhow::Result<()> {
 
 /// Nothing to watch: a window the system closes arrives as winit's `CloseRequested`.
 pub fn watch_display() {}
+
+/// Whether this process runs under Wine: Wine's ntdll exports `wine_get_version`.
+fn under_wine() -> bool {
+    // SAFETY: ntdll.dll is loaded in every Windows process; both calls take NUL-terminated
+    // names and only look the module and the symbol up (the result is not called).
+    unsafe {
+        let ntdll = GetModuleHandleA(c"ntdll.dll".as_ptr().cast());
+        !ntdll.is_null() && GetProcAddress(ntdll, c"wine_get_version".as_ptr().cast()).is_some()
+    }
+}
