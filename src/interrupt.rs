@@ -22,7 +22,7 @@ static CAUGHT: OnceLock<Caught> = OnceLock::new();
 #[derive(Debug, thiserror::Error)]
 #[error("stopped by {name}; no output was written", name = platform::stop_name(*signal))]
 pub struct Interrupted {
-    /// The signal's number (`platform::STOP_INTERRUPT` or `STOP_TERMINATE` on Windows).
+    /// The signal's number (on Windows `platform::STOP_INTERRUPT` or `STOP_TERMINATE`).
     pub signal: i32,
 }
 

@@ -25,6 +25,6 @@ pub use windows::*;
 /// Windows CRT's `SIGINT` has the same number. `main` exits with 128 + it (130), as a shell
 /// reports a process that Ctrl-C ended.
 pub const STOP_INTERRUPT: i32 = 2;
-/// The number of the stop that asks a run to terminate (SIGTERM on Unix; closing the console,
-/// logging off or shutting down on Windows): exit 143.
+/// The number of the stop that asks a run to terminate (SIGTERM on Unix; closing the console on
+/// Windows): exit 143.
 pub const STOP_TERMINATE: i32 = 15;

@@ -45,7 +45,7 @@ pub fn validation_layer_missing() -> String {
 pub fn stop_name(stop: i32) -> &'static str {
     match stop {
         STOP_INTERRUPT => "Ctrl-C",
-        STOP_TERMINATE => "closing the console (or logging off)",
+        STOP_TERMINATE => "closing the console",
         _ => "a console event",
     }
 }
@@ -54,14 +54,16 @@ pub fn stop_name(stop: i32) -> &'static str {
 static FLAGS: OnceLock<(Arc<AtomicUsize>, Arc<AtomicBool>)> = OnceLock::new();
 
 /// How long the handler holds a closing console open for the run to stop cleanly: Windows ends
-/// the process when the handler returns, and itself after 5 s (close) or 20 s (log-off,
-/// shutdown); the run's own exit ends the process, this thread with it, long before.
-const CLOSE_GRACE: Duration = Duration::from_secs(20);
+/// the process when the handler returns, and by itself about 5 s after the close (then with
+/// exit code 0xC000013A, not 143, if the run did not reach its next check in time); the run's
+/// own exit ends the process, this thread with it, before either.
+const CLOSE_GRACE: Duration = Duration::from_secs(10);
 
 /// The console control handler. It runs on a thread the system starts for each event.
-/// Ctrl-C and Ctrl-Break: the first sets the flags and is handled (`TRUE`); a second one is left
-/// to the default handler, which ends the process at once (as a second signal does on Unix).
-/// Closing the console, log-off and shutdown: the flags, then wait for the run to exit.
+/// Ctrl-C and Ctrl-Break (both reported as Ctrl-C): the first sets the flags and is handled
+/// (`TRUE`); any later one is left to the default handler, which ends the process at once (as a
+/// second signal does on Unix). Closing the console: the flags, then wait for the run to exit.
+/// (Log-off and shutdown reach services only, not a program in a console window.)
 unsafe extern "system" fn on_console_event(event: u32) -> BOOL {
     let Some((stop, any)) = FLAGS.get() else {
         return 0;
@@ -70,11 +72,15 @@ unsafe extern "system" fn on_console_event(event: u32) -> BOOL {
         CTRL_C_EVENT | CTRL_BREAK_EVENT => STOP_INTERRUPT,
         _ => STOP_TERMINATE,
     };
-    if any.load(Ordering::SeqCst) {
-        return 0; // the second event: the default handler ends the process
+    // The first event claims the number in one step (two quick Ctrl-C's run on two threads;
+    // the second must end the process), then sets the flag: a reader never sees the flag
+    // without the number.
+    if stop
+        .compare_exchange(0, number as usize, Ordering::SeqCst, Ordering::SeqCst)
+        .is_err()
+    {
+        return 0;
     }
-    // The number before the flag, so a reader never sees the flag without it.
-    stop.store(number as usize, Ordering::SeqCst);
     any.store(true, Ordering::SeqCst);
     if number == STOP_TERMINATE {
         std::thread::sleep(CLOSE_GRACE);
@@ -82,8 +88,8 @@ unsafe extern "system" fn on_console_event(event: u32) -> BOOL {
     1
 }
 
-/// Ctrl-C, Ctrl-Break, closing the console, log-off and shutdown: the first stores its stop
-/// number in `stop` and then sets `any`.
+/// Ctrl-C, Ctrl-Break and closing the console: the first stores its stop number in `stop` and
+/// then sets `any`.
 pub fn install_stop_handlers(
     stop: &Arc<AtomicUsize>,
     any: &Arc<AtomicBool>,

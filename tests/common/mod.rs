@@ -98,9 +98,13 @@ pub fn read_png(path: &Path) -> (u32, u32, Vec<u8>) {
 /// [`assert_validation_clean`] (or the test's end).
 static DEVICE_LOCK: std::sync::Mutex<()> = std::sync::Mutex::new(());
 
+/// A test thread's hold on [`DEVICE_LOCK`], with how many of its contexts are not yet checked.
+type DeviceHold = (std::sync::MutexGuard<'static, ()>, usize);
+
 std::thread_local! {
-    /// This test thread's hold on [`DEVICE_LOCK`].
-    static DEVICE_HELD: std::cell::RefCell<Option<std::sync::MutexGuard<'static, ()>>> =
+    /// This test thread's hold on [`DEVICE_LOCK`] (released when the count returns to zero, or
+    /// when the test's thread ends).
+    static DEVICE_HELD: std::cell::RefCell<Option<DeviceHold>> =
         const { std::cell::RefCell::new(None) };
 }
 
@@ -108,9 +112,13 @@ std::thread_local! {
 /// The thread holds the device lock ([`DEVICE_LOCK`]) until [`assert_validation_clean`].
 pub fn gpu_context() -> std::sync::Arc<vkocean::gpu::Context> {
     DEVICE_HELD.with(|held| {
-        if held.borrow().is_none() {
-            let guard = DEVICE_LOCK.lock().unwrap_or_else(|p| p.into_inner());
-            *held.borrow_mut() = Some(guard);
+        let mut held = held.borrow_mut();
+        match held.as_mut() {
+            Some((_, contexts)) => *contexts += 1,
+            None => {
+                let guard = DEVICE_LOCK.lock().unwrap_or_else(|p| p.into_inner());
+                *held = Some((guard, 1));
+            }
         }
     });
     let _ = env_logger::builder()
@@ -129,7 +137,15 @@ pub fn gpu_context() -> std::sync::Arc<vkocean::gpu::Context> {
 pub fn assert_validation_clean(ctx: std::sync::Arc<vkocean::gpu::Context>) {
     let counters = ctx.counters();
     drop(ctx);
-    DEVICE_HELD.with(|held| held.borrow_mut().take());
+    DEVICE_HELD.with(|held| {
+        let mut held = held.borrow_mut();
+        if let Some((_, contexts)) = held.as_mut() {
+            *contexts -= 1;
+            if *contexts == 0 {
+                *held = None;
+            }
+        }
+    });
     assert_eq!(
         (counters.warnings(), counters.errors()),
         (0, 0),
