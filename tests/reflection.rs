@@ -5,7 +5,6 @@
 mod common;
 
 use vkocean::gpu::oneshot::{download, run_once, upload_image};
-use vkocean::gpu::track::Use;
 use vkocean::gpu::{vk, Buffer, Image, ImageDesc, MemoryLocation};
 
 const W: usize = 24;
@@ -60,8 +59,7 @@ fn each_layer_averages_the_rows_of_the_one_before_in_pairs() {
     .unwrap();
     run_once(&ctx, "halve down layers", |rec| {
         rec.halve_down_layers(&image);
-        rec.uses(&[(&image, Use::CopySrc), (&readback, Use::CopyDst)]);
-        rec.copy_image_layers_to_buffer(&image, vk::ImageLayout::TRANSFER_SRC_OPTIMAL, &readback);
+        rec.copy_image_layers_to_buffer(&image, &readback);
     })
     .unwrap();
     let out = download(&ctx, &readback, len).unwrap();

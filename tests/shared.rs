@@ -8,10 +8,10 @@
 mod common;
 
 use common::{assert_validation_clean, gpu_context};
-use vkocean::gpu::descriptors::{update, Write};
 use vkocean::gpu::oneshot::{download, run_once, upload};
 use vkocean::gpu::{
-    vk, Buffer, DescriptorPool, DescriptorSetLayout, MemoryLocation, Pipeline, PipelineLayout, Use,
+    vk, Bind, Bindings, BoundSet, Buffer, DescriptorSetLayout, MemoryLocation, Order, Pipeline,
+    PipelineLayout,
 };
 use vkocean::ocean::moments::{SeaMoments, DEEP_WATER_M};
 use vkocean::ocean::shore::{reference_group_speed, shoaling, shore_waves};
@@ -62,22 +62,14 @@ fn gpu_terrain(
     let set_layout =
         DescriptorSetLayout::new(ctx, "test set layout", &[(0, ty, stage), (1, ty, stage)])
             .unwrap();
-    let pool = DescriptorPool::new(ctx, "test pool", 1, &[(ty, 2)]).unwrap();
-    let set = pool.allocate(&set_layout, "test set").unwrap();
-    update(
+    let t = Order::Tracked;
+    let set = BoundSet::new(
         ctx,
-        set,
-        &[
-            Write::StorageBuffer {
-                binding: 0,
-                buffer: xz.raw,
-            },
-            Write::StorageBuffer {
-                binding: 1,
-                buffer: heights.raw,
-            },
-        ],
-    );
+        &set_layout,
+        "test set",
+        &[(0, Bind::Storage(&xz, t)), (1, Bind::Storage(&heights, t))],
+    )
+    .unwrap();
     let layout_push = PipelineLayout::new(
         ctx,
         "test layout",
@@ -111,11 +103,12 @@ fn gpu_terrain(
         _pad: [0; 3],
     };
     run_once(ctx, "terrain height test", |rec| {
-        rec.uses(&[(&xz, Use::ComputeRead), (&heights, Use::ComputeWrite)]);
-        rec.bind_pipeline(&pipeline);
-        rec.bind_sets(&pipeline, &layout_push, &[set]);
-        rec.push_constants(&layout_push, &push);
-        rec.dispatch((points.len() as u32).div_ceil(64), 1, 1);
+        rec.push_constants(&pipeline, &push);
+        let b = Bindings {
+            pipeline: &pipeline,
+            sets: &[&set],
+        };
+        rec.dispatch_with(&b, [(points.len() as u32).div_ceil(64), 1, 1]);
     })
     .unwrap();
     let out = download(ctx, &heights, points.len() * 16).unwrap();

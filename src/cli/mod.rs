@@ -77,6 +77,13 @@ pub struct Cli {
     #[arg(long, value_name = "PATH")]
     pub profile: Option<PathBuf>,
 
+    /// Write one frame's graph: its submissions (queue, semaphore waits and signals) and each
+    /// pass's reads and writes with their stages, accesses and layouts, as recorded. JSON, or a
+    /// Graphviz picture if PATH ends in .dot. Headless: the last frame; in a window: the
+    /// second.
+    #[arg(long, value_name = "PATH")]
+    pub frame_graph: Option<PathBuf>,
+
     /// Use Vulkan device N, 0 to 255 (see --list-gpus); default: the best one (discrete >
     /// integrated > virtual > cpu).
     #[arg(long, value_name = "N", global = true, allow_hyphen_values = true,
@@ -503,6 +510,15 @@ impl Cli {
     pub fn settings(&self) -> Result<RunSettings, UsageError> {
         require_extension("--screenshot", self.screenshot.as_deref(), "png")?;
         require_extension("--profile", self.profile.as_deref(), "json")?;
+        if let Some(path) = &self.frame_graph {
+            let ext = path.extension().and_then(|e| e.to_str()).unwrap_or("");
+            if !["json", "dot"].iter().any(|w| ext.eq_ignore_ascii_case(w)) {
+                return Err(UsageError(format!(
+                    "--frame-graph {}: the file name must end in .json or .dot",
+                    path.display()
+                )));
+            }
+        }
         let waves = self.waves_setting()?;
         if self.dump.is_some() && !self.headless {
             return Err(UsageError("--dump needs --headless".to_string()));
@@ -542,6 +558,7 @@ impl Cli {
             size: self.size.unwrap_or(DEFAULT_SIZE),
             screenshot: self.screenshot.clone(),
             profile: self.profile.clone(),
+            frame_graph: self.frame_graph.clone(),
             validation: self.validation,
             gpu: self.gpu,
             present_mode: self.present_mode,

@@ -10,7 +10,7 @@ use super::clock::Clock;
 use super::overlay::Overlay;
 use super::session::{check_size, readback_buffer, Session};
 use super::{Outcome, RunSettings};
-use crate::gpu::{Context, Image, ImageDesc};
+use crate::gpu::{Context, Image, ImageDesc, Output};
 use crate::output::{encode_png, place_all, PendingDir, PendingFile};
 use crate::render::{Delivery, FrameInputs, OutputTarget, OverlayDraw};
 
@@ -27,6 +27,7 @@ pub const FIXED_DT_S: f32 = 1.0 / 60.0;
 pub fn run(s: &RunSettings) -> anyhow::Result<Outcome> {
     let screenshot = PendingFile::create_if("--screenshot", s.screenshot.as_deref())?;
     let profile = PendingFile::create_if("--profile", s.profile.as_deref())?;
+    let frame_graph = PendingFile::create_if("--frame-graph", s.frame_graph.as_deref())?;
     let dump = s
         .dump
         .as_deref()
@@ -49,6 +50,9 @@ pub fn run(s: &RunSettings) -> anyhow::Result<Outcome> {
         None
     };
     let mut session = Session::new(&ctx, format, extent, s)?;
+    if let Some(file) = frame_graph {
+        session.write_frame_graph_of(frames - 1, file);
+    }
     let mut overlay = if s.overlay {
         session.keep_live_timings();
         Some(Overlay::new(&ctx, format, &s.tunables, s.quality.0, true)?)
@@ -59,7 +63,6 @@ pub fn run(s: &RunSettings) -> anyhow::Result<Outcome> {
     let mut clock = Clock::new(s.start_time_s, s.time_scale);
 
     let mut last_progress = Instant::now();
-    let mut last_value = 0;
     for i in 0..frames {
         let capture = readback.as_ref().filter(|_| i + 1 == frames);
         if i == 1 && !s.live_set.is_empty() {
@@ -78,7 +81,7 @@ pub fn run(s: &RunSettings) -> anyhow::Result<Outcome> {
             Some(o) => Some(overlay_frame(o, &mut session, extent, i as f64 * dt)?),
             None => None,
         };
-        last_value = session.frame(&output, &inputs, &delivery, draw)?;
+        session.frame(&output, &inputs, &delivery, draw)?;
         if s.stats {
             session.print_stats()?;
             crate::output::stdout_status()?;
@@ -111,8 +114,8 @@ pub fn run(s: &RunSettings) -> anyhow::Result<Outcome> {
     // Encode before writing anything, so a failure leaves no file at all.
     let png = match &readback {
         Some(buffer) => {
-            let pixels = session.frames.read_back(buffer, last_value)?;
-            Some(encode_png(extent.width, extent.height, pixels)?)
+            let pixels = session.frames.read_back(buffer)?;
+            Some(encode_png(extent.width, extent.height, &pixels)?)
         }
         None => None,
     };
@@ -218,12 +221,7 @@ impl Offscreen {
 
     /// The target as the renderer's output (its state carries over from frame to frame).
     pub fn output(&self) -> OutputTarget<'_> {
-        OutputTarget {
-            image: &self.image,
-            view: self.image.view,
-            extent: self.extent,
-            format: self.format,
-        }
+        OutputTarget::new(Output::Image(&self.image))
     }
 }
 

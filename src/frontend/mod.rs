@@ -25,6 +25,8 @@ pub struct RunSettings {
     pub size: (u32, u32),
     pub screenshot: Option<PathBuf>,
     pub profile: Option<PathBuf>,
+    /// `--frame-graph PATH`: one frame's graph, as JSON or (`.dot`) Graphviz.
+    pub frame_graph: Option<PathBuf>,
     pub validation: bool,
     pub gpu: Option<usize>,
     pub present_mode: PresentMode,

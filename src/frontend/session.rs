@@ -7,6 +7,7 @@ use std::time::Instant;
 use ash::vk;
 
 use super::RunSettings;
+use crate::gpu::graph::FrameGraph;
 use crate::gpu::selftest::SyncHazard;
 use crate::gpu::{
     Buffer, Context, FrameTimes, Frames, GpuResult, GpuTimings, MemoryLocation, Profilers,
@@ -49,9 +50,31 @@ pub struct Session {
     started: Instant,
     /// The last submitted frame: (slot, timeline value, simulation time).
     last: Option<(usize, u64, f64)>,
+    /// `--frame-graph`: the frame (index) whose graph goes to the file.
+    frame_graph: Option<(u64, PendingFile)>,
+}
+
+/// Writes a frame graph: Graphviz for a `.dot` path, JSON otherwise.
+fn write_frame_graph(file: PendingFile, graph: &FrameGraph) -> anyhow::Result<()> {
+    let dot = file
+        .path()
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("dot"));
+    let text = if dot {
+        graph.to_dot()
+    } else {
+        serde_json::to_string_pretty(&graph.to_json())? + "\n"
+    };
+    file.commit(text.as_bytes())
 }
 
 impl Session {
+    /// `--frame-graph`: writes the graph of frame `index` (counted from 0) to `file` as soon
+    /// as that frame is submitted.
+    pub fn write_frame_graph_of(&mut self, index: u64, file: PendingFile) {
+        self.frame_graph = Some((index, file));
+    }
+
     pub fn new(
         ctx: &Arc<Context>,
         output_format: vk::Format,
@@ -88,6 +111,7 @@ impl Session {
             last_frame_start: None,
             started: Instant::now(),
             last: None,
+            frame_graph: None,
         };
         // Per-frame timings are kept for the whole run (medians, the CSV), so only runs that
         // report them keep any: without --profile (and until a bench starts measuring) memory
@@ -128,6 +152,11 @@ impl Session {
             ),
             ..*inputs
         };
+        let index = self.frames.submitted();
+        let graph = self.frame_graph.take_if(|(at, _)| *at == index);
+        if graph.is_some() {
+            self.ctx.capture_frame_graph();
+        }
         let parts = FrameParts {
             ctx: &self.ctx,
             frames: &mut self.frames,
@@ -137,6 +166,11 @@ impl Session {
             overlay,
         };
         let value = record_frame(parts, output, inputs, delivery, self.hazard.take())?;
+        if let (Some((_, file)), Some(recorded)) = (graph, self.ctx.take_frame_graph()) {
+            // A file error is this run's error (exit 1), reported as the GPU layer's are.
+            write_frame_graph(file, &recorded)
+                .map_err(|e| crate::gpu::GpuError::Unsupported(format!("{e:#}")))?;
+        }
         self.last = Some((slot, value, inputs.time_s));
         Ok(value)
     }
@@ -336,8 +370,9 @@ impl Finished {
 /// What the renderer binds of a simulation: its images and cascade layout.
 fn ocean_bindings(simulation: &Simulation) -> OceanBindings {
     OceanBindings {
-        displacement: simulation.displacement.iter().map(|i| i.view).collect(),
-        normals: simulation.normals.iter().map(|i| i.view).collect(),
+        displacement: simulation.displacement.clone(),
+        normals: simulation.normals.clone(),
+        wait_stages: crate::ocean::simulation::GRAPHICS_WAIT_STAGES,
         patch_m: simulation.patch_sizes(),
         cascades: simulation.cascades.len() as u32,
         texels: simulation.settings.fft_size as u32,

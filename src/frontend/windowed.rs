@@ -7,7 +7,6 @@
 //! updated twice a second and as soon as the size changes.
 //! The camera flies with W/A/S/D, Q/E, Shift and a left mouse drag (`fly.rs`).
 
-use std::cell::Cell;
 use std::path::PathBuf;
 use std::sync::Arc;
 
@@ -24,8 +23,7 @@ use super::fly::{FlyCamera, Move};
 use super::overlay::{Overlay, Requests};
 use super::session::{check_size, readback_buffer, Session};
 use super::{Outcome, RunSettings};
-use crate::gpu::image::full_range;
-use crate::gpu::{Buffer, Context, ContextDesc, ExternalImage, MessageCounters, State, Swapchain};
+use crate::gpu::{Buffer, Context, ContextDesc, MessageCounters, Output, Swapchain};
 use crate::output::{encode_png, PendingFile, Staged};
 use crate::render::{Delivery, FrameInputs, OutputTarget, SwapchainSync, ACQUIRE_WAIT_STAGE};
 
@@ -36,6 +34,8 @@ pub fn run(s: &RunSettings) -> anyhow::Result<Outcome> {
         .as_deref()
         .map(|p| PendingFile::create("--profile", p))
         .transpose()?;
+    // Written once the window's second frame is submitted.
+    let frame_graph = PendingFile::create_if("--frame-graph", s.frame_graph.as_deref())?;
     // Checked now so a bad path fails before the window opens; written at exit.
     let screenshot = s
         .screenshot
@@ -48,6 +48,7 @@ pub fn run(s: &RunSettings) -> anyhow::Result<Outcome> {
     let mut app = App {
         settings: s.clone(),
         profile,
+        frame_graph,
         screenshot,
         exit_shot: None,
         state: None,
@@ -94,6 +95,8 @@ struct WindowState {
 struct App {
     settings: RunSettings,
     profile: Option<PendingFile>,
+    /// `--frame-graph`, handed to the session when it is made.
+    frame_graph: Option<PendingFile>,
     /// `--screenshot`: written with the last frame at exit.
     screenshot: Option<PendingFile>,
     /// The exit screenshot (its path, and the staged file), placed with the profile at shutdown.
@@ -214,6 +217,10 @@ impl App {
             );
         }
         let mut session = Session::new(&ctx, swapchain.format, swapchain.extent, &self.settings)?;
+        if let Some(file) = self.frame_graph.take() {
+            // The second frame: the first also renders the sky cube and warms the foam up.
+            session.write_frame_graph_of(1, file);
+        }
         session.keep_live_timings();
         let s = &self.settings;
         let overlay = Overlay::new(&ctx, swapchain.format, &s.tunables, s.quality.0, s.overlay)?;
@@ -302,7 +309,7 @@ impl App {
         }
         let capture = exit_shot || self.capture_next;
         let bytes = extent.width as u64 * extent.height as u64 * 4;
-        if capture && state.readback.as_ref().is_none_or(|b| b.size != bytes) {
+        if capture && state.readback.as_ref().is_none_or(|b| b.size() != bytes) {
             state.readback = Some(readback_buffer(&state.session.ctx, extent)?);
         }
         let readback = if capture {
@@ -312,17 +319,8 @@ impl App {
         };
 
         // Free for writing once the acquire semaphore's wait is done.
-        let swapchain_image = ExternalImage {
-            raw: image.image,
-            range: full_range(vk::ImageAspectFlags::COLOR, 1),
-            state: Cell::new(State::available_after(ACQUIRE_WAIT_STAGE)),
-        };
-        let output = OutputTarget {
-            image: &swapchain_image,
-            view: image.view,
-            extent,
-            format: state.swapchain.format,
-        };
+        let swapchain_image = image.target(extent, state.swapchain.format, ACQUIRE_WAIT_STAGE);
+        let output = OutputTarget::new(Output::External(&swapchain_image));
         let now = std::time::Instant::now();
         let step = self
             .last_frame
@@ -350,7 +348,7 @@ impl App {
                 ready: image.ready,
             }),
         };
-        let value = state.session.frame(&output, &inputs, &delivery, draw)?;
+        state.session.frame(&output, &inputs, &delivery, draw)?;
         self.capture_next |= requests.screenshot;
         state.needs_recreate |= state.swapchain.present(&image)?;
         self.frames_done += 1;
@@ -379,7 +377,7 @@ impl App {
 
         if let Some(buffer) = readback {
             let pixels = bgra_to_rgba(
-                state.session.frames.read_back(buffer, value)?,
+                &state.session.frames.read_back(buffer)?,
                 state.swapchain.format,
             );
             if exit_shot {

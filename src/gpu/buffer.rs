@@ -1,6 +1,7 @@
 //! `Buffer`: a `VkBuffer` with its memory, destroyed through the deletion queue.
 
-use std::cell::Cell;
+use std::ptr::NonNull;
+use std::rc::Rc;
 use std::sync::Arc;
 
 use ash::vk;
@@ -10,17 +11,27 @@ use gpu_allocator::MemoryLocation;
 use super::context::Context;
 use super::error::{GpuError, GpuResult, VkResultExt};
 use super::garbage::Garbage;
-use super::track::{Handle, State, Tracked};
+use super::track::{Handle, State, StateCell, Tracked};
 
-/// A buffer and its memory.
+/// A buffer and its memory. The host reaches a mapped buffer's bytes through `&mut self`
+/// (`write`, `mapped_mut`) or after the GPU is done (`Frames::read_back`); descriptor sets that
+/// bind it keep its handle alive (a shared core) but never touch its memory.
 pub struct Buffer {
+    core: Rc<BufferCore>,
+    /// The mapping of a host-visible buffer (`size` bytes), valid while `core` lives.
+    mapped: Option<NonNull<u8>>,
+}
+
+/// What a [`Buffer`] shares with the descriptor sets that bind it.
+pub(super) struct BufferCore {
     ctx: Arc<Context>,
-    pub raw: vk::Buffer,
+    pub(super) raw: vk::Buffer,
     /// Always `Some` until `Drop` moves it into the deletion queue.
     allocation: Option<Allocation>,
-    pub size: vk::DeviceSize,
+    pub(super) size: vk::DeviceSize,
+    name: String,
     /// What the last recorded use left (`track`).
-    pub(crate) state: Cell<State>,
+    pub(super) state: StateCell,
 }
 
 impl Buffer {
@@ -67,12 +78,14 @@ impl Buffer {
             ctx.device
                 .bind_buffer_memory(raw, allocation.memory(), allocation.offset())
         };
-        let buffer = Buffer {
+        let mapped = allocation.mapped_ptr().map(|p| p.cast::<u8>());
+        let core = BufferCore {
             ctx: ctx.clone(),
             raw,
             allocation: Some(allocation),
             size,
-            state: Cell::new(State::NEW),
+            name: name.to_string(),
+            state: StateCell::new(State::NEW),
         };
         bound.map_err(|result| GpuError::Bind {
             name: name.to_string(),
@@ -80,48 +93,59 @@ impl Buffer {
             result,
         })?;
         ctx.name(raw, name);
-        Ok(buffer)
+        Ok(Buffer {
+            core: Rc::new(core),
+            mapped,
+        })
+    }
+
+    /// Size in bytes.
+    pub fn size(&self) -> vk::DeviceSize {
+        self.core.size
+    }
+
+    pub(super) fn raw(&self) -> vk::Buffer {
+        self.core.raw
+    }
+
+    /// The handle descriptor sets keep alive.
+    pub(super) fn core(&self) -> &Rc<BufferCore> {
+        &self.core
     }
 
     /// The mapped bytes of a host-visible buffer (`None` for `GpuOnly`).
     /// Outside this layer use `Frames::read_back`, which first waits for the GPU.
-    pub(crate) fn mapped(&self) -> Option<&[u8]> {
-        self.allocation
-            .as_ref()
-            .and_then(|a| a.mapped_slice())
-            .map(|s| &s[..self.size as usize])
+    pub(super) fn mapped(&self) -> Option<&[u8]> {
+        // SAFETY: the mapping covers `size` bytes and lives as long as `core`, which `self`
+        // holds; the host writes only through `&mut self`, so no `&mut` alias exists now.
+        self.mapped
+            .map(|p| unsafe { std::slice::from_raw_parts(p.as_ptr(), self.core.size as usize) })
     }
 
     /// The mapped bytes of a host-visible buffer, to write. Panics if the buffer is not mapped
     /// (a programming error).
     pub fn mapped_mut(&mut self) -> &mut [u8] {
-        let size = self.size as usize;
-        &mut self
-            .allocation
-            .as_mut()
-            .and_then(|a| a.mapped_slice_mut())
-            .expect("buffer is host-visible")[..size]
+        let p = self.mapped.expect("buffer is host-visible");
+        // SAFETY: as in `mapped`; `&mut self` makes this the only view of the bytes (the
+        // descriptor sets sharing `core` never read the mapping).
+        unsafe { std::slice::from_raw_parts_mut(p.as_ptr(), self.core.size as usize) }
     }
 
     /// Copies `bytes` to the start of a host-visible buffer. Panics if the buffer is not mapped
     /// or too small (both are programming errors).
     pub fn write(&mut self, bytes: &[u8]) {
-        let size = self.size as usize;
-        let slice = self
-            .allocation
-            .as_mut()
-            .and_then(|a| a.mapped_slice_mut())
-            .expect("buffer is host-visible");
+        let slice = self.mapped_mut();
         assert!(
-            bytes.len() <= size,
-            "write of {} bytes into a {size}-byte buffer",
-            bytes.len()
+            bytes.len() <= slice.len(),
+            "write of {} bytes into a {}-byte buffer",
+            bytes.len(),
+            slice.len()
         );
         slice[..bytes.len()].copy_from_slice(bytes);
     }
 }
 
-impl Drop for Buffer {
+impl Drop for BufferCore {
     fn drop(&mut self) {
         if let Some(allocation) = self.allocation.take() {
             self.ctx.defer(Garbage::Buffer(self.raw, allocation));
@@ -129,10 +153,15 @@ impl Drop for Buffer {
     }
 }
 
-/// A typed view of a buffer for texel-buffer descriptors (`samplerBuffer` / `imageBuffer`).
-pub struct BufferView {
+/// A typed view of a buffer for texel-buffer descriptors (`samplerBuffer` / `imageBuffer`); a
+/// shared handle that keeps its buffer's handle alive.
+#[derive(Clone)]
+pub struct BufferView(Rc<BufferViewCore>);
+
+struct BufferViewCore {
     ctx: Arc<Context>,
-    pub raw: vk::BufferView,
+    raw: vk::BufferView,
+    buffer: Rc<BufferCore>,
 }
 
 impl BufferView {
@@ -145,7 +174,7 @@ impl BufferView {
         format: vk::Format,
     ) -> GpuResult<BufferView> {
         let info = vk::BufferViewCreateInfo::default()
-            .buffer(buffer.raw)
+            .buffer(buffer.raw())
             .format(format)
             .offset(0)
             .range(vk::WHOLE_SIZE);
@@ -153,14 +182,24 @@ impl BufferView {
         let raw = unsafe { ctx.device.create_buffer_view(&info, None) }.vk("vkCreateBufferView")?;
         ctx.count_created(1);
         ctx.name(raw, name);
-        Ok(BufferView {
+        Ok(BufferView(Rc::new(BufferViewCore {
             ctx: ctx.clone(),
             raw,
-        })
+            buffer: buffer.core.clone(),
+        })))
+    }
+
+    pub(super) fn raw(&self) -> vk::BufferView {
+        self.0.raw
+    }
+
+    /// The viewed buffer (tracked).
+    pub(super) fn buffer(&self) -> &Rc<BufferCore> {
+        &self.0.buffer
     }
 }
 
-impl Drop for BufferView {
+impl Drop for BufferViewCore {
     fn drop(&mut self) {
         self.ctx.defer(Garbage::BufferView(self.raw));
     }
@@ -168,9 +207,24 @@ impl Drop for BufferView {
 
 impl Tracked for Buffer {
     fn handle(&self) -> Handle {
-        Handle::Buffer(self.raw)
+        Handle::buffer(self.core.raw)
     }
-    fn state(&self) -> &Cell<State> {
+    fn name(&self) -> &str {
+        &self.core.name
+    }
+    fn state(&self) -> &StateCell {
+        &self.core.state
+    }
+}
+
+impl Tracked for BufferCore {
+    fn handle(&self) -> Handle {
+        Handle::buffer(self.raw)
+    }
+    fn name(&self) -> &str {
+        &self.name
+    }
+    fn state(&self) -> &StateCell {
         &self.state
     }
 }

@@ -5,8 +5,10 @@ use ash::vk;
 
 use super::buffer::Buffer;
 use super::context::Context;
-use super::pipeline::{Pipeline, PipelineLayout};
+use super::image::{Image, Output};
+use super::pipeline::Pipeline;
 pub use super::track::Access;
+use super::track::Use;
 
 /// An image layout transition / dependency (made by `track`).
 #[derive(Clone, Copy, Debug)]
@@ -39,29 +41,48 @@ pub struct Attachment {
     pub load: Load,
 }
 
+/// A [`super::pass::Bindings`]' identity (its pipeline and sets), to tell a declared draw
+/// from another.
+#[derive(Clone, PartialEq, Eq)]
+pub(super) struct BindingsKey(pub vk::Pipeline, pub Vec<vk::DescriptorSet>);
+
 /// A command buffer in the recording state.
 pub struct Recorder<'a> {
-    ctx: &'a Context,
+    pub(super) ctx: &'a Context,
     cmd: vk::CommandBuffer,
+    /// The bind point of the bound pipeline (draws and dispatches need one).
+    pub(super) bound: std::cell::Cell<Option<vk::PipelineBindPoint>>,
+    /// Inside a rendering scope: what `Recorder::rendering` derived its barriers from (a draw
+    /// inside the scope must use one of them).
+    pub(super) scope: std::cell::RefCell<Option<Vec<BindingsKey>>>,
+    /// What `Recorder::bind` bound last.
+    pub(super) bound_key: std::cell::RefCell<Option<BindingsKey>>,
 }
 
 impl<'a> Recorder<'a> {
     /// Wraps `cmd`. Invariant: `cmd` is in the recording state for the recorder's lifetime
     /// (only `Frames` and one-shot helpers in this layer create recorders).
     pub(crate) fn new(ctx: &'a Context, cmd: vk::CommandBuffer) -> Self {
-        Recorder { ctx, cmd }
+        Recorder {
+            ctx,
+            cmd,
+            bound: std::cell::Cell::new(None),
+            scope: std::cell::RefCell::new(None),
+            bound_key: std::cell::RefCell::new(None),
+        }
     }
 
     pub fn ctx(&self) -> &Context {
         self.ctx
     }
 
-    pub fn raw(&self) -> vk::CommandBuffer {
+    pub(super) fn raw(&self) -> vk::CommandBuffer {
         self.cmd
     }
 
     /// Opens a debug label (RenderDoc, validation messages).
     pub fn begin_label(&self, name: &str) {
+        self.ctx.journal_label(name);
         self.ctx.debug.begin_label(self.cmd, name);
     }
 
@@ -115,7 +136,7 @@ impl<'a> Recorder<'a> {
     }
 
     /// Begins dynamic rendering over `extent` and sets the viewport and scissor to it.
-    pub fn begin_rendering(
+    pub(super) fn begin_rendering(
         &self,
         extent: vk::Extent2D,
         colour: &[Attachment],
@@ -165,12 +186,13 @@ impl<'a> Recorder<'a> {
         }
     }
 
-    pub fn end_rendering(&self) {
+    pub(super) fn end_rendering(&self) {
         // SAFETY: recording-state invariant; paired with `begin_rendering`.
         unsafe { self.ctx.device.cmd_end_rendering(self.cmd) };
     }
 
-    pub fn bind_pipeline(&self, pipeline: &Pipeline) {
+    pub(super) fn bind_pipeline(&self, pipeline: &Pipeline) {
+        self.bound.set(Some(pipeline.bind_point));
         // SAFETY: recording-state invariant; the pipeline is live.
         unsafe {
             self.ctx
@@ -179,19 +201,16 @@ impl<'a> Recorder<'a> {
         };
     }
 
-    /// Binds `sets` starting at set 0 for `pipeline`'s bind point.
-    pub fn bind_sets(
-        &self,
-        pipeline: &Pipeline,
-        layout: &PipelineLayout,
-        sets: &[vk::DescriptorSet],
-    ) {
-        // SAFETY: recording-state invariant; the sets were written before recording.
+    /// Binds `sets` (starting at set 0) with `pipeline`'s own layout, so they cannot be bound
+    /// with a layout they were not made for.
+    pub(super) fn bind_sets(&self, pipeline: &Pipeline, sets: &[vk::DescriptorSet]) {
+        // SAFETY: recording-state invariant; the sets were written at creation and are kept
+        // alive by their owners (and the deletion queue) past this command buffer's execution.
         unsafe {
             self.ctx.device.cmd_bind_descriptor_sets(
                 self.cmd,
                 pipeline.bind_point,
-                layout.raw,
+                pipeline.layout.raw(),
                 0,
                 sets,
                 &[],
@@ -199,21 +218,27 @@ impl<'a> Recorder<'a> {
         };
     }
 
-    /// Pushes `data` at offset 0 of `layout`'s push-constant range.
-    pub fn push_constants<T: bytemuck::Pod>(&self, layout: &PipelineLayout, data: &T) {
-        // SAFETY: recording-state invariant; the layout declares a range of at least this size.
+    /// Pushes `data` at offset 0 of `pipeline`'s push-constant range. Panics if the range is
+    /// smaller than `T` (a programming error: the layout and the shader's block disagree).
+    pub fn push_constants<T: bytemuck::Pod>(&self, pipeline: &Pipeline, data: &T) {
+        let (stages, size) = pipeline.layout.push();
+        let bytes = bytemuck::bytes_of(data);
+        assert!(
+            bytes.len() as u32 <= size && !stages.is_empty(),
+            "pipeline {}: {} bytes of push constants into a range of {size}",
+            pipeline.name,
+            bytes.len()
+        );
+        // SAFETY: recording-state invariant; the layout's range covers the bytes (asserted).
         unsafe {
-            self.ctx.device.cmd_push_constants(
-                self.cmd,
-                layout.raw,
-                layout.push_stages,
-                0,
-                bytemuck::bytes_of(data),
-            )
+            self.ctx
+                .device
+                .cmd_push_constants(self.cmd, pipeline.layout.raw(), stages, 0, bytes)
         };
     }
 
     pub fn draw(&self, vertices: u32, instances: u32) {
+        self.expect_bound(vk::PipelineBindPoint::GRAPHICS);
         // SAFETY: recording-state invariant; inside a rendering scope with a bound pipeline.
         unsafe {
             self.ctx
@@ -228,11 +253,12 @@ impl<'a> Recorder<'a> {
         unsafe {
             self.ctx
                 .device
-                .cmd_bind_index_buffer(self.cmd, buffer.raw, 0, vk::IndexType::UINT32)
+                .cmd_bind_index_buffer(self.cmd, buffer.raw(), 0, vk::IndexType::UINT32)
         };
     }
 
     pub fn draw_indexed(&self, indices: u32, instances: u32) {
+        self.expect_bound(vk::PipelineBindPoint::GRAPHICS);
         // SAFETY: recording-state invariant; inside a rendering scope with a bound pipeline and
         // an index buffer holding at least `indices` entries.
         unsafe {
@@ -242,30 +268,72 @@ impl<'a> Recorder<'a> {
         };
     }
 
-    pub fn dispatch(&self, x: u32, y: u32, z: u32) {
+    /// Panics unless a pipeline of `point` is bound (and, for graphics, a rendering scope is
+    /// open): a draw or dispatch without one is undefined behaviour in Vulkan.
+    fn expect_bound(&self, point: vk::PipelineBindPoint) {
+        assert_eq!(
+            self.bound.get(),
+            Some(point),
+            "a draw or dispatch without a bound {point:?} pipeline"
+        );
+        if point == vk::PipelineBindPoint::GRAPHICS {
+            let scope = self.scope.borrow();
+            let declared = scope.as_ref().expect("a draw outside a rendering scope");
+            // The scope's barriers were derived from its declared draws: a draw with anything
+            // else could read what no barrier waited for.
+            let bound = self.bound_key.borrow();
+            assert!(
+                bound.as_ref().is_some_and(|b| declared.contains(b)),
+                "a draw with a pipeline and sets its rendering scope did not declare"
+            );
+        }
+    }
+
+    pub(super) fn dispatch(&self, x: u32, y: u32, z: u32) {
+        self.expect_bound(vk::PipelineBindPoint::COMPUTE);
         // SAFETY: recording-state invariant; a compute pipeline is bound.
         unsafe { self.ctx.device.cmd_dispatch(self.cmd, x, y, z) };
     }
 
-    /// Copies layer 0 of a colour image (in TRANSFER_SRC_OPTIMAL) into a tightly packed buffer.
-    pub fn copy_image_to_buffer(&self, image: vk::Image, extent: vk::Extent2D, buffer: &Buffer) {
+    /// Copies the output image (layer 0) into a tightly packed buffer, with its barriers.
+    /// Panics if the buffer is too small (a programming error).
+    pub fn copy_image_to_buffer(&self, image: Output, buffer: &Buffer) {
+        let extent = image.extent();
+        let need = texel_bytes(image.format()) * extent.width as u64 * extent.height as u64;
+        assert!(
+            buffer.size() >= need,
+            "copy of {need} bytes into a {}-byte buffer",
+            buffer.size()
+        );
+        self.uses(&[(image.tracked(), Use::CopySrc), (buffer, Use::CopyDst)]);
         let region = packed_region(extent, 1);
-        // SAFETY: recording-state invariant; the image is in TRANSFER_SRC_OPTIMAL (caller's
-        // barrier) and the buffer is large enough (checked by the caller's sizing).
+        // SAFETY: recording-state invariant; the image is in TRANSFER_SRC_OPTIMAL (the barrier
+        // above) and the buffer holds its texels (asserted).
         unsafe {
             self.ctx.device.cmd_copy_image_to_buffer(
                 self.cmd,
-                image,
+                image.raw(),
                 vk::ImageLayout::TRANSFER_SRC_OPTIMAL,
-                buffer.raw,
+                buffer.raw(),
                 &[region],
             )
         };
     }
 
-    /// Copies a single-layer colour image (TRANSFER_SRC_OPTIMAL) into another of the same extent
-    /// and texel size (TRANSFER_DST_OPTIMAL), bit for bit (e.g. UNORM bytes into an sRGB image).
-    pub fn copy_image(&self, src: vk::Image, dst: vk::Image, extent: vk::Extent2D) {
+    /// Copies a single-layer colour image into the output image of the same extent and texel
+    /// size, bit for bit (e.g. UNORM bytes into an sRGB image), with its barriers. Panics if
+    /// the extents or texel sizes differ.
+    pub fn copy_image(&self, src: &Image, dst: Output) {
+        let extent = src.extent;
+        assert!(
+            extent == dst.extent() && texel_bytes(src.format) == texel_bytes(dst.format()),
+            "copy between images of other sizes or texels ({:?} {:?} to {:?} {:?})",
+            extent,
+            src.format,
+            dst.extent(),
+            dst.format()
+        );
+        self.uses(&[(src, Use::TransferSrc), (dst.tracked(), Use::TransferDst)]);
         let layer = packed_region(extent, 1).image_subresource;
         let region = vk::ImageCopy {
             src_subresource: layer,
@@ -278,30 +346,27 @@ impl<'a> Recorder<'a> {
                 depth: 1,
             },
         };
-        // SAFETY: recording-state invariant; both images are in the layouts named above (the
-        // caller's barriers) and have at least `extent` texels of the same size.
+        // SAFETY: recording-state invariant; both images are in the layouts the barrier above
+        // left and have `extent` texels of the same size (asserted).
         unsafe {
             self.ctx.device.cmd_copy_image(
                 self.cmd,
-                src,
+                src.raw,
                 vk::ImageLayout::TRANSFER_SRC_OPTIMAL,
-                dst,
+                dst.raw(),
                 vk::ImageLayout::TRANSFER_DST_OPTIMAL,
                 &[region],
             )
         };
     }
 
-    /// Blits the whole of `src` (TRANSFER_SRC_OPTIMAL) onto the whole of `dst`
-    /// (TRANSFER_DST_OPTIMAL), scaling with `filter` and converting between the two formats
-    /// (sRGB decoded before filtering and encoded after; channel order followed).
-    pub fn blit_image(
-        &self,
-        src: (vk::Image, vk::Extent2D),
-        dst: (vk::Image, vk::Extent2D),
-        filter: vk::Filter,
-    ) {
-        let layer = packed_region(src.1, 1).image_subresource;
+    /// Blits the whole of `src` onto the whole of the output image, scaling with `filter` and
+    /// converting between the two formats (sRGB decoded before filtering and encoded after;
+    /// channel order followed), with its barriers. The formats' BLIT_SRC / BLIT_DST and linear
+    /// filtering are checked by the renderer's format check at creation.
+    pub fn blit_image(&self, src: &Image, dst: Output, filter: vk::Filter) {
+        self.uses(&[(src, Use::TransferSrc), (dst.tracked(), Use::TransferDst)]);
+        let layer = packed_region(src.extent, 1).image_subresource;
         let corners = |e: vk::Extent2D| {
             [
                 vk::Offset3D::default(),
@@ -314,19 +379,19 @@ impl<'a> Recorder<'a> {
         };
         let region = vk::ImageBlit {
             src_subresource: layer,
-            src_offsets: corners(src.1),
+            src_offsets: corners(src.extent),
             dst_subresource: layer,
-            dst_offsets: corners(dst.1),
+            dst_offsets: corners(dst.extent()),
         };
-        // SAFETY: recording-state invariant; both images are in the layouts named above (the
-        // caller's barriers), the regions are their whole extents and their formats support
-        // BLIT_SRC / BLIT_DST (and linear filtering when `filter` is LINEAR).
+        // SAFETY: recording-state invariant; both images are in the layouts the barrier above
+        // left, the regions are their whole extents and their formats support BLIT_SRC /
+        // BLIT_DST (and linear filtering when `filter` is LINEAR; the renderer's format check).
         unsafe {
             self.ctx.device.cmd_blit_image(
                 self.cmd,
-                src.0,
+                src.raw,
                 vk::ImageLayout::TRANSFER_SRC_OPTIMAL,
-                dst.0,
+                dst.raw(),
                 vk::ImageLayout::TRANSFER_DST_OPTIMAL,
                 &[region],
                 filter,
@@ -377,37 +442,49 @@ impl<'a> Recorder<'a> {
         };
     }
 
-    /// Copies every layer of a colour image (in `layout`: GENERAL or TRANSFER_SRC_OPTIMAL) into a
-    /// buffer, tightly packed, layer after layer.
-    pub fn copy_image_layers_to_buffer(
-        &self,
-        image: &super::image::Image,
-        layout: vk::ImageLayout,
-        buffer: &Buffer,
-    ) {
+    /// Bytes of every layer of `image`, tightly packed.
+    fn layers_bytes(image: &Image) -> u64 {
+        let e = image.extent;
+        texel_bytes(image.format) * e.width as u64 * e.height as u64 * image.layers as u64
+    }
+
+    /// Copies every layer of a colour image into a buffer, tightly packed, layer after layer,
+    /// with its barriers. Panics if the buffer is too small.
+    pub fn copy_image_layers_to_buffer(&self, image: &Image, buffer: &Buffer) {
+        assert!(
+            buffer.size() >= Self::layers_bytes(image),
+            "readback buffer too small"
+        );
+        self.uses(&[(image, Use::CopySrc), (buffer, Use::CopyDst)]);
         let region = packed_region(image.extent, image.layers);
-        // SAFETY: recording-state invariant; the image is in `layout` (caller's barrier) and
-        // the buffer holds all layers (caller's sizing).
+        // SAFETY: recording-state invariant; the image is in TRANSFER_SRC_OPTIMAL (the barrier
+        // above) and the buffer holds all layers (asserted).
         unsafe {
             self.ctx.device.cmd_copy_image_to_buffer(
                 self.cmd,
                 image.raw,
-                layout,
-                buffer.raw,
+                vk::ImageLayout::TRANSFER_SRC_OPTIMAL,
+                buffer.raw(),
                 &[region],
             )
         };
     }
 
-    /// Copies a tightly packed buffer into every layer of a colour image in TRANSFER_DST_OPTIMAL.
-    pub fn copy_buffer_to_image_layers(&self, buffer: &Buffer, image: &super::image::Image) {
+    /// Copies a tightly packed buffer into every layer of a colour image (discarding what it
+    /// held), with its barriers. Panics if the buffer is too small.
+    pub fn copy_buffer_to_image_layers(&self, buffer: &Buffer, image: &Image) {
+        assert!(
+            buffer.size() >= Self::layers_bytes(image),
+            "upload buffer too small"
+        );
+        self.uses(&[(buffer, Use::CopySrc), (image, Use::CopyDst)]);
         let region = packed_region(image.extent, image.layers);
-        // SAFETY: recording-state invariant; the image is in TRANSFER_DST_OPTIMAL (caller's
-        // barrier) and the buffer holds all layers (caller's sizing).
+        // SAFETY: recording-state invariant; the image is in TRANSFER_DST_OPTIMAL (the barrier
+        // above) and the buffer holds all layers (asserted).
         unsafe {
             self.ctx.device.cmd_copy_buffer_to_image(
                 self.cmd,
-                buffer.raw,
+                buffer.raw(),
                 image.raw,
                 vk::ImageLayout::TRANSFER_DST_OPTIMAL,
                 &[region],
@@ -415,10 +492,12 @@ impl<'a> Recorder<'a> {
         };
     }
 
-    /// Clears every layer of a colour image in GENERAL layout to zero.
-    pub fn clear_image(&self, image: &super::image::Image) {
+    /// Clears every layer of a colour image to zero (in GENERAL), with its barrier.
+    pub fn clear_image(&self, image: &Image) {
+        self.uses(&[(image, Use::Clear)]);
         let range = image.range();
-        // SAFETY: recording-state invariant; the image has TRANSFER_DST usage and is in GENERAL.
+        // SAFETY: recording-state invariant; the image has TRANSFER_DST usage (a validation
+        // error otherwise, not undefined behaviour of this program) and is in GENERAL.
         unsafe {
             self.ctx.device.cmd_clear_color_image(
                 self.cmd,
@@ -430,29 +509,44 @@ impl<'a> Recorder<'a> {
         };
     }
 
-    /// Fills a whole buffer with a 32-bit value.
-    pub fn fill_buffer(&self, buffer: &Buffer, value: u32) {
+    /// Fills a whole buffer with a 32-bit value, without a barrier (the deliberate hazard of
+    /// `selftest` only).
+    pub(super) fn fill_buffer_unsynchronized(&self, buffer: &Buffer, value: u32) {
         // SAFETY: recording-state invariant; the buffer has TRANSFER_DST usage.
         unsafe {
             self.ctx
                 .device
-                .cmd_fill_buffer(self.cmd, buffer.raw, 0, vk::WHOLE_SIZE, value)
+                .cmd_fill_buffer(self.cmd, buffer.raw(), 0, vk::WHOLE_SIZE, value)
         };
     }
 
-    /// Copies `size` bytes from the start of `src` to the start of `dst`.
-    pub fn copy_buffer(&self, src: &Buffer, dst: &Buffer, size: vk::DeviceSize) {
+    /// Copies `size` bytes from the start of `src` to the start of `dst`, without a barrier
+    /// (`copy_buffer` and the deliberate hazard of `selftest`). Panics if either is smaller.
+    pub(super) fn copy_buffer_unsynchronized(&self, src: &Buffer, dst: &Buffer, size: u64) {
+        assert!(
+            size <= src.size() && size <= dst.size(),
+            "copy of {size} bytes between buffers of {} and {} bytes",
+            src.size(),
+            dst.size()
+        );
         let region = vk::BufferCopy {
             src_offset: 0,
             dst_offset: 0,
             size,
         };
-        // SAFETY: recording-state invariant; both buffers hold at least `size` bytes.
+        // SAFETY: recording-state invariant; both buffers hold at least `size` bytes (asserted).
         unsafe {
             self.ctx
                 .device
-                .cmd_copy_buffer(self.cmd, src.raw, dst.raw, &[region])
+                .cmd_copy_buffer(self.cmd, src.raw(), dst.raw(), &[region])
         };
+    }
+
+    /// Copies `size` bytes from the start of `src` to the start of `dst`, with its barriers
+    /// (`dst` is overwritten whole: pass its size). Panics if either buffer is smaller.
+    pub fn copy_buffer(&self, src: &Buffer, dst: &Buffer, size: vk::DeviceSize) {
+        self.uses(&[(src, Use::CopySrc), (dst, Use::CopyDst)]);
+        self.copy_buffer_unsynchronized(src, dst, size);
     }
 
     pub(crate) fn reset_queries(&self, pool: vk::QueryPool, count: u32) {
@@ -488,6 +582,18 @@ impl<'a> Recorder<'a> {
                 query,
             )
         };
+    }
+}
+
+/// Bytes per texel of the colour formats copied here (panics on another: a programming error).
+fn texel_bytes(format: vk::Format) -> u64 {
+    use vk::Format as F;
+    match format {
+        F::R8G8B8A8_UNORM | F::R8G8B8A8_SRGB | F::B8G8R8A8_UNORM | F::B8G8R8A8_SRGB => 4,
+        F::R16G16B16A16_SFLOAT => 8,
+        F::R32G32B32A32_SFLOAT => 16,
+        F::R32_SFLOAT | F::D32_SFLOAT => 4,
+        other => panic!("texel size of {other:?} unknown to the copies"),
     }
 }
 

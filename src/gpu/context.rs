@@ -17,6 +17,8 @@ use raw_window_handle::{RawDisplayHandle, RawWindowHandle};
 use super::debug::{self, DebugNames, MessageCounters};
 use super::error::{GpuError, GpuResult, VkResultExt};
 use super::garbage::Garbage;
+use super::graph::{FrameGraph, Journal, SemaphoreRecord};
+use super::track::{Access, Use};
 
 /// How long a GPU wait may take before the device is declared hung (s).
 pub const WAIT_TIMEOUT_S: u64 = 60;
@@ -40,21 +42,21 @@ pub struct ContextDesc {
 #[derive(Clone, Copy, Debug)]
 pub struct Queue {
     pub family: u32,
-    pub raw: vk::Queue,
+    pub(super) raw: vk::Queue,
 }
 
 /// The device-wide state every GPU object refers to.
 pub struct Context {
     /// Keeps the loader library loaded; never used after creation.
     _entry: ash::Entry,
-    pub instance: ash::Instance,
+    pub(super) instance: ash::Instance,
     messenger: Option<(ash::ext::debug_utils::Instance, vk::DebugUtilsMessengerEXT)>,
     /// Object names and labels.
     pub debug: DebugNames,
     /// Surface functions and the window's surface (windowed frontend only).
-    pub surface: Option<(ash::khr::surface::Instance, vk::SurfaceKHR)>,
-    pub physical: vk::PhysicalDevice,
-    pub device: ash::Device,
+    pub(super) surface: Option<(ash::khr::surface::Instance, vk::SurfaceKHR)>,
+    pub(super) physical: vk::PhysicalDevice,
+    pub(super) device: ash::Device,
     pub info: DeviceInfo,
     /// Graphics queue; also presents in the windowed frontend.
     pub graphics: Queue,
@@ -64,7 +66,7 @@ pub struct Context {
     /// Which queues draw, present and compute, and how shared resources are shared.
     pub plan: QueuePlan,
     /// The graphics timeline: frame f's graphics submission signals f + 1.
-    pub frame_timeline: vk::Semaphore,
+    pub(super) frame_timeline: vk::Semaphore,
     /// Shared (an `Arc`) with the overlay's egui renderer, which allocates through it too.
     allocator: ManuallyDrop<Arc<Mutex<Allocator>>>,
     /// Objects dropped by their owners, destroyed once `frame_timeline` passes their tag.
@@ -78,6 +80,10 @@ pub struct Context {
     /// Device objects created and destroyed through the GPU layer (`live_objects`).
     objects_created: AtomicU64,
     objects_destroyed: AtomicU64,
+    /// The frame graph being recorded (`capture_frame_graph`), if any.
+    journal: Mutex<Option<Journal>>,
+    /// Semaphore names, for the frame graph.
+    semaphore_names: Mutex<std::collections::HashMap<u64, String>>,
 }
 
 impl Context {
@@ -242,6 +248,8 @@ impl Context {
             counters,
             objects_created: AtomicU64::new(0),
             objects_destroyed: AtomicU64::new(0),
+            journal: Mutex::new(None),
+            semaphore_names: Mutex::new(Default::default()),
         };
         ctx.name(
             ctx.device.handle(),
@@ -263,8 +271,80 @@ impl Context {
     }
 
     /// Names a Vulkan object (see [`DebugNames::name`]).
-    pub fn name<H: vk::Handle>(&self, handle: H, name: &str) {
+    pub fn name<H: vk::Handle + Copy>(&self, handle: H, name: &str) {
+        if H::TYPE == vk::ObjectType::SEMAPHORE {
+            lock(&self.semaphore_names).insert(handle.as_raw(), name.to_string());
+        }
         self.debug.name(handle, name);
+    }
+
+    /// Records the frame graph of what is recorded and submitted from now until
+    /// [`Context::take_frame_graph`] (`--frame-graph`).
+    pub fn capture_frame_graph(&self) {
+        *lock(&self.journal) = Some(Journal::default());
+    }
+
+    /// The frame graph recorded since [`Context::capture_frame_graph`], ending the capture.
+    pub fn take_frame_graph(&self) -> Option<FrameGraph> {
+        lock(&self.journal).take().map(|j| j.graph)
+    }
+
+    fn journal(&self, f: impl FnOnce(&mut Journal)) {
+        if let Some(j) = lock(&self.journal).as_mut() {
+            f(j);
+        }
+    }
+
+    /// The frame graph: a command buffer's first label names its submission.
+    pub(super) fn journal_label(&self, name: &str) {
+        self.journal(|j| j.label(name));
+    }
+
+    /// The frame graph: the uses that follow belong to pass `name`.
+    pub(super) fn journal_pass(&self, name: &str) {
+        self.journal(|j| j.pass(name));
+    }
+
+    /// The frame graph: a use, its barrier, or what orders it instead.
+    pub(super) fn journal_use(
+        &self,
+        resource: &str,
+        next: Use,
+        barrier: Option<(Access, Access)>,
+        ordered_by: Option<&str>,
+    ) {
+        self.journal(|j| j.record(resource, next, barrier, ordered_by));
+    }
+
+    /// The frame graph: a submission to `queue` of the passes recorded since the last.
+    pub(super) fn journal_submit(
+        &self,
+        queue: vk::Queue,
+        waits: &[vk::SemaphoreSubmitInfo],
+        signals: &[vk::SemaphoreSubmitInfo],
+    ) {
+        if lock(&self.journal).is_none() {
+            return;
+        }
+        let names = lock(&self.semaphore_names).clone();
+        let record = |s: &vk::SemaphoreSubmitInfo| SemaphoreRecord {
+            semaphore: names
+                .get(&vk::Handle::as_raw(s.semaphore))
+                .cloned()
+                .unwrap_or_else(|| format!("semaphore {:#x}", vk::Handle::as_raw(s.semaphore))),
+            value: s.value,
+            stages: s.stage_mask,
+        };
+        let queue = if queue == self.compute.raw && self.compute.raw != self.graphics.raw {
+            ("compute", self.compute.family)
+        } else if queue == self.graphics.raw && self.compute.raw == self.graphics.raw {
+            ("graphics and compute", self.graphics.family)
+        } else {
+            ("graphics", self.graphics.family)
+        };
+        let waits = waits.iter().map(record).collect();
+        let signals = signals.iter().map(record).collect();
+        self.journal(|j| j.submit(queue, waits, signals));
     }
 
     /// Validation message counters (shared; still readable after the context is dropped).
@@ -492,4 +572,10 @@ impl Drop for Context {
             self.instance.destroy_instance(None);
         }
     }
+}
+
+/// Locks `m`, through a poisoned lock (the data is a log; a panic elsewhere does not make it
+/// wrong).
+fn lock<T>(m: &Mutex<T>) -> std::sync::MutexGuard<'_, T> {
+    m.lock().unwrap_or_else(|poisoned| poisoned.into_inner())
 }

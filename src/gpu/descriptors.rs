@@ -1,18 +1,28 @@
-//! Descriptor set layouts, a descriptor pool that frees its sets with itself, and the writes a
-//! pass needs (uniform buffer, sampled image, storage image).
+//! Descriptor set layouts and [`BoundSet`]: a descriptor set written once, at creation, that
+//! knows what it binds. Each binding names its resource and how the work that wrote it is
+//! ordered before a read ([`Order`]), so a pass's barriers are derived from the shaders that
+//! read the set (`pass.rs`), not written beside them. A set is never rewritten (a new one is
+//! made, and the old one retired through the deletion queue), so no frame in flight can see a
+//! set change, and a set keeps what it binds alive: every safe function here is sound.
 
+use std::collections::BTreeMap;
+use std::rc::Rc;
 use std::sync::Arc;
 
 use ash::vk;
 
+use super::buffer::{Buffer, BufferCore, BufferView};
 use super::context::Context;
-use super::error::{GpuResult, VkResultExt};
+use super::error::{GpuError, GpuResult, VkResultExt};
 use super::garbage::Garbage;
+use super::image::{Image, Sampler};
 
 /// A descriptor set layout.
 pub struct DescriptorSetLayout {
     ctx: Arc<Context>,
-    pub raw: vk::DescriptorSetLayout,
+    pub(super) raw: vk::DescriptorSetLayout,
+    /// (binding, type, stages), as created.
+    pub(super) bindings: Vec<(u32, vk::DescriptorType, vk::ShaderStageFlags)>,
 }
 
 impl DescriptorSetLayout {
@@ -38,9 +48,14 @@ impl DescriptorSetLayout {
             .vk("vkCreateDescriptorSetLayout")?;
         ctx.count_created(1);
         ctx.name(raw, name);
+        let bindings = bindings
+            .iter()
+            .map(|b| (b.binding, b.descriptor_type, b.stage_flags))
+            .collect();
         Ok(Self {
             ctx: ctx.clone(),
             raw,
+            bindings,
         })
     }
 }
@@ -51,177 +66,225 @@ impl Drop for DescriptorSetLayout {
     }
 }
 
-/// A descriptor pool; its sets live as long as it does.
-pub struct DescriptorPool {
-    ctx: Arc<Context>,
-    pub raw: vk::DescriptorPool,
+/// How the work that last wrote a bound resource is ordered before a shader reads it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Order {
+    /// Tracked on the queue that reads it: the reading pass records the barrier its shaders'
+    /// stages need (`Recorder::rendering`, `Recorder::dispatch_with`).
+    Tracked,
+    /// Written by the host before the submission that reads it (uniforms): the submission
+    /// makes host writes visible; no barrier.
+    Host,
+    /// Written on the compute queue and sampled in GENERAL; the reading submission's semaphore
+    /// wait (`by`) at `stages` orders it, so every stage that reads it must be in `stages`.
+    Wait {
+        by: &'static str,
+        stages: vk::PipelineStageFlags2,
+    },
 }
 
-impl DescriptorPool {
-    /// A pool for `max_sets` sets holding at most the given descriptor counts.
+/// One binding of a [`BoundSet`].
+pub enum Bind<'a> {
+    /// A uniform block the host writes before each submission (`Order::Host`).
+    Uniform(&'a Buffer),
+    /// A storage block.
+    Storage(&'a Buffer, Order),
+    /// A combined image sampler over the image's default view.
+    Sampled(&'a Image, &'a Sampler, Order),
+    /// A storage image (GENERAL) over its default view.
+    StorageImage(&'a Image, Order),
+    /// `samplerBuffer` / `textureBuffer`.
+    UniformTexel(&'a BufferView, Order),
+    /// `imageBuffer`.
+    StorageTexel(&'a BufferView, Order),
+}
+
+/// What a binding holds, kept alive with the set.
+pub(super) enum Resource {
+    Image(Image),
+    Buffer(Rc<BufferCore>),
+}
+
+/// One written binding.
+pub(super) struct Bound {
+    pub order: Order,
+    pub resource: Resource,
+}
+
+impl Bound {
+    pub(super) fn name(&self) -> &str {
+        use super::track::Tracked;
+        match &self.resource {
+            Resource::Image(i) => i.name(),
+            Resource::Buffer(b) => b.name(),
+        }
+    }
+}
+
+/// A descriptor set written once from [`Bind`]s, with its own pool. It keeps every image,
+/// buffer, view and sampler it binds alive; dropped, it goes through the deletion queue.
+pub struct BoundSet {
+    ctx: Arc<Context>,
+    pool: vk::DescriptorPool,
+    pub(super) raw: vk::DescriptorSet,
+    pub(super) name: String,
+    pub(super) bindings: BTreeMap<u32, Bound>,
+    _samplers: Vec<Sampler>,
+    _views: Vec<BufferView>,
+}
+
+impl BoundSet {
+    /// Allocates a set of `layout` and writes `binds` (binding, what) into it. Each bind's
+    /// descriptor type must be the layout's at that binding (else an error naming both).
+    // Long: check, pool, allocate, write and keep, in the binds' order; each step a few lines
+    // over the same binds.
     pub fn new(
         ctx: &Arc<Context>,
+        layout: &DescriptorSetLayout,
         name: &str,
-        max_sets: u32,
-        sizes: &[(vk::DescriptorType, u32)],
-    ) -> GpuResult<Self> {
+        binds: &[(u32, Bind)],
+    ) -> GpuResult<BoundSet> {
+        let ty_of = |bind: &Bind| match bind {
+            Bind::Uniform(_) => vk::DescriptorType::UNIFORM_BUFFER,
+            Bind::Storage(..) => vk::DescriptorType::STORAGE_BUFFER,
+            Bind::Sampled(..) => vk::DescriptorType::COMBINED_IMAGE_SAMPLER,
+            Bind::StorageImage(..) => vk::DescriptorType::STORAGE_IMAGE,
+            Bind::UniformTexel(..) => vk::DescriptorType::UNIFORM_TEXEL_BUFFER,
+            Bind::StorageTexel(..) => vk::DescriptorType::STORAGE_TEXEL_BUFFER,
+        };
+        let mut sizes: BTreeMap<i32, u32> = BTreeMap::new();
+        for (binding, bind) in binds {
+            let ty = ty_of(bind);
+            let declared = layout.bindings.iter().find(|b| b.0 == *binding);
+            if declared.map(|b| b.1) != Some(ty) {
+                return Err(GpuError::Unsupported(format!(
+                    "descriptor set {name}: binding {binding} is written as {ty:?} but its layout declares {:?}",
+                    declared.map(|b| b.1)
+                )));
+            }
+            *sizes.entry(ty.as_raw()).or_default() += 1;
+        }
         let sizes: Vec<_> = sizes
             .iter()
-            .map(|&(ty, n)| vk::DescriptorPoolSize {
-                ty,
+            .map(|(&ty, &n)| vk::DescriptorPoolSize {
+                ty: vk::DescriptorType::from_raw(ty),
                 descriptor_count: n,
             })
             .collect();
         let info = vk::DescriptorPoolCreateInfo::default()
-            .max_sets(max_sets)
+            .max_sets(1)
             .pool_sizes(&sizes);
         // SAFETY: valid create info on a live device.
-        let raw = unsafe { ctx.device.create_descriptor_pool(&info, None) }
+        let pool = unsafe { ctx.device.create_descriptor_pool(&info, None) }
             .vk("vkCreateDescriptorPool")?;
         ctx.count_created(1);
-        ctx.name(raw, name);
-        Ok(Self {
+        ctx.name(pool, &format!("{name} pool"));
+        let mut set = BoundSet {
             ctx: ctx.clone(),
-            raw,
-        })
-    }
-
-    /// Allocates one named set of `layout`.
-    pub fn allocate(
-        &self,
-        layout: &DescriptorSetLayout,
-        name: &str,
-    ) -> GpuResult<vk::DescriptorSet> {
+            pool,
+            raw: vk::DescriptorSet::null(),
+            name: name.to_string(),
+            bindings: BTreeMap::new(),
+            _samplers: Vec::new(),
+            _views: Vec::new(),
+        };
         let layouts = [layout.raw];
         let info = vk::DescriptorSetAllocateInfo::default()
-            .descriptor_pool(self.raw)
+            .descriptor_pool(pool)
             .set_layouts(&layouts);
-        // SAFETY: pool and layout are live objects of this device.
-        let set = unsafe { self.ctx.device.allocate_descriptor_sets(&info) }
+        // SAFETY: pool and layout are live objects of this device; the pool has room for it.
+        set.raw = unsafe { ctx.device.allocate_descriptor_sets(&info) }
             .vk("vkAllocateDescriptorSets")?[0];
-        self.ctx.name(set, name);
+        ctx.name(set.raw, name);
+
+        let image_info = |bind: &Bind| match bind {
+            Bind::Sampled(image, sampler, order) => vk::DescriptorImageInfo {
+                sampler: sampler.raw(),
+                image_view: image.view,
+                image_layout: sampled_layout(*order),
+            },
+            Bind::StorageImage(image, _) => vk::DescriptorImageInfo {
+                sampler: vk::Sampler::null(),
+                image_view: image.view,
+                image_layout: vk::ImageLayout::GENERAL,
+            },
+            _ => vk::DescriptorImageInfo::default(),
+        };
+        let buffer_info = |bind: &Bind| match bind {
+            Bind::Uniform(b) | Bind::Storage(b, _) => vk::DescriptorBufferInfo {
+                buffer: b.raw(),
+                offset: 0,
+                range: vk::WHOLE_SIZE,
+            },
+            _ => vk::DescriptorBufferInfo::default(),
+        };
+        let texel = |bind: &Bind| match bind {
+            Bind::UniformTexel(v, _) | Bind::StorageTexel(v, _) => v.raw(),
+            _ => vk::BufferView::null(),
+        };
+        let images: Vec<[vk::DescriptorImageInfo; 1]> =
+            binds.iter().map(|(_, b)| [image_info(b)]).collect();
+        let buffers: Vec<[vk::DescriptorBufferInfo; 1]> =
+            binds.iter().map(|(_, b)| [buffer_info(b)]).collect();
+        let texels: Vec<[vk::BufferView; 1]> = binds.iter().map(|(_, b)| [texel(b)]).collect();
+        let writes: Vec<_> = binds
+            .iter()
+            .enumerate()
+            .map(|(i, (binding, bind))| {
+                let w = vk::WriteDescriptorSet::default()
+                    .dst_set(set.raw)
+                    .dst_binding(*binding)
+                    .descriptor_type(ty_of(bind));
+                match bind {
+                    Bind::Uniform(_) | Bind::Storage(..) => w.buffer_info(&buffers[i]),
+                    Bind::Sampled(..) | Bind::StorageImage(..) => w.image_info(&images[i]),
+                    Bind::UniformTexel(..) | Bind::StorageTexel(..) => {
+                        w.texel_buffer_view(&texels[i])
+                    }
+                }
+            })
+            .collect();
+        // SAFETY: the set was just allocated (no command buffer uses it); every handle written
+        // is live and kept alive by the set (below) for as long as the set exists; the types
+        // match the layout (checked above).
+        unsafe { ctx.device.update_descriptor_sets(&writes, &[]) };
+        for (binding, bind) in binds {
+            let (order, resource) = match bind {
+                Bind::Uniform(b) => (Order::Host, Resource::Buffer(b.core().clone())),
+                Bind::Storage(b, o) => (*o, Resource::Buffer(b.core().clone())),
+                Bind::Sampled(i, s, o) => {
+                    set._samplers.push((*s).clone());
+                    (*o, Resource::Image((*i).clone()))
+                }
+                Bind::StorageImage(i, o) => (*o, Resource::Image((*i).clone())),
+                Bind::UniformTexel(v, o) | Bind::StorageTexel(v, o) => {
+                    set._views.push((*v).clone());
+                    (*o, Resource::Buffer(v.buffer().clone()))
+                }
+            };
+            let bound = Bound { order, resource };
+            set.bindings.insert(*binding, bound);
+        }
         Ok(set)
     }
-}
 
-impl Drop for DescriptorPool {
-    fn drop(&mut self) {
-        self.ctx.defer(Garbage::DescriptorPool(self.raw));
+    pub fn name(&self) -> &str {
+        &self.name
     }
 }
 
-/// One descriptor write.
-pub enum Write {
-    UniformBuffer {
-        binding: u32,
-        buffer: vk::Buffer,
-    },
-    StorageBuffer {
-        binding: u32,
-        buffer: vk::Buffer,
-    },
-    SampledImage {
-        binding: u32,
-        view: vk::ImageView,
-        sampler: vk::Sampler,
-        /// Layout the image is in when sampled (SHADER_READ_ONLY_OPTIMAL or GENERAL).
-        layout: vk::ImageLayout,
-    },
-    StorageImage {
-        binding: u32,
-        view: vk::ImageView,
-    },
-    /// `samplerBuffer` / `textureBuffer`.
-    UniformTexelBuffer {
-        binding: u32,
-        view: vk::BufferView,
-    },
-    /// `imageBuffer`.
-    StorageTexelBuffer {
-        binding: u32,
-        view: vk::BufferView,
-    },
+/// The layout a sampled image is bound in: SHADER_READ_ONLY_OPTIMAL when tracked by its reader,
+/// GENERAL when it stays where its compute writer left it.
+pub(super) fn sampled_layout(order: Order) -> vk::ImageLayout {
+    match order {
+        Order::Wait { .. } => vk::ImageLayout::GENERAL,
+        Order::Tracked | Order::Host => vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL,
+    }
 }
 
-/// Writes descriptors into `set`. The caller guarantees the set is not in use by pending GPU work
-/// (sets are per frame slot, or rewritten only after a device wait on resize).
-pub fn update(ctx: &Context, set: vk::DescriptorSet, writes: &[Write]) {
-    let buffer_infos: Vec<[vk::DescriptorBufferInfo; 1]> = writes
-        .iter()
-        .map(|w| match w {
-            Write::UniformBuffer { buffer, .. } | Write::StorageBuffer { buffer, .. } => {
-                [vk::DescriptorBufferInfo {
-                    buffer: *buffer,
-                    offset: 0,
-                    range: vk::WHOLE_SIZE,
-                }]
-            }
-            _ => [vk::DescriptorBufferInfo::default()],
-        })
-        .collect();
-    let image_infos: Vec<[vk::DescriptorImageInfo; 1]> = writes
-        .iter()
-        .map(|w| match w {
-            Write::SampledImage {
-                view,
-                sampler,
-                layout,
-                ..
-            } => [vk::DescriptorImageInfo {
-                sampler: *sampler,
-                image_view: *view,
-                image_layout: *layout,
-            }],
-            Write::StorageImage { view, .. } => [vk::DescriptorImageInfo {
-                sampler: vk::Sampler::null(),
-                image_view: *view,
-                image_layout: vk::ImageLayout::GENERAL,
-            }],
-            _ => [vk::DescriptorImageInfo::default()],
-        })
-        .collect();
-    let texel_views: Vec<[vk::BufferView; 1]> = writes
-        .iter()
-        .map(|w| match w {
-            Write::UniformTexelBuffer { view, .. } | Write::StorageTexelBuffer { view, .. } => {
-                [*view]
-            }
-            _ => [vk::BufferView::null()],
-        })
-        .collect();
-    let vk_writes: Vec<_> = writes
-        .iter()
-        .enumerate()
-        .map(|(i, w)| {
-            let base = vk::WriteDescriptorSet::default().dst_set(set);
-            match w {
-                Write::UniformBuffer { binding, .. } => base
-                    .dst_binding(*binding)
-                    .descriptor_type(vk::DescriptorType::UNIFORM_BUFFER)
-                    .buffer_info(&buffer_infos[i]),
-                Write::StorageBuffer { binding, .. } => base
-                    .dst_binding(*binding)
-                    .descriptor_type(vk::DescriptorType::STORAGE_BUFFER)
-                    .buffer_info(&buffer_infos[i]),
-                Write::SampledImage { binding, .. } => base
-                    .dst_binding(*binding)
-                    .descriptor_type(vk::DescriptorType::COMBINED_IMAGE_SAMPLER)
-                    .image_info(&image_infos[i]),
-                Write::StorageImage { binding, .. } => base
-                    .dst_binding(*binding)
-                    .descriptor_type(vk::DescriptorType::STORAGE_IMAGE)
-                    .image_info(&image_infos[i]),
-                Write::UniformTexelBuffer { binding, .. } => base
-                    .dst_binding(*binding)
-                    .descriptor_type(vk::DescriptorType::UNIFORM_TEXEL_BUFFER)
-                    .texel_buffer_view(&texel_views[i]),
-                Write::StorageTexelBuffer { binding, .. } => base
-                    .dst_binding(*binding)
-                    .descriptor_type(vk::DescriptorType::STORAGE_TEXEL_BUFFER)
-                    .texel_buffer_view(&texel_views[i]),
-            }
-        })
-        .collect();
-    // SAFETY: all handles are live; the set is not in use by the GPU (caller's contract).
-    unsafe { ctx.device.update_descriptor_sets(&vk_writes, &[]) };
+impl Drop for BoundSet {
+    fn drop(&mut self) {
+        // The set goes with its pool, once no frame in flight can use it.
+        self.ctx.defer(Garbage::DescriptorPool(self.pool));
+    }
 }

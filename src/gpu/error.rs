@@ -44,6 +44,10 @@ pub enum GpuError {
     Timeout { seconds: u64 },
     #[error("{0}")]
     Unsupported(String),
+    /// What a pass or pipeline declares disagrees with what its shaders read (`reflect`):
+    /// a programming error, found at creation, named by pass, binding and stage.
+    #[error("{0}")]
+    Interface(String),
     /// The loader failed before any driver ran (in practice: a driver manifest it could not
     /// parse, which it reports as out of host memory).
     #[error("{call} failed: {result}: {}", loader_hint())]

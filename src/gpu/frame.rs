@@ -225,14 +225,17 @@ impl Frames {
         Ok(())
     }
 
-    /// The mapped bytes of a host-visible buffer that GPU work up to timeline value `value`
-    /// wrote (with a barrier making the write visible to HOST_READ). Waits for that value first,
-    /// so the GPU can no longer be writing.
-    pub fn read_back<'a>(&self, buffer: &'a Buffer, value: u64) -> GpuResult<&'a [u8]> {
-        self.wait_for(value)?;
+    /// A copy of the bytes of a host-visible buffer that submitted frames wrote (with a
+    /// barrier making the write visible to HOST_READ, as `Recorder::uses` records for
+    /// `Use::HostRead`). Waits for every submitted frame first, so no GPU work can still be
+    /// writing it, and returns a copy, so no later frame can write under the caller's view.
+    /// Panics if the buffer is not host-visible (a programming error).
+    pub fn read_back(&self, buffer: &Buffer) -> GpuResult<Vec<u8>> {
+        self.wait_all()?;
         Ok(buffer
             .mapped()
-            .expect("read_back needs a host-visible buffer"))
+            .expect("read_back needs a host-visible buffer")
+            .to_vec())
     }
 
     /// Blocks until the frame timeline reaches `value`.

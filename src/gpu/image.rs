@@ -1,7 +1,8 @@
 //! `Image` (a `VkImage`, its memory and a default view) and `Sampler`, both destroyed through the
 //! deletion queue.
 
-use std::cell::Cell;
+use std::ops::Deref;
+use std::rc::Rc;
 use std::sync::Arc;
 
 use ash::vk;
@@ -12,7 +13,7 @@ use super::context::Context;
 use super::error::{GpuError, GpuResult, VkResultExt};
 use super::garbage::Garbage;
 use super::queues::QueueUsers;
-use super::track::{Handle, State, Tracked};
+use super::track::{ExternalImage, Handle, State, StateCell, Tracked};
 
 /// How to create an [`Image`].
 #[derive(Clone, Copy, Debug)]
@@ -35,21 +36,41 @@ pub struct ImageDesc<'a> {
 }
 
 /// A 2D (array) image in device memory with a view of all its layers (none for an image with
-/// transfer usage only).
-pub struct Image {
+/// transfer usage only). A shared handle: a clone is the same image (descriptor sets hold one,
+/// so an image lives as long as a set that binds it), destroyed through the deletion queue when
+/// the last clone is dropped. Its Vulkan handles stay inside the GPU layer.
+#[derive(Clone)]
+pub struct Image(Rc<ImageCore>);
+
+/// What an [`Image`] holds; its handles are visible to the GPU layer only.
+pub struct ImageCore {
     ctx: Arc<Context>,
-    pub raw: vk::Image,
-    pub view: vk::ImageView,
+    pub(super) raw: vk::Image,
+    pub(super) view: vk::ImageView,
     /// One 2D view per layer (cubemaps and layered colour attachments: render targets of the
     /// faces or layers).
-    pub layer_views: Vec<vk::ImageView>,
+    pub(super) layer_views: Vec<vk::ImageView>,
     allocation: Option<Allocation>,
-    pub format: vk::Format,
-    pub extent: vk::Extent2D,
-    pub layers: u32,
-    pub aspect: vk::ImageAspectFlags,
+    pub(super) format: vk::Format,
+    pub(super) extent: vk::Extent2D,
+    pub(super) layers: u32,
+    pub(super) aspect: vk::ImageAspectFlags,
+    name: String,
     /// What the last recorded use left (`track`), on the queue that uses the image.
-    pub(crate) state: Cell<State>,
+    pub(super) state: StateCell,
+}
+
+impl std::fmt::Debug for Image {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "Image({:?})", self.name)
+    }
+}
+
+impl Deref for Image {
+    type Target = ImageCore;
+    fn deref(&self) -> &ImageCore {
+        &self.0
+    }
 }
 
 /// A B8G8R8A8 format: bytes in blue, green, red, alpha order (swapchains often use one).
@@ -131,7 +152,7 @@ impl Image {
             }
         };
         let aspect = aspect_of(desc.format);
-        let mut image = Image {
+        let mut image = ImageCore {
             ctx: ctx.clone(),
             raw,
             view: vk::ImageView::null(),
@@ -141,7 +162,8 @@ impl Image {
             extent: desc.extent,
             layers,
             aspect,
-            state: Cell::new(State::NEW),
+            name: desc.name.to_string(),
+            state: StateCell::new(State::NEW),
         };
         let allocation = image.allocation.as_ref().expect("just set");
         // SAFETY: the allocation satisfies the image's requirements and is bound once.
@@ -161,7 +183,7 @@ impl Image {
             | vk::ImageUsageFlags::COLOR_ATTACHMENT
             | vk::ImageUsageFlags::DEPTH_STENCIL_ATTACHMENT;
         if !desc.usage.intersects(viewable) {
-            return Ok(image);
+            return Ok(Image(Rc::new(image)));
         }
         let view_info = vk::ImageViewCreateInfo::default()
             .image(raw)
@@ -199,12 +221,37 @@ impl Image {
                 image.layer_views.push(view);
             }
         }
-        Ok(image)
+        Ok(Image(Rc::new(image)))
     }
 
+    /// Whether `self` and `other` are the same image.
+    pub fn same(&self, other: &Image) -> bool {
+        Rc::ptr_eq(&self.0, &other.0)
+    }
+}
+
+impl ImageCore {
     /// The whole subresource range (all layers, one mip).
     pub fn range(&self) -> vk::ImageSubresourceRange {
         full_range(self.aspect, self.layers)
+    }
+
+    pub fn extent(&self) -> vk::Extent2D {
+        self.extent
+    }
+
+    pub fn format(&self) -> vk::Format {
+        self.format
+    }
+
+    /// Array layers (6 for a cube).
+    pub fn layers(&self) -> u32 {
+        self.layers
+    }
+
+    /// The name it was created with (debug names, the frame graph).
+    pub fn name(&self) -> &str {
+        &self.name
     }
 }
 
@@ -219,7 +266,7 @@ pub fn full_range(aspect: vk::ImageAspectFlags, layers: u32) -> vk::ImageSubreso
     }
 }
 
-impl Drop for Image {
+impl Drop for ImageCore {
     fn drop(&mut self) {
         if let Some(allocation) = self.allocation.take() {
             let mut views = std::mem::take(&mut self.layer_views);
@@ -235,10 +282,13 @@ impl Drop for Image {
     }
 }
 
-/// A sampler.
-pub struct Sampler {
+/// A sampler; a shared handle (descriptor sets keep the samplers they bind alive).
+#[derive(Clone)]
+pub struct Sampler(Rc<SamplerCore>);
+
+struct SamplerCore {
     ctx: Arc<Context>,
-    pub raw: vk::Sampler,
+    raw: vk::Sampler,
 }
 
 impl Sampler {
@@ -275,14 +325,18 @@ impl Sampler {
         let raw = unsafe { ctx.device.create_sampler(&info, None) }.vk("vkCreateSampler")?;
         ctx.count_created(1);
         ctx.name(raw, name);
-        Ok(Sampler {
+        Ok(Sampler(Rc::new(SamplerCore {
             ctx: ctx.clone(),
             raw,
-        })
+        })))
+    }
+
+    pub(super) fn raw(&self) -> vk::Sampler {
+        self.0.raw
     }
 }
 
-impl Drop for Sampler {
+impl Drop for SamplerCore {
     fn drop(&mut self) {
         self.ctx.defer(Garbage::Sampler(self.raw));
     }
@@ -290,9 +344,52 @@ impl Drop for Sampler {
 
 impl Tracked for Image {
     fn handle(&self) -> Handle {
-        Handle::Image(self.raw, self.range())
+        Handle::image(self.raw, self.range())
     }
-    fn state(&self) -> &Cell<State> {
+    fn name(&self) -> &str {
+        &self.name
+    }
+    fn state(&self) -> &StateCell {
         &self.state
+    }
+}
+
+/// The image a frame ends in: one the program owns (headless) or a swapchain's.
+#[derive(Clone, Copy)]
+pub enum Output<'a> {
+    Image(&'a Image),
+    External(&'a ExternalImage),
+}
+
+impl<'a> Output<'a> {
+    pub fn extent(self) -> vk::Extent2D {
+        match self {
+            Output::Image(i) => i.extent,
+            Output::External(e) => e.extent,
+        }
+    }
+    pub fn format(self) -> vk::Format {
+        match self {
+            Output::Image(i) => i.format,
+            Output::External(e) => e.format,
+        }
+    }
+    pub fn tracked(self) -> &'a dyn Tracked {
+        match self {
+            Output::Image(i) => i,
+            Output::External(e) => e,
+        }
+    }
+    pub(super) fn raw(self) -> vk::Image {
+        match self {
+            Output::Image(i) => i.raw,
+            Output::External(e) => e.raw,
+        }
+    }
+    pub(super) fn view(self) -> vk::ImageView {
+        match self {
+            Output::Image(i) => i.view,
+            Output::External(e) => e.view,
+        }
     }
 }

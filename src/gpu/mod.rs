@@ -13,6 +13,7 @@ pub mod error;
 pub mod formats;
 pub mod frame;
 mod garbage;
+pub mod graph;
 pub mod image;
 pub mod instance;
 pub mod oneshot;
@@ -20,6 +21,7 @@ pub mod pass;
 pub mod physical;
 pub mod pipeline;
 pub mod queues;
+pub mod reflect;
 pub mod selftest;
 mod submit;
 pub mod swapchain;
@@ -31,13 +33,13 @@ pub use buffer::{Buffer, BufferView};
 pub use command::{Access, Attachment, Load, Recorder};
 pub use context::{Context, ContextDesc, DeviceInfo, DeviceSummary};
 pub use debug::MessageCounters;
-pub use descriptors::{DescriptorPool, DescriptorSetLayout};
+pub use descriptors::{Bind, BoundSet, DescriptorSetLayout, Order};
 pub use error::{GpuError, GpuResult};
 pub use formats::FormatUse;
 pub use frame::{Frame, Frames, Submission, FRAMES_IN_FLIGHT};
 pub use gpu_allocator::MemoryLocation;
-pub use image::{Image, ImageDesc, Sampler};
-pub use pass::{Rendering, Target};
+pub use image::{Image, ImageDesc, Output, Sampler};
+pub use pass::{check_bindings, Bindings, Rendering, Target};
 pub use pipeline::{GraphicsDesc, Pipeline, PipelineLayout};
 pub use queues::{QueuePlan, QueueUsers};
 pub use swapchain::{PresentMode, Swapchain};
@@ -45,4 +47,4 @@ pub use timestamps::{
     DrawStatistics, FrameTimes, GpuTimings, Profiler, Profilers, COMPUTE, GRAPHICS_OCEAN,
     GRAPHICS_SCENE,
 };
-pub use track::{ExternalImage, Handle, State, Tracked, Use};
+pub use track::{ExternalImage, State, Tracked, Use};

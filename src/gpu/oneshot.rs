@@ -119,7 +119,6 @@ pub fn upload_on(ctx: &Arc<Context>, queue: Queue, dst: &Buffer, bytes: &[u8]) -
     run_once_on(ctx, queue, "upload", &[], |rec| {
         // The buffer's state says it was copied to: its next user's barrier waits for that
         // (on this queue, where a barrier's first scope covers this submission).
-        rec.uses(&[(&staging, Use::CopySrc), (dst, Use::CopyDst)]);
         rec.copy_buffer(&staging, dst, bytes.len() as u64);
     })
 }
@@ -150,11 +149,9 @@ pub fn upload_image_with<E: From<GpuError>>(
     )?;
     fill(&mut staging.mapped_mut()[..len])?;
     run_once(ctx, "image upload", |rec| {
-        rec.uses(&[(image, Use::CopyDst)]);
+        // Left in TRANSFER_DST_OPTIMAL: the first pass that samples it moves it to
+        // SHADER_READ_ONLY_OPTIMAL, waiting at the stages its shaders read it in.
         rec.copy_buffer_to_image_layers(&staging, image);
-        // Sampled by fragment shaders (the water, the texture debug views), in the layout
-        // `copy_buffer_to_image_layers` cannot leave it in.
-        rec.uses(&[(image, Use::FragmentSampled)]);
     })?;
     Ok(())
 }
@@ -179,9 +176,50 @@ pub fn download_on(
         MemoryLocation::GpuToCpu,
     )?;
     run_once_on(ctx, queue, "download", &[], |rec| {
-        rec.uses(&[(src, Use::CopySrc), (&staging, Use::CopyDst)]);
         rec.copy_buffer(src, &staging, len as u64);
         rec.uses(&[(&staging, Use::HostRead)]);
     })?;
     Ok(staging.mapped().expect("staging is host-visible")[..len].to_vec())
+}
+
+/// Reads every layer of each of `images` (tightly packed, layer after layer) on `queue`, the
+/// queue whose tracked state they are in, and leaves each in the state `then` asks for (e.g.
+/// `Use::ComputeRead`: back in GENERAL for the compute queue). Returns the bytes of each.
+pub fn download_image_layers_on(
+    ctx: &Arc<Context>,
+    queue: Queue,
+    images: &[&Image],
+    then: Use,
+) -> GpuResult<Vec<Vec<u8>>> {
+    let buffers = images
+        .iter()
+        .map(|image| {
+            let e = image.extent;
+            // RGBA32F (the simulation's) or RGBA8: the copy asserts the size it needs.
+            let texel = if image.format == vk::Format::R32G32B32A32_SFLOAT {
+                16
+            } else {
+                4
+            };
+            let bytes = e.width as u64 * e.height as u64 * image.layers as u64 * texel;
+            Buffer::new(
+                ctx,
+                &format!("{} readback", image.name()),
+                bytes,
+                vk::BufferUsageFlags::TRANSFER_DST,
+                MemoryLocation::GpuToCpu,
+            )
+        })
+        .collect::<GpuResult<Vec<_>>>()?;
+    run_once_on(ctx, queue, "image readback", &[], |rec| {
+        for (image, buffer) in images.iter().zip(&buffers) {
+            rec.copy_image_layers_to_buffer(image, buffer);
+            rec.uses(&[(*image, then), (buffer, Use::HostRead)]);
+        }
+    })?;
+    // The one-shot waited for its fence: the GPU is done with the buffers.
+    Ok(buffers
+        .iter()
+        .map(|b| b.mapped().expect("readback is host-visible").to_vec())
+        .collect())
 }

@@ -1,19 +1,32 @@
-//! Passes declare what they use; the recorder turns that into barriers (`track`) and, for
-//! rendering, into the scope's attachments: [`Recorder::uses`] and [`Recorder::rendering`].
-
-use std::cell::Cell;
+//! Passes name what they draw or dispatch with; the recorder turns that into barriers
+//! (`track`) and, for rendering, into the scope's attachments.
+//!
+//! - [`Recorder::rendering`] takes the scope's attachments and the [`Bindings`] (pipeline and
+//!   descriptor sets) of every draw in it. What each draw's shaders read comes from their
+//!   SPIR-V (`reflect`), the resources from the sets (`descriptors::BoundSet`): the barriers
+//!   wait at exactly the stages that read (a sky cube sampled by a tessellation-evaluation
+//!   shader is waited for there), and a bind inside the scope must be one it declared.
+//! - [`Recorder::dispatch_with`] does the same for a compute dispatch.
+//! - [`Recorder::uses`]: a use no shader makes (attachments, copies, presentation).
+//!
+//! [`check_bindings`] checks a pass's bindings at creation: every descriptor its shaders use is
+//! bound, and a resource ordered by a semaphore wait is read only in the stages that wait
+//! covers. It names the pass, the binding and the stage.
 
 use ash::vk;
 
-use super::command::{Attachment, ImageBarrier, Load, Recorder};
-use super::image::Image;
-use super::track::{transition, Handle, State, Tracked, Use};
+use super::command::{Attachment, BindingsKey, ImageBarrier, Load, Recorder};
+use super::descriptors::{BoundSet, Order, Resource};
+use super::image::{Image, Output};
+use super::pipeline::Pipeline;
+use super::reflect::{pipeline_stages, Kind};
+use super::track::{transition, Handle, Raw, State, StateCell, Tracked, Use};
 
 /// One layer of an image, tracked on its own while `Recorder::halve_down_layers` runs.
 struct Layer<'a> {
     image: &'a Image,
     layer: u32,
-    state: Cell<State>,
+    state: StateCell,
 }
 
 impl Tracked for Layer<'_> {
@@ -23,9 +36,12 @@ impl Tracked for Layer<'_> {
             layer_count: 1,
             ..self.image.range()
         };
-        Handle::Image(self.image.raw, range)
+        Handle::image(self.image.raw, range)
     }
-    fn state(&self) -> &Cell<State> {
+    fn name(&self) -> &str {
+        self.image.name()
+    }
+    fn state(&self) -> &StateCell {
         &self.state
     }
 }
@@ -50,19 +66,103 @@ impl<'a> Target<'a> {
         }
     }
 
-    /// An image the renderer does not own (a swapchain image), through `view`.
-    pub fn external(
-        image: &'a dyn Tracked,
-        view: vk::ImageView,
-        extent: vk::Extent2D,
-        load: Load,
-    ) -> Target<'a> {
+    /// Face or layer `layer` of a cube or layered image.
+    pub fn layer(image: &'a Image, layer: u32, load: Load) -> Target<'a> {
         Target {
             image,
-            view,
-            extent,
+            view: image.layer_views[layer as usize],
+            extent: image.extent,
             load,
         }
+    }
+
+    /// The frame's output image.
+    pub fn output(output: Output<'a>, load: Load) -> Target<'a> {
+        Target {
+            image: output.tracked(),
+            view: output.view(),
+            extent: output.extent(),
+            load,
+        }
+    }
+}
+
+/// What a draw or dispatch binds: a pipeline and its descriptor sets, set 0 first.
+#[derive(Clone, Copy)]
+pub struct Bindings<'a> {
+    pub pipeline: &'a Pipeline,
+    pub sets: &'a [&'a BoundSet],
+}
+
+impl Bindings<'_> {
+    fn key(&self) -> BindingsKey {
+        BindingsKey(self.pipeline.raw, self.sets.iter().map(|s| s.raw).collect())
+    }
+}
+
+/// A read the shaders of one bindings make: the bound resource and how it is ordered.
+struct Read<'a> {
+    resource: &'a Resource,
+    order: Order,
+    kind: Kind,
+    stages: vk::ShaderStageFlags,
+    reads: bool,
+    writes: bool,
+}
+
+/// Every descriptor the pipeline's shaders use, with what the sets bind there; an error names
+/// the pass, the set and binding, and the stage.
+fn reads<'a>(pass: &str, b: &Bindings<'a>) -> Result<Vec<Read<'a>>, String> {
+    let mut out = Vec::new();
+    for (&(set, binding), used) in &b.pipeline.interface.bindings {
+        let bound = b
+            .sets
+            .get(set as usize)
+            .and_then(|s| s.bindings.get(&binding));
+        let Some(bound) = bound else {
+            return Err(format!(
+                "pass {pass}: pipeline {} reads set {set} binding {binding} in {:?}, but nothing is bound there",
+                b.pipeline.name, used.stages
+            ));
+        };
+        if let Order::Wait { by, stages } = bound.order {
+            let reading = pipeline_stages(used.stages);
+            if !stages.contains(reading) {
+                return Err(format!(
+                    "pass {pass}: pipeline {} reads {} (set {set} binding {binding}) in {reading:?}, but {by} waits at {stages:?} only",
+                    b.pipeline.name,
+                    bound.name()
+                ));
+            }
+        }
+        out.push(Read {
+            resource: &bound.resource,
+            order: bound.order,
+            kind: used.kind,
+            stages: used.stages,
+            reads: used.reads,
+            writes: used.writes,
+        });
+    }
+    Ok(out)
+}
+
+/// Checks a pass's bindings at creation (`GpuError::Interface`, one line naming the pass, the
+/// binding and the stage): what its pipelines' shaders read is bound, and what a semaphore
+/// wait orders is read only in the stages the wait covers.
+pub fn check_bindings(pass: &str, bindings: &[Bindings]) -> super::GpuResult<()> {
+    for b in bindings {
+        reads(pass, b).map_err(super::GpuError::Interface)?;
+    }
+    Ok(())
+}
+
+/// The tracked uses a compute dispatch's shaders make of what its sets bind.
+fn compute_use(read: &Read) -> Use {
+    match (read.kind.is_storage(), read.reads, read.writes) {
+        (true, true, true) => Use::ComputeReadWrite,
+        (true, false, true) => Use::ComputeWrite,
+        _ => Use::ComputeRead,
     }
 }
 
@@ -73,18 +173,20 @@ impl Recorder<'_> {
         let mut images = Vec::new();
         let mut buffers = Vec::new();
         for (resource, next) in uses {
-            let handle = resource.handle();
+            let Handle(handle) = resource.handle();
             let (barrier, after) = transition(
                 resource.state().get(),
                 *next,
-                matches!(handle, Handle::Image(..)),
+                matches!(handle, Raw::Image(..)),
             );
             resource.state().set(after);
+            self.ctx
+                .journal_use(resource.name(), *next, barrier.map(|b| (b.2, b.3)), None);
             let Some((old_layout, new_layout, src, dst)) = barrier else {
                 continue;
             };
             match handle {
-                Handle::Image(image, range) => images.push(ImageBarrier {
+                Raw::Image(image, range) => images.push(ImageBarrier {
                     image,
                     range,
                     old_layout,
@@ -92,7 +194,7 @@ impl Recorder<'_> {
                     src,
                     dst,
                 }),
-                Handle::Buffer(buffer) => buffers.push((buffer, src, dst)),
+                Raw::Buffer(buffer) => buffers.push((buffer, src, dst)),
             }
         }
         if !images.is_empty() || !buffers.is_empty() {
@@ -113,7 +215,7 @@ impl Recorder<'_> {
             .map(|layer| Layer {
                 image,
                 layer,
-                state: Cell::new(image.state.get()),
+                state: StateCell::new(image.state.get()),
             })
             .collect();
         // Layer 0 is read; the others are written (their old contents discarded).
@@ -132,16 +234,20 @@ impl Recorder<'_> {
         image.state.set(State::merged(&parts));
     }
 
-    /// Records the barriers a rendering scope needs (its attachments, loaded or not by `Load`,
-    /// and `samples`, the images its shaders sample) and returns the scope to record, so that
-    /// a pass's timestamps can start after its barriers (they time the pass, not the wait for
-    /// the pass before it).
+    /// Records the barriers of pass `pass`'s rendering scope (its attachments, loaded or not
+    /// by `Load`, and whatever the shaders of `draws` read through their sets, at the stages
+    /// that read) and returns the scope to record, so that a pass's timestamps can start
+    /// after its barriers (they time the pass, not the wait for the pass before it). Inside
+    /// the scope only these `draws` can be bound ([`Recorder::bind`]). Panics where
+    /// [`check_bindings`] would have refused the draws at creation.
     pub fn rendering<'r>(
         &'r self,
+        pass: &str,
         colour: &[Target],
         depth: Option<Target>,
-        samples: &[&Image],
+        draws: &[Bindings],
     ) -> Rendering<'r> {
+        self.ctx.journal_pass(pass);
         let keep = |load: &Load| matches!(load, Load::Keep);
         let mut uses: Vec<(&dyn Tracked, Use)> = Vec::new();
         for t in colour {
@@ -152,10 +258,31 @@ impl Recorder<'_> {
             let keep = keep(&t.load);
             uses.push((t.image, Use::Depth { keep }));
         }
-        for image in samples {
-            uses.push((*image, Use::FragmentSampled));
+        let mut sampled: Vec<(&Image, vk::PipelineStageFlags2)> = Vec::new();
+        for b in draws {
+            for read in reads(pass, b).unwrap_or_else(|e| panic!("{e}")) {
+                let stages = pipeline_stages(read.stages);
+                match (read.order, read.resource) {
+                    (Order::Tracked, Resource::Image(image)) => {
+                        match sampled.iter_mut().find(|(i, _)| i.same(image)) {
+                            Some((_, s)) => *s |= stages,
+                            None => sampled.push((image, stages)),
+                        }
+                    }
+                    (Order::Wait { by, .. }, Resource::Image(image)) => {
+                        self.ctx
+                            .journal_use(image.name(), Use::Sampled(stages), None, Some(by));
+                    }
+                    // Uniforms, written by the host before the submission.
+                    _ => {}
+                }
+            }
+        }
+        for (image, stages) in &sampled {
+            uses.push((*image, Use::Sampled(*stages)));
         }
         self.uses(&uses);
+
         let attachment = |t: &Target, layout| Attachment {
             view: t.view,
             layout,
@@ -163,6 +290,7 @@ impl Recorder<'_> {
         };
         Rendering {
             rec: self,
+            draws: draws.iter().map(Bindings::key).collect(),
             extent: colour
                 .first()
                 .or(depth.as_ref())
@@ -176,9 +304,50 @@ impl Recorder<'_> {
     }
 }
 
+impl Recorder<'_> {
+    /// Binds `b`'s pipeline and sets. A draw inside a rendering scope must use bindings the
+    /// scope declared (it panics otherwise: its reads would have no barrier).
+    pub fn bind(&self, b: &Bindings) {
+        *self.bound_key.borrow_mut() = Some(b.key());
+        self.bind_pipeline(b.pipeline);
+        let sets: Vec<vk::DescriptorSet> = b.sets.iter().map(|s| s.raw).collect();
+        if !sets.is_empty() {
+            self.bind_sets(b.pipeline, &sets);
+        }
+    }
+
+    /// A compute dispatch of `groups` with `b`: the barriers its shaders' reads and writes of
+    /// tracked resources need (storage `readonly`, `writeonly` or both, from the SPIR-V), the
+    /// binds, the dispatch. Panics where [`check_bindings`] would have refused `b`.
+    pub fn dispatch_with(&self, b: &Bindings, groups: [u32; 3]) {
+        let mut uses: Vec<(&dyn Tracked, Use)> = Vec::new();
+        for read in reads(b.pipeline.name(), b).unwrap_or_else(|e| panic!("{e}")) {
+            if read.order != Order::Tracked {
+                continue;
+            }
+            let next = compute_use(&read);
+            match read.resource {
+                Resource::Image(image) => uses.push((image, next)),
+                Resource::Buffer(buffer) => uses.push((&**buffer, next)),
+            }
+        }
+        self.uses(&uses);
+        self.bind(b);
+        self.dispatch(groups[0], groups[1], groups[2]);
+    }
+
+    /// Names the pass the following uses belong to in the frame graph (uses outside any
+    /// rendering scope or timed pass: the readback, the presentation).
+    pub fn pass(&self, name: &str) {
+        self.ctx.journal_pass(name);
+    }
+}
+
 /// A rendering scope whose barriers are recorded ([`Recorder::rendering`]).
 pub struct Rendering<'r> {
     rec: &'r Recorder<'r>,
+    /// The draws it declared: the only bindings `Recorder::bind` accepts inside it.
+    draws: Vec<BindingsKey>,
     extent: vk::Extent2D,
     colour: Vec<Attachment>,
     depth: Option<Attachment>,
@@ -189,7 +358,9 @@ impl Rendering<'_> {
     pub fn record(self, body: impl FnOnce()) {
         self.rec
             .begin_rendering(self.extent, &self.colour, self.depth);
+        *self.rec.scope.borrow_mut() = Some(self.draws);
         body();
         self.rec.end_rendering();
+        *self.rec.scope.borrow_mut() = None;
     }
 }

@@ -1,6 +1,7 @@
 //! Pipeline layouts and pipelines (graphics for dynamic rendering, compute), built from the
 //! SPIR-V that build.rs embeds (`crate::shaders`).
 
+use std::rc::Rc;
 use std::sync::Arc;
 
 use ash::vk;
@@ -9,13 +10,20 @@ use super::context::Context;
 use super::descriptors::DescriptorSetLayout;
 use super::error::{GpuError, GpuResult, VkResultExt};
 use super::garbage::Garbage;
+use super::reflect::{Interface, Kind};
 
-/// A pipeline layout: descriptor set layouts + one push-constant range.
-pub struct PipelineLayout {
+/// A pipeline layout: descriptor set layouts + one push-constant range. A shared handle: each
+/// pipeline made with it keeps it alive.
+#[derive(Clone)]
+pub struct PipelineLayout(Rc<LayoutCore>);
+
+pub(super) struct LayoutCore {
     ctx: Arc<Context>,
-    pub raw: vk::PipelineLayout,
+    pub(super) raw: vk::PipelineLayout,
     /// Stages and size of the push-constant range (size 0: none).
-    pub push_stages: vk::ShaderStageFlags,
+    pub(super) push: (vk::ShaderStageFlags, u32),
+    /// Each set's bindings: (binding, type, stages).
+    sets: Vec<Vec<(u32, vk::DescriptorType, vk::ShaderStageFlags)>>,
 }
 
 impl PipelineLayout {
@@ -42,16 +50,69 @@ impl PipelineLayout {
             .vk("vkCreatePipelineLayout")?;
         ctx.count_created(1);
         ctx.name(raw, name);
-        let push_stages = push_constants.map(|(s, _)| s).unwrap_or_default();
-        Ok(Self {
+        Ok(Self(Rc::new(LayoutCore {
             ctx: ctx.clone(),
             raw,
-            push_stages,
-        })
+            push: push_constants.unwrap_or_default(),
+            sets: sets.iter().map(|s| s.bindings.clone()).collect(),
+        })))
+    }
+
+    pub(super) fn raw(&self) -> vk::PipelineLayout {
+        self.0.raw
+    }
+
+    pub(super) fn push(&self) -> (vk::ShaderStageFlags, u32) {
+        self.0.push
+    }
+
+    /// Checks that every descriptor the shaders use is declared by the layout, with a
+    /// matching type and visible to the stages that use it.
+    fn check(&self, pipeline: &str, interface: &Interface) -> GpuResult<()> {
+        for (&(set, binding), used) in &interface.bindings {
+            let declared = self
+                .0
+                .sets
+                .get(set as usize)
+                .and_then(|s| s.iter().find(|b| b.0 == binding));
+            let Some(&(_, ty, stages)) = declared else {
+                return Err(GpuError::Interface(format!(
+                    "pipeline {pipeline}: its shaders use set {set} binding {binding} ({:?}, {:?}), which its layout does not declare",
+                    used.kind, used.stages
+                )));
+            };
+            if !kind_matches(used.kind, ty) {
+                return Err(GpuError::Interface(format!(
+                    "pipeline {pipeline}: set {set} binding {binding} is a {:?} in the shaders but {ty:?} in the layout",
+                    used.kind
+                )));
+            }
+            if !stages.contains(used.stages) {
+                return Err(GpuError::Interface(format!(
+                    "pipeline {pipeline}: set {set} binding {binding} is used in {:?}, but the layout makes it visible to {stages:?} only",
+                    used.stages
+                )));
+            }
+        }
+        Ok(())
     }
 }
 
-impl Drop for PipelineLayout {
+/// Whether a shader's descriptor kind is the layout's descriptor type.
+fn kind_matches(kind: Kind, ty: vk::DescriptorType) -> bool {
+    use vk::DescriptorType as T;
+    match kind {
+        Kind::UniformBuffer => ty == T::UNIFORM_BUFFER,
+        Kind::StorageBuffer => ty == T::STORAGE_BUFFER,
+        Kind::SampledImage => ty == T::COMBINED_IMAGE_SAMPLER || ty == T::SAMPLED_IMAGE,
+        Kind::StorageImage => ty == T::STORAGE_IMAGE,
+        Kind::UniformTexelBuffer => ty == T::UNIFORM_TEXEL_BUFFER,
+        Kind::StorageTexelBuffer => ty == T::STORAGE_TEXEL_BUFFER,
+        Kind::Sampler => ty == T::SAMPLER,
+    }
+}
+
+impl Drop for LayoutCore {
     fn drop(&mut self) {
         self.ctx.defer(Garbage::PipelineLayout(self.raw));
     }
@@ -150,11 +211,31 @@ impl Default for GraphicsDesc<'_> {
     }
 }
 
-/// A graphics or compute pipeline.
+/// A graphics or compute pipeline, its layout, and what its shaders use ([`Interface`], read
+/// from their SPIR-V): the passes derive their reads from it.
 pub struct Pipeline {
     ctx: Arc<Context>,
-    pub raw: vk::Pipeline,
-    pub bind_point: vk::PipelineBindPoint,
+    pub(super) raw: vk::Pipeline,
+    pub(super) bind_point: vk::PipelineBindPoint,
+    pub(super) layout: PipelineLayout,
+    pub(super) name: String,
+    pub(super) interface: Interface,
+}
+
+/// The union of the interfaces of `stages`, checked against `layout`.
+fn interface_of(
+    layout: &PipelineLayout,
+    name: &str,
+    stages: &[(vk::ShaderStageFlags, &[u8])],
+) -> GpuResult<Interface> {
+    let mut interface = Interface::default();
+    for (stage, spirv) in stages {
+        let one = Interface::of_shader(&format!("{name} {stage:?}"), spirv)
+            .map_err(GpuError::Interface)?;
+        interface.merge(&one);
+    }
+    layout.check(name, &interface)?;
+    Ok(interface)
 }
 
 impl Pipeline {
@@ -164,6 +245,7 @@ impl Pipeline {
         layout: &PipelineLayout,
         desc: &GraphicsDesc,
     ) -> GpuResult<Pipeline> {
+        let interface = interface_of(layout, desc.name, desc.stages)?;
         let modules = desc
             .stages
             .iter()
@@ -229,7 +311,7 @@ impl Pipeline {
             .depth_stencil_state(&depth)
             .color_blend_state(&blend)
             .dynamic_state(&dynamic)
-            .layout(layout.raw)
+            .layout(layout.raw())
             .push_next(&mut rendering);
         if desc.patch_control_points > 0 {
             info = info.tessellation_state(&tessellation);
@@ -249,6 +331,9 @@ impl Pipeline {
             ctx: ctx.clone(),
             raw,
             bind_point: vk::PipelineBindPoint::GRAPHICS,
+            layout: layout.clone(),
+            name: desc.name.to_string(),
+            interface,
         })
     }
 
@@ -262,6 +347,7 @@ impl Pipeline {
         spirv: &[u8],
         constants: &[u32],
     ) -> GpuResult<Pipeline> {
+        let interface = interface_of(layout, name, &[(vk::ShaderStageFlags::COMPUTE, spirv)])?;
         let module = ShaderModule::new(ctx, name, spirv)?;
         let constants = Specialization::new(constants);
         let specialization = constants.info();
@@ -272,7 +358,7 @@ impl Pipeline {
             .name(c"main");
         let info = vk::ComputePipelineCreateInfo::default()
             .stage(stage)
-            .layout(layout.raw);
+            .layout(layout.raw());
         // SAFETY: as for graphics pipelines.
         let raw = unsafe {
             ctx.device
@@ -288,7 +374,19 @@ impl Pipeline {
             ctx: ctx.clone(),
             raw,
             bind_point: vk::PipelineBindPoint::COMPUTE,
+            layout: layout.clone(),
+            name: name.to_string(),
+            interface,
         })
+    }
+
+    pub fn name(&self) -> &str {
+        &self.name
+    }
+
+    /// What its shaders use.
+    pub fn interface(&self) -> &Interface {
+        &self.interface
     }
 }
 

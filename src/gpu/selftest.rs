@@ -43,8 +43,8 @@ impl SyncHazard {
     /// Records fill(src) then copy(src -> dst) without the barrier the copy needs.
     pub fn record(&self, rec: &Recorder) {
         rec.begin_label("deliberate sync hazard");
-        rec.fill_buffer(&self.src, 0x5eed_5eed);
-        rec.copy_buffer(&self.src, &self.dst, 256);
+        rec.fill_buffer_unsynchronized(&self.src, 0x5eed_5eed);
+        rec.copy_buffer_unsynchronized(&self.src, &self.dst, 256);
         rec.end_label();
     }
 }

@@ -51,6 +51,7 @@ pub(super) unsafe fn end_and_submit(
 ) -> GpuResult<()> {
     // SAFETY: `cmd` is recording (caller).
     unsafe { ctx.device.end_command_buffer(cmd) }.vk("vkEndCommandBuffer")?;
+    ctx.journal_submit(queue, waits, signals);
     let cmds = [vk::CommandBufferSubmitInfo::default().command_buffer(cmd)];
     let submit = vk::SubmitInfo2::default()
         .wait_semaphore_infos(waits)

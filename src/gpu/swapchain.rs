@@ -73,6 +73,26 @@ pub struct AcquiredImage {
     pub ready: vk::Semaphore,
 }
 
+impl AcquiredImage {
+    /// The image as a frame's output (`extent`, `format`: the swapchain's), free for writing
+    /// once the acquire semaphore's wait at `after` is done.
+    pub fn target(
+        &self,
+        extent: vk::Extent2D,
+        format: vk::Format,
+        after: vk::PipelineStageFlags2,
+    ) -> super::ExternalImage {
+        super::ExternalImage {
+            raw: self.image,
+            view: self.view,
+            extent,
+            format,
+            name: format!("swapchain image {}", self.index),
+            state: super::track::StateCell::new(super::State::available_after(after)),
+        }
+    }
+}
+
 /// A retired swapchain waiting for its presents to drain.
 struct Retired {
     raw: vk::SwapchainKHR,

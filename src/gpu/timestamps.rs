@@ -291,6 +291,7 @@ impl Profiler {
 
     /// Opens a named pass: a debug label and, when there is room, a timestamp.
     pub fn begin_pass(&mut self, rec: &Recorder, name: &'static str) {
+        rec.pass(name);
         rec.begin_label(name);
         let record = &mut self.records[self.current];
         if let Some(&pool) = self.pools.get(self.current) {

@@ -123,8 +123,9 @@ pub enum Use {
     Colour { keep: bool },
     /// Depth attachment (tested and written); `keep`: loads the previous contents.
     Depth { keep: bool },
-    /// Sampled by fragment shaders (SHADER_READ_ONLY_OPTIMAL).
-    FragmentSampled,
+    /// Sampled by shaders in these stages (SHADER_READ_ONLY_OPTIMAL): the stages come from the
+    /// SPIR-V of the pipelines that read it (`reflect`, `Recorder::rendering`).
+    Sampled(vk::PipelineStageFlags2),
     /// Read by compute shaders (storage, texel buffer or sampled; GENERAL).
     ComputeRead,
     /// Written by compute shaders (GENERAL).
@@ -159,6 +160,20 @@ struct UseInfo {
 }
 
 impl Use {
+    /// Sampled by fragment shaders only.
+    pub const FRAGMENT_SAMPLED: Use = Use::Sampled(vk::PipelineStageFlags2::FRAGMENT_SHADER);
+
+    /// Whether the use writes.
+    pub fn writes(self) -> bool {
+        self.info().writes
+    }
+
+    /// Its stages, accesses and layout (the frame graph).
+    pub fn scope(self) -> (Access, vk::ImageLayout) {
+        let info = self.info();
+        (info.access, info.layout)
+    }
+
     fn info(self) -> UseInfo {
         use vk::ImageLayout as L;
         let (layout, access, writes, discards) = match self {
@@ -178,9 +193,12 @@ impl Use {
                 true,
                 !keep,
             ),
-            Use::FragmentSampled => (
+            Use::Sampled(stage) => (
                 L::SHADER_READ_ONLY_OPTIMAL,
-                Access::FRAGMENT_SAMPLED,
+                Access {
+                    stage,
+                    access: vk::AccessFlags2::SHADER_SAMPLED_READ,
+                },
                 false,
                 false,
             ),
@@ -265,6 +283,23 @@ impl State {
     }
 }
 
+/// Where a resource's [`State`] lives: read and changed by the GPU layer only, so no code
+/// above it can make the tracker skip a barrier.
+#[derive(Debug)]
+pub struct StateCell(Cell<State>);
+
+impl StateCell {
+    pub(super) fn new(state: State) -> StateCell {
+        StateCell(Cell::new(state))
+    }
+    pub(super) fn get(&self) -> State {
+        self.0.get()
+    }
+    pub(super) fn set(&self, state: State) {
+        self.0.set(state)
+    }
+}
+
 /// The barrier a transition needs: (old layout, new layout, src, dst).
 pub type Transition = (vk::ImageLayout, vk::ImageLayout, Access, Access);
 
@@ -321,33 +356,72 @@ fn contains(have: Access, want: Access) -> bool {
     have.stage.contains(want.stage) && have.access.contains(want.access)
 }
 
-/// A resource with a tracked state.
+/// A resource with a tracked state. Its handle and state are visible to the GPU layer only
+/// (`Recorder::uses` and the passes' derived reads change the state, nothing else).
 pub trait Tracked {
     /// The image and its subresources, or the buffer.
+    #[doc(hidden)]
     fn handle(&self) -> Handle;
-    fn state(&self) -> &Cell<State>;
+    /// Its debug name (the frame graph).
+    fn name(&self) -> &str;
+    #[doc(hidden)]
+    fn state(&self) -> &StateCell;
 }
 
-/// What a barrier names.
+/// What a barrier names: opaque outside the GPU layer.
 #[derive(Clone, Copy, Debug)]
-pub enum Handle {
+pub struct Handle(pub(super) Raw);
+
+#[derive(Clone, Copy, Debug)]
+pub(super) enum Raw {
     Image(vk::Image, vk::ImageSubresourceRange),
     Buffer(vk::Buffer),
 }
 
-/// An image this program does not own (a swapchain image, the headless output), tracked for
-/// the length of one frame from the state it was handed over in.
+impl Handle {
+    pub(super) fn image(raw: vk::Image, range: vk::ImageSubresourceRange) -> Handle {
+        Handle(Raw::Image(raw, range))
+    }
+    pub(super) fn buffer(raw: vk::Buffer) -> Handle {
+        Handle(Raw::Buffer(raw))
+    }
+}
+
+/// An image this program does not own (a swapchain image), tracked for the length of one
+/// frame from the state it was handed over in. Made by the GPU layer (`Swapchain`).
 pub struct ExternalImage {
-    pub raw: vk::Image,
-    pub range: vk::ImageSubresourceRange,
-    pub state: Cell<State>,
+    pub(super) raw: vk::Image,
+    pub(super) view: vk::ImageView,
+    pub(super) extent: vk::Extent2D,
+    pub(super) format: vk::Format,
+    pub(super) name: String,
+    pub(super) state: StateCell,
+}
+
+impl ExternalImage {
+    pub fn extent(&self) -> vk::Extent2D {
+        self.extent
+    }
+    pub fn format(&self) -> vk::Format {
+        self.format
+    }
 }
 
 impl Tracked for ExternalImage {
     fn handle(&self) -> Handle {
-        Handle::Image(self.raw, self.range)
+        let colour = vk::ImageSubresourceRange {
+            aspect_mask: vk::ImageAspectFlags::COLOR,
+            base_mip_level: 0,
+            level_count: 1,
+            base_array_layer: 0,
+            layer_count: 1,
+        };
+        Handle::image(self.raw, colour)
     }
-    fn state(&self) -> &Cell<State> {
+    fn name(&self) -> &str {
+        &self.name
+    }
+    fn state(&self) -> &StateCell {
         &self.state
     }
 }
@@ -372,8 +446,8 @@ mod tests {
     fn a_render_target_frame_needs_the_barriers_written_by_hand_before() {
         let b = run(&[
             Use::Colour { keep: false },
-            Use::FragmentSampled,
-            Use::FragmentSampled,
+            Use::FRAGMENT_SAMPLED,
+            Use::FRAGMENT_SAMPLED,
             Use::Colour { keep: false },
         ]);
         // First use: from nothing.
@@ -507,7 +581,7 @@ mod tests {
         assert_eq!(merged.written, zero.written.or(one.written));
         assert_eq!(merged.used, zero.used.or(one.used));
         // A fragment read then waits for the transfers (a layout change) as for one image.
-        let (barrier, _) = transition(merged, Use::FragmentSampled, true);
+        let (barrier, _) = transition(merged, Use::FRAGMENT_SAMPLED, true);
         let (old, new, src, _) = barrier.expect("a layout transition");
         assert_eq!(
             (old, new),

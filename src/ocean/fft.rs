@@ -22,10 +22,9 @@ use std::sync::Arc;
 
 use ash::vk;
 
-use crate::gpu::descriptors::{self, Write};
 use crate::gpu::{
-    Buffer, BufferView, Context, DescriptorPool, DescriptorSetLayout, MemoryLocation, Pipeline,
-    PipelineLayout, Recorder, Use,
+    Bind, Bindings, BoundSet, Buffer, BufferView, Context, DescriptorSetLayout, MemoryLocation,
+    Order, Pipeline, PipelineLayout, Recorder,
 };
 use crate::shaders;
 
@@ -194,18 +193,15 @@ pub struct GpuFft {
     pub kernel: Kernel,
     /// Input and output, (batch, N, N) complex f32 (vec2).
     pub data: Buffer,
-    /// The intermediate (row-transformed, transposed) arrays.
-    scratch: Buffer,
-    /// The shared kernel's e^{+2πi m/N}, m < N, computed once in f64; the register kernel's
-    /// RGBA32F views of `data` and `scratch` (its twiddles are compile-time constants).
-    _inputs: Vec<BufferView>,
+    /// The intermediate (row-transformed, transposed) arrays (bound by `sets`).
+    _scratch: Buffer,
+    /// The shared kernel's e^{+2πi m/N}, m < N, computed once in f64 (the register kernel's
+    /// are compile-time constants; its sets read `data` and `scratch` through RGBA32F views).
     _twiddles: Option<Buffer>,
     _set_layout: DescriptorSetLayout,
-    layout: PipelineLayout,
     pipeline: Pipeline,
-    _pool: DescriptorPool,
     /// data → scratch, scratch → data.
-    sets: [vk::DescriptorSet; 2],
+    sets: [BoundSet; 2],
     /// Workgroups per batch entry along x.
     groups_x: u32,
 }
@@ -245,7 +241,6 @@ impl GpuFft {
         let stage = vk::ShaderStageFlags::COMPUTE;
         let log2_n = n.trailing_zeros();
 
-        let mut inputs = Vec::new();
         let mut twiddles = None;
         let (bindings, spirv, constants, groups_x): (Vec<_>, _, Vec<u32>, u32) = match kernel {
             Kernel::Shared { threads } => (
@@ -284,10 +279,9 @@ impl GpuFft {
             spirv,
             &constants,
         )?;
-        let pool = DescriptorPool::new(ctx, "fft descriptors", 2, &[(storage, 6), (texel, 2)])?;
-        let forward = pool.allocate(&set_layout, "fft rows: data -> scratch")?;
-        let back = pool.allocate(&set_layout, "fft columns: scratch -> data")?;
-        match kernel {
+        let t = Order::Tracked;
+        let names = ["fft rows: data -> scratch", "fft columns: scratch -> data"];
+        let sets = match kernel {
             Kernel::Shared { .. } => {
                 let values: Vec<f32> = (0..n)
                     .flat_map(|j| {
@@ -303,67 +297,53 @@ impl GpuFft {
                     MemoryLocation::CpuToGpu,
                 )?;
                 buffer.write(bytemuck::cast_slice(&values));
-                for (set, from, to) in [(forward, &data, &scratch), (back, &scratch, &data)] {
-                    descriptors::update(
+                let set = |name, from, to| {
+                    BoundSet::new(
                         ctx,
-                        set,
+                        &set_layout,
+                        name,
                         &[
-                            Write::StorageBuffer {
-                                binding: 0,
-                                buffer: from.raw,
-                            },
-                            Write::StorageBuffer {
-                                binding: 1,
-                                buffer: to.raw,
-                            },
-                            Write::StorageBuffer {
-                                binding: 2,
-                                buffer: buffer.raw,
-                            },
+                            (0, Bind::Storage(from, t)),
+                            (1, Bind::Storage(to, t)),
+                            (2, Bind::Storage(&buffer, Order::Host)),
                         ],
-                    );
-                }
+                    )
+                };
+                let sets = [
+                    set(names[0], &data, &scratch)?,
+                    set(names[1], &scratch, &data)?,
+                ];
                 twiddles = Some(buffer);
+                sets
             }
             Kernel::Registers { .. } => {
                 let rgba = vk::Format::R32G32B32A32_SFLOAT;
                 let data_view = BufferView::new(ctx, "fft data as RGBA32F", &data, rgba)?;
                 let scratch_view = BufferView::new(ctx, "fft scratch as RGBA32F", &scratch, rgba)?;
-                for (set, from, to) in [
-                    (forward, &data_view, &scratch),
-                    (back, &scratch_view, &data),
-                ] {
-                    descriptors::update(
+                let set = |name, from, to| {
+                    BoundSet::new(
                         ctx,
-                        set,
-                        &[
-                            Write::UniformTexelBuffer {
-                                binding: 0,
-                                view: from.raw,
-                            },
-                            Write::StorageBuffer {
-                                binding: 1,
-                                buffer: to.raw,
-                            },
-                        ],
-                    );
-                }
-                inputs = vec![data_view, scratch_view];
+                        &set_layout,
+                        name,
+                        &[(0, Bind::UniformTexel(from, t)), (1, Bind::Storage(to, t))],
+                    )
+                };
+                [
+                    set(names[0], &data_view, &scratch)?,
+                    set(names[1], &scratch_view, &data)?,
+                ]
             }
-        }
+        };
         Ok(GpuFft {
             n,
             batch,
             kernel,
             data,
-            scratch,
-            _inputs: inputs,
+            _scratch: scratch,
             _twiddles: twiddles,
             _set_layout: set_layout,
-            layout,
             pipeline,
-            _pool: pool,
-            sets: [forward, back],
+            sets,
             groups_x,
         })
     }
@@ -379,21 +359,16 @@ impl GpuFft {
             Direction::Inverse => 1.0,
             Direction::Forward => -1.0,
         };
-        rec.bind_pipeline(&self.pipeline);
-        rec.push_constants(&self.layout, &FftParams { direction: sign });
-        // Rows: data → scratch; columns: scratch → data.
-        rec.uses(&[
-            (&self.data, Use::ComputeRead),
-            (&self.scratch, Use::ComputeWrite),
-        ]);
-        rec.bind_sets(&self.pipeline, &self.layout, &[self.sets[0]]);
-        rec.dispatch(self.groups_x, self.batch as u32, 1);
-        rec.uses(&[
-            (&self.scratch, Use::ComputeRead),
-            (&self.data, Use::ComputeWrite),
-        ]);
-        rec.bind_sets(&self.pipeline, &self.layout, &[self.sets[1]]);
-        rec.dispatch(self.groups_x, self.batch as u32, 1);
+        // Rows: data → scratch; columns: scratch → data. The barriers between them come from
+        // the kernel's `readonly` / `writeonly` bindings.
+        for set in &self.sets {
+            let b = Bindings {
+                pipeline: &self.pipeline,
+                sets: &[set],
+            };
+            rec.push_constants(&self.pipeline, &FftParams { direction: sign });
+            rec.dispatch_with(&b, [self.groups_x, self.batch as u32, 1]);
+        }
     }
 }
 

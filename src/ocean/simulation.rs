@@ -29,10 +29,9 @@ use super::moments::{cox_munk_mean_square_slope, SeaMoments};
 use super::params::{OceanSettings, Waves};
 use super::spectrum::Cascade;
 use crate::gpu::compute::ComputeQueue;
-use crate::gpu::descriptors::{self, Write};
 use crate::gpu::{
-    Buffer, Context, DescriptorPool, DescriptorSetLayout, FormatUse, Frame, GpuResult, Image,
-    ImageDesc, Pipeline, PipelineLayout, Profiler, Recorder, Tracked, Use, FRAMES_IN_FLIGHT,
+    Bind, BoundSet, Buffer, Context, DescriptorSetLayout, FormatUse, Frame, GpuResult, Image,
+    ImageDesc, Order, Pipeline, PipelineLayout, Profiler, Recorder, FRAMES_IN_FLIGHT,
 };
 use crate::pass_names as names;
 
@@ -41,6 +40,7 @@ fn scope(timer: &mut Timer, rec: &Recorder, name: &'static str, body: impl FnOnc
     match timer {
         Some((profiler, _)) => profiler.pass(rec, name, body),
         None => {
+            rec.pass(name);
             rec.begin_label(name);
             body();
             rec.end_label();
@@ -52,11 +52,6 @@ fn scope(timer: &mut Timer, rec: &Recorder, name: &'static str, body: impl FnOnc
 /// before the first frame). Recorded at the start of the first compute submission, on the queue
 /// that writes them, so the graphics queue first sees them through the compute timeline.
 fn record_images_init(rec: &Recorder, images: &[&Image]) {
-    let clears: Vec<(&dyn Tracked, Use)> = images
-        .iter()
-        .map(|&img| (img as &dyn Tracked, Use::Clear))
-        .collect();
-    rec.uses(&clears);
     for img in images {
         rec.clear_image(img);
     }
@@ -81,10 +76,18 @@ pub const MAX_CASCADES: usize = 4;
 /// (`OCEAN_MANUAL_FILTER` in shaders/common/water.glsl).
 pub const IMAGE_FORMAT: vk::Format = vk::Format::R32G32B32A32_SFLOAT;
 
-/// A compute pipeline with its layouts.
+/// The stages at which graphics waits for the compute timeline before sampling the
+/// simulation images: every stage a water shader samples them in. The renderer checks each
+/// pipeline that reads them against it (`Order::Wait`, `gpu::check_bindings`).
+pub const GRAPHICS_WAIT_STAGES: vk::PipelineStageFlags2 = vk::PipelineStageFlags2::from_raw(
+    vk::PipelineStageFlags2::VERTEX_SHADER.as_raw()
+        | vk::PipelineStageFlags2::TESSELLATION_EVALUATION_SHADER.as_raw()
+        | vk::PipelineStageFlags2::FRAGMENT_SHADER.as_raw(),
+);
+
+/// A compute pipeline with its set layout.
 struct Kernel {
     set_layout: DescriptorSetLayout,
-    layout: PipelineLayout,
     pipeline: Pipeline,
 }
 
@@ -111,7 +114,6 @@ impl Kernel {
         let pipeline = Pipeline::compute(ctx, &layout, name, spirv, &[])?;
         Ok(Kernel {
             set_layout,
-            layout,
             pipeline,
         })
     }
@@ -132,27 +134,47 @@ impl Kernel {
     }
 
     /// One set per slot for an `image_writer` kernel: `input(slot)` at binding 0 and
-    /// `image_writes(slot)` at 1–3.
-    fn slot_sets(
+    /// `images(slot)` at 1–3.
+    fn slot_sets<'a>(
         &self,
         ctx: &Arc<Context>,
-        pool: &DescriptorPool,
         name: &str,
-        input: impl Fn(usize) -> vk::Buffer,
-        image_writes: &dyn Fn(usize) -> [Write; 3],
-    ) -> GpuResult<Vec<vk::DescriptorSet>> {
+        input: impl Fn(usize) -> Bind<'a>,
+        images: &SlotImages,
+    ) -> GpuResult<Vec<BoundSet>> {
         (0..FRAMES_IN_FLIGHT)
             .map(|slot| {
-                let set = pool.allocate(&self.set_layout, &format!("{name} set slot {slot}"))?;
-                let mut writes = vec![Write::StorageBuffer {
-                    binding: 0,
-                    buffer: input(slot),
-                }];
-                writes.extend(image_writes(slot));
-                descriptors::update(ctx, set, &writes);
-                Ok(set)
+                let mut binds = vec![(0, input(slot))];
+                binds.extend(images.binds(slot));
+                BoundSet::new(
+                    ctx,
+                    &self.set_layout,
+                    &format!("{name} set slot {slot}"),
+                    &binds,
+                )
             })
             .collect()
+    }
+}
+
+/// The images a slot's kernel writes and reads: that slot's displacement and normals, the
+/// other slot's normals (foam decays and is advected from there).
+pub(super) struct SlotImages<'a> {
+    displacement: &'a [Image],
+    normals: &'a [Image],
+}
+
+impl SlotImages<'_> {
+    /// Bindings 1–3 of a slot's set; the kernels' `writeonly` and `readonly` qualifiers make
+    /// the barriers (tracked on the compute queue).
+    fn binds(&self, slot: usize) -> [(u32, Bind<'_>); 3] {
+        let previous = (slot + FRAMES_IN_FLIGHT - 1) % FRAMES_IN_FLIGHT;
+        let t = Order::Tracked;
+        [
+            (1, Bind::StorageImage(&self.displacement[slot], t)),
+            (2, Bind::StorageImage(&self.normals[slot], t)),
+            (3, Bind::StorageImage(&self.normals[previous], t)),
+        ]
     }
 }
 
@@ -188,15 +210,8 @@ type Timer<'a> = Option<(&'a mut Profiler, &'a Frame)>;
 trait WaveModel {
     /// Host work before the frame is recorded, once the slot's previous compute work is done.
     fn prepare(&mut self, _frame: &ModelFrame) {}
-    /// Records the model's passes; `images` are its uses of the slot's images (to declare with
-    /// the pass that writes them).
-    fn record(
-        &self,
-        rec: &Recorder,
-        timer: &mut Timer,
-        frame: &ModelFrame,
-        images: &[(&dyn Tracked, Use)],
-    );
+    /// Records the model's passes (their barriers come from the kernels' bindings).
+    fn record(&self, rec: &Recorder, timer: &mut Timer, frame: &ModelFrame);
     /// The spectrum's h0 (FFT only; `--dump`).
     fn h0(&self) -> Option<&Buffer> {
         None
@@ -211,7 +226,6 @@ pub struct Simulation {
     pub settings: OceanSettings,
     pub cascades: Vec<Cascade>,
     model: Box<dyn WaveModel>,
-    _pool: DescriptorPool,
     /// World position of texel (0, 0) of the images: 0 for the periodic FFT cascades, the
     /// camera-following (grid-snapped) window corner for Gerstner waves.
     origin_m: [f64; 2],
@@ -303,43 +317,13 @@ impl Simulation {
             displacement.push(image(format!("ocean displacement slot {slot}"))?);
             normals.push(image(format!("ocean normals+foam slot {slot}"))?);
         }
-        let slots = FRAMES_IN_FLIGHT as u32;
-        let pool = DescriptorPool::new(
-            ctx,
-            "ocean descriptors",
-            1 + slots,
-            &[
-                (vk::DescriptorType::STORAGE_BUFFER, 3 + slots),
-                (vk::DescriptorType::STORAGE_IMAGE, 3 * slots),
-            ],
-        )?;
-        // Per slot: write this slot's images, read the other slot's normals (foam).
-        let image_writes = |slot: usize| {
-            let previous = (slot + FRAMES_IN_FLIGHT - 1) % FRAMES_IN_FLIGHT;
-            [
-                Write::StorageImage {
-                    binding: 1,
-                    view: displacement[slot].view,
-                },
-                Write::StorageImage {
-                    binding: 2,
-                    view: normals[slot].view,
-                },
-                Write::StorageImage {
-                    binding: 3,
-                    view: normals[previous].view,
-                },
-            ]
+        let images = SlotImages {
+            displacement: &displacement,
+            normals: &normals,
         };
         let (model, max_displacement_m, sea_moments) = match &settings.waves {
-            Waves::Fft => boxed(FftModel::new(
-                ctx,
-                settings,
-                &cascades,
-                &pool,
-                &image_writes,
-            )?),
-            Waves::Gerstner(w) => boxed(GerstnerModel::new(ctx, w, &pool, &image_writes)?),
+            Waves::Fft => boxed(FftModel::new(ctx, settings, &cascades, &images)?),
+            Waves::Gerstner(w) => boxed(GerstnerModel::new(ctx, w, &images)?),
         };
         Ok(Simulation {
             foam_threshold: foam::threshold(settings),
@@ -349,7 +333,6 @@ impl Simulation {
             settings: settings.clone(),
             cascades,
             model,
-            _pool: pool,
             origin_m: [0.0, 0.0],
             displacement,
             normals,
@@ -439,17 +422,6 @@ impl Simulation {
                 ..frame
             }
         };
-        // The kernel that writes a slot's images reads the previous frame's normals (foam
-        // decays and is advected from there). The graphics queue samples the images through the
-        // compute timeline and declares nothing (`gpu::track`).
-        let uses = |slot: usize| -> [(&dyn Tracked, Use); 3] {
-            let previous = &self.normals[(slot + FRAMES_IN_FLIGHT - 1) % FRAMES_IN_FLIGHT];
-            [
-                (previous, Use::ComputeRead),
-                (&self.displacement[slot], Use::ComputeWrite),
-                (&self.normals[slot], Use::ComputeWrite),
-            ]
-        };
         // The slot's previous compute work (two frames ago) must be done before the host
         // rewrites its inputs.
         self.queue.wait_for_slot(value)?;
@@ -466,11 +438,11 @@ impl Simulation {
             if !warmup.is_empty() {
                 rec.begin_label(names::OCEAN_WARMUP);
                 for step in &warmup {
-                    model.record(rec, &mut None, step, &uses(step.slot));
+                    model.record(rec, &mut None, step);
                 }
                 rec.end_label();
             }
-            model.record(rec, &mut timer, &frame, &uses(slot));
+            model.record(rec, &mut timer, &frame);
             if let Some((profiler, _)) = timer.as_mut() {
                 profiler.end_frame(rec);
             }
@@ -515,12 +487,7 @@ impl Simulation {
 
     /// The wait a graphics submission adds before sampling frame `value`'s images.
     pub fn graphics_wait(&self, value: u64) -> vk::SemaphoreSubmitInfo<'static> {
-        self.queue.graphics_wait(
-            value,
-            vk::PipelineStageFlags2::VERTEX_SHADER
-                | vk::PipelineStageFlags2::TESSELLATION_EVALUATION_SHADER
-                | vk::PipelineStageFlags2::FRAGMENT_SHADER,
-        )
+        self.queue.graphics_wait(value, GRAPHICS_WAIT_STAGES)
     }
 
     /// The Gerstner waves (Gerstner mode).

@@ -40,8 +40,8 @@ use super::FrameInputs;
 use crate::gpu::egui::EguiPainter;
 use crate::gpu::selftest::SyncHazard;
 use crate::gpu::{
-    Buffer, Context, Frames, GpuResult, Load, Profilers, Recorder, Rendering, Submission, Target,
-    Use, GRAPHICS_OCEAN, GRAPHICS_SCENE,
+    Bindings, Buffer, Context, Frames, GpuResult, Load, Profilers, Recorder, Rendering, Submission,
+    Target, Use, GRAPHICS_OCEAN, GRAPHICS_SCENE,
 };
 use crate::ocean::simulation::Simulation;
 use crate::pass_names as names;
@@ -145,20 +145,26 @@ pub fn record_frame(
             hazard.record(&rec);
             // Dropped now; the deletion queue keeps it alive until this frame is done.
         }
-        let set = r.write_uniforms(frame.slot, output, inputs);
+        r.write_uniforms(frame.slot, output, inputs);
         let sky = r.settings.sky();
         if r.sky_cube.is_stale(&sky) {
             let cube = &mut r.sky_cube;
             profiler.pass(&rec, names::SKY_CUBE, || cube.update(&rec, &sky));
         }
+        let r = &*r;
+        let set = [r.frame_set(frame.slot)];
         let t = &r.targets;
-        // Each pass: its rendering scope's barriers, then its timestamps around the drawing.
-        let scope = drawn_anew(&rec, &t.reflection, Load::DontCare);
+        // Each pass: its rendering scope's barriers (from what its draws' shaders read), then
+        // its timestamps around the drawing.
+        let (view, reflection) = (ViewIndex::Reflection, &t.reflection);
+        let [island, objects] = r.terrain.draws(&set, view);
+        let draws = [island, objects, r.sky.draw(&set, view)];
+        let scope = drawn_anew(&rec, names::REFLECTION, reflection, Load::DontCare, &draws);
         profiler.pass(&rec, names::REFLECTION, || {
             // The sky, last, writes every pixel the terrain left.
             scope.record(|| {
-                r.terrain.record(&rec, set, ViewIndex::Reflection);
-                r.sky.record(&rec, set, ViewIndex::Reflection);
+                r.terrain.record(&rec, &set, view);
+                r.sky.record(&rec, &set, view);
             });
             // Its blurred layers, for the water to blur it by the slopes it does not resolve.
             rec.halve_down_layers(&t.reflection.colour);
@@ -168,16 +174,20 @@ pub fn record_frame(
                 float32: DEEP_WATER,
             },
         });
-        let scope = drawn_anew(&rec, &t.refraction, deep);
+        let view = ViewIndex::Refraction;
+        let draws = r.terrain.draws(&set, view);
+        let scope = drawn_anew(&rec, names::REFRACTION, &t.refraction, deep, &draws);
         profiler.pass(&rec, names::REFRACTION, || {
-            scope.record(|| r.terrain.record(&rec, set, ViewIndex::Refraction))
+            scope.record(|| r.terrain.record(&rec, &set, view))
         });
         // Scene, water and sky are three rendering scopes, so each pass's timestamps cover its
         // own rasterisation (a CPU driver may defer drawing to the end of a scope). The sky goes
         // last and fills only what terrain and water left: no covered pixel is shaded twice.
-        let scope = drawn_anew(&rec, &t.main, Load::DontCare);
+        let view = ViewIndex::Main;
+        let draws = r.terrain.draws(&set, view);
+        let scope = drawn_anew(&rec, names::SCENE, &t.main, Load::DontCare, &draws);
         profiler.pass(&rec, names::SCENE, || {
-            scope.record(|| r.terrain.record(&rec, set, ViewIndex::Main))
+            scope.record(|| r.terrain.record(&rec, &set, view))
         });
         profiler.pause(&rec);
         rec.end_label();
@@ -212,44 +222,49 @@ pub fn record_frame(
         let rec = frame.recorder(ctx, Submission::Ocean);
         rec.begin_label(&format!("frame {} (graphics 2)", frame.index));
         profiler.resume(&rec, GRAPHICS_OCEAN);
-        let set = r.frame_set(frame.slot);
+        let set = [r.frame_set(frame.slot)];
+        // The water's sets: the frame set, its textures (reflection, refraction, DU/DV).
+        let water_sets = [set[0], &r.water.textures().set];
         let t = &r.targets;
         let keep = |image| Target::new(image, Load::Keep);
-        // The simulation images are sampled too, through the compute wait (not tracked here).
-        let textures = [
-            &t.reflection.colour,
-            &t.refraction.colour,
-            &t.refraction.depth,
-        ];
         let main = [keep(&t.main.colour)];
-        let scope = rec.rendering(&main, Some(keep(&t.main.depth)), &textures);
+        // Its barriers: the reflection, refraction and DU/DV textures and the sky cube at the
+        // stages the water's shaders sample them in (the sky cube in tessellation evaluation
+        // too); the simulation images are ordered by the compute timeline's wait.
+        let underwater = inputs.camera_depth_m(camera.y) > 0.0;
+        let draw = r.water.draw(&water_sets, r.settings.view, underwater);
+        let scope = rec.rendering(names::WATER, &main, Some(keep(&t.main.depth)), &[draw]);
         profiler.begin_pass(&rec, names::WATER);
         scope.record(|| {
             // Patches, tessellation-evaluation invocations, triangles and fragments.
-            let underwater = inputs.camera_depth_m(camera.y) > 0.0;
             profiler.statistics(&rec, || {
-                r.water.record(&rec, set, r.settings.view, underwater)
+                r.water
+                    .record(&rec, &water_sets, r.settings.view, underwater)
             });
         });
         profiler.end_pass(&rec);
-        let scope = rec.rendering(&main, Some(keep(&t.main.depth)), &[]);
+        let draw = r.sky.draw(&set, ViewIndex::Main);
+        let scope = rec.rendering(names::SKY, &main, Some(keep(&t.main.depth)), &[draw]);
         profiler.pass(&rec, names::SKY, || {
-            scope.record(|| r.sky.record(&rec, set, ViewIndex::Main))
+            scope.record(|| r.sky.record(&rec, &set, ViewIndex::Main))
         });
         if TexturesViewPass::shows(r.settings.view) {
             let over = [Target::new(&t.main.colour, Load::DontCare)];
-            let scope = rec.rendering(&over, None, &textures);
+            let draw = r.textures_view.draw(&water_sets);
+            let scope = rec.rendering(names::TEXTURES_VIEW, &over, None, &[draw]);
             profiler.pass(&rec, names::TEXTURES_VIEW, || {
-                scope.record(|| r.textures_view.record(&rec, set, r.water.textures()))
+                scope.record(|| r.textures_view.record(&rec, &water_sets))
             });
         }
         if let (Some(pass), Some(smooth)) = (&r.anti_aliasing, &t.anti_aliased) {
             // The main depth, done with, holds the pass's edge mask (every pixel written).
             let target = [Target::new(smooth, Load::DontCare)];
             let mask = Target::new(&t.main.depth, Load::DontCare);
-            let scope = rec.rendering(&target, Some(mask), &[&t.main.colour]);
+            let aa_set = pass.set_ref();
+            let draws = pass.draws(&aa_set);
+            let scope = rec.rendering(names::ANTI_ALIASING, &target, Some(mask), &draws);
             profiler.pass(&rec, names::ANTI_ALIASING, || {
-                scope.record(|| pass.record(&rec))
+                scope.record(|| pass.record(&rec, &draws))
             });
         }
         profiler.pass(&rec, names::OUTPUT, || {
@@ -257,13 +272,8 @@ pub fn record_frame(
         });
         if let Some(o) = overlay {
             // Over the finished picture: the output image is the attachment, loaded.
-            let target = [Target::external(
-                output.image,
-                output.view,
-                output.extent,
-                Load::Keep,
-            )];
-            let scope = rec.rendering(&target, None, &[]);
+            let target = [Target::output(output.image, Load::Keep)];
+            let scope = rec.rendering(names::OVERLAY, &target, None, &[]);
             let extent = output.extent;
             let mut drawn = Ok(());
             profiler.pass(&rec, names::OVERLAY, || {
@@ -276,10 +286,12 @@ pub fn record_frame(
             drawn?;
         }
         if let Some(buffer) = delivery.readback {
+            rec.pass("readback");
             record_readback(&rec, output, buffer);
         }
         if delivery.present.is_some() {
-            rec.uses(&[(output.image, Use::Present)]);
+            rec.pass("present");
+            rec.uses(&[(output.image.tracked(), Use::Present)]);
         }
         profiler.end_frame(&rec);
         rec.end_label();
@@ -288,16 +300,26 @@ pub fn record_frame(
     Ok(value)
 }
 
-/// The rendering scope of a pass that draws a colour target anew: the colour loaded as
-/// `colour` says, the depth cleared (barriers recorded).
-fn drawn_anew<'r>(rec: &'r Recorder, cd: &ColourDepth, colour: Load) -> Rendering<'r> {
+/// The rendering scope of pass `pass`, which draws a colour target anew with `draws`: the
+/// colour loaded as `colour` says, the depth cleared (barriers recorded).
+fn drawn_anew<'r>(
+    rec: &'r Recorder,
+    pass: &str,
+    cd: &ColourDepth,
+    colour: Load,
+    draws: &[Bindings],
+) -> Rendering<'r> {
     let target = [Target::new(&cd.colour, colour)];
-    rec.rendering(&target, Some(Target::new(&cd.depth, CLEAR_DEPTH)), &[])
+    rec.rendering(
+        pass,
+        &target,
+        Some(Target::new(&cd.depth, CLEAR_DEPTH)),
+        draws,
+    )
 }
 
 /// Records a copy of the output into `buffer` for the host (screenshots).
 fn record_readback(rec: &Recorder, output: &OutputTarget, buffer: &Buffer) {
-    rec.uses(&[(output.image, Use::CopySrc), (buffer, Use::CopyDst)]);
-    rec.copy_image_to_buffer(output.raw(), output.extent, buffer);
+    rec.copy_image_to_buffer(output.image, buffer);
     rec.uses(&[(buffer, Use::HostRead)]);
 }

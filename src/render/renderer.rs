@@ -15,33 +15,35 @@ use super::passes::{AntiAliasingPass, SkyCube, SkyPass, TerrainPass, TexturesVie
 use super::scene::{dudv_size, generate_dudv, load_dudv, DUDV_SIDE};
 use super::targets::Targets;
 use super::targets::{DEPTH_FORMAT, HDR_FORMAT};
-use super::uniforms::{sky_uniforms, FrameInputs, FrameParams, FrameUniforms, OceanBindings};
+use super::uniforms::{
+    sky_uniforms, FrameInputs, FrameParams, FrameUniforms, OceanBindings, ViewIndex,
+};
 use super::{SceneSettings, ViewMode};
-use crate::gpu::descriptors::{self, Write};
 use crate::gpu::oneshot::upload_image_with;
 use crate::gpu::{
-    Buffer, Context, DescriptorPool, DescriptorSetLayout, FormatUse, GpuResult, Handle, Image,
-    ImageDesc, MemoryLocation, Sampler, Tracked, FRAMES_IN_FLIGHT,
+    check_bindings, Bind, Bindings, BoundSet, Buffer, Context, DescriptorSetLayout, FormatUse,
+    GpuResult, Image, ImageDesc, MemoryLocation, Order, Output, Sampler, FRAMES_IN_FLIGHT,
 };
 use crate::ocean::simulation::IMAGE_FORMAT;
+use crate::pass_names as names;
 
 /// The image a frame ends in: written by a copy or blit (it needs TRANSFER_DST usage), then
 /// drawn over by the overlay when it is shown. Its state (`gpu::track`) is where the frontend handed it over: a swapchain image
 /// after the acquire wait, the headless target after the previous frame.
 pub struct OutputTarget<'a> {
-    pub image: &'a dyn Tracked,
-    /// Its colour view (the overlay pass renders into it; it needs COLOR_ATTACHMENT usage).
-    pub view: vk::ImageView,
+    /// The image (the overlay pass renders into it: it needs COLOR_ATTACHMENT usage too).
+    pub image: Output<'a>,
     pub extent: vk::Extent2D,
     /// An 8-bit sRGB format (or UNORM, with the shaders encoding).
     pub format: vk::Format,
 }
 
-impl OutputTarget<'_> {
-    pub fn raw(&self) -> vk::Image {
-        match self.image.handle() {
-            Handle::Image(raw, _) => raw,
-            Handle::Buffer(_) => vk::Image::null(),
+impl<'a> OutputTarget<'a> {
+    pub fn new(image: Output<'a>) -> OutputTarget<'a> {
+        OutputTarget {
+            image,
+            extent: image.extent(),
+            format: image.format(),
         }
     }
 }
@@ -113,20 +115,15 @@ pub struct Renderer {
     // Frame uniforms: one buffer and set per frame slot.
     /// Layout of the frame-uniform sets; kept alive with them.
     _frame_set_layout: DescriptorSetLayout,
-    /// Pool of the frame sets.
-    _pool: DescriptorPool,
-    /// Per frame slot: uniform buffer and the set that binds it.
-    frame_uniforms: Vec<(Buffer, vk::DescriptorSet)>,
+    /// Per frame slot: uniform buffer and the set that binds it (with the ocean images and
+    /// the sky cube, which the set keeps alive).
+    frame_uniforms: Vec<(Buffer, BoundSet)>,
     /// The simulation images the frame sets bind, and the cascade layout.
     ocean: OceanBindings,
-    /// Samples the simulation images (repeating; nearest where RGBA32F does not filter).
-    _ocean_sampler: Sampler,
 
     // Textures the passes sample.
     /// The sky cubemap (analytic, re-rendered when the sun moves, or `--skybox`).
     pub(super) sky_cube: SkyCube,
-    /// Samples the sky cube.
-    _sky_sampler: Sampler,
     /// The sun's and the sky's light for the frame uniforms, and the sky they are for
     /// (`uniforms::sky_uniforms`, recomputed when it changes).
     sky_light: (Sky, ([f32; 4], [f32; 4])),
@@ -194,16 +191,6 @@ impl Renderer {
                 (3, sampled, graphics),
             ],
         )?;
-        let slots = FRAMES_IN_FLIGHT as u32;
-        let pool = DescriptorPool::new(
-            ctx,
-            "renderer descriptors",
-            slots,
-            &[
-                (vk::DescriptorType::UNIFORM_BUFFER, slots),
-                (sampled, 3 * slots),
-            ],
-        )?;
         let repeat = vk::SamplerAddressMode::REPEAT;
         let clamp = vk::SamplerAddressMode::CLAMP_TO_EDGE;
         // RGBA32F need not filter linearly (it does on desktop GPUs and lavapipe): without it,
@@ -237,38 +224,30 @@ impl Renderer {
                 vk::BufferUsageFlags::UNIFORM_BUFFER,
                 MemoryLocation::CpuToGpu,
             )?;
-            let set = pool.allocate(
+            // The ocean images are written on the compute queue and read through the
+            // compute timeline's wait; the sky cube is tracked on this queue (its readers wait
+            // for its last rendering at the stages that sample it).
+            let wait = Order::Wait {
+                by: "the compute timeline's wait",
+                stages: ocean.wait_stages,
+            };
+            let set = BoundSet::new(
+                ctx,
                 &frame_set_layout,
                 &format!("frame uniforms set slot {slot}"),
-            )?;
-            descriptors::update(
-                ctx,
-                set,
                 &[
-                    Write::UniformBuffer {
-                        binding: 0,
-                        buffer: buffer.raw,
-                    },
-                    Write::SampledImage {
-                        binding: 1,
-                        view: ocean.displacement[slot],
-                        sampler: ocean_sampler.raw,
-                        layout: vk::ImageLayout::GENERAL,
-                    },
-                    Write::SampledImage {
-                        binding: 2,
-                        view: ocean.normals[slot],
-                        sampler: ocean_sampler.raw,
-                        layout: vk::ImageLayout::GENERAL,
-                    },
-                    Write::SampledImage {
-                        binding: 3,
-                        view: sky_cube.image.view,
-                        sampler: sky_sampler.raw,
-                        layout: vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL,
-                    },
+                    (0, Bind::Uniform(&buffer)),
+                    (
+                        1,
+                        Bind::Sampled(&ocean.displacement[slot], &ocean_sampler, wait),
+                    ),
+                    (2, Bind::Sampled(&ocean.normals[slot], &ocean_sampler, wait)),
+                    (
+                        3,
+                        Bind::Sampled(&sky_cube.image, &sky_sampler, Order::Tracked),
+                    ),
                 ],
-            );
+            )?;
             frame_uniforms.push((buffer, set));
         }
 
@@ -310,9 +289,9 @@ impl Renderer {
         )?;
         let repeat_sampler = Sampler::linear(ctx, "dudv sampler (repeat)", repeat)?;
         let samplers = WaterSamplers {
-            clamp: clamp_sampler.raw,
-            depth: depth_sampler.raw,
-            repeat: repeat_sampler.raw,
+            clamp: &clamp_sampler,
+            depth: &depth_sampler,
+            repeat: &repeat_sampler,
         };
         let sky = SkyPass::new(ctx, &frame_set_layout, targets.display_format())?;
         let terrain = TerrainPass::new(
@@ -325,7 +304,7 @@ impl Renderer {
             ctx,
             &frame_set_layout,
             &targets,
-            dudv.view,
+            &dudv,
             &samplers,
             ocean.cascades,
             !ocean_linear,
@@ -337,7 +316,7 @@ impl Renderer {
             targets.display_format(),
         )?;
         let anti_aliasing = anti_aliased
-            .then(|| AntiAliasingPass::new(ctx, &targets.main.colour, clamp_sampler.raw))
+            .then(|| AntiAliasingPass::new(ctx, &targets.main.colour, &clamp_sampler))
             .transpose()?;
         if settings.view == ViewMode::Wireframe && !water.has_wireframe() {
             anyhow::bail!(
@@ -345,19 +324,16 @@ impl Renderer {
                 ctx.info.name
             );
         }
-        Ok(Renderer {
+        let renderer = Renderer {
             ctx: ctx.clone(),
             camera,
             settings: settings.clone(),
             targets,
             _frame_set_layout: frame_set_layout,
-            _pool: pool,
             frame_uniforms,
             ocean,
-            _ocean_sampler: ocean_sampler,
             sky_cube,
             sky_light: (settings.sky(), sky_uniforms(&settings.sky())),
-            _sky_sampler: sky_sampler,
             dudv,
             clamp_sampler,
             depth_sampler,
@@ -372,7 +348,36 @@ impl Renderer {
             } else {
                 vk::Filter::NEAREST
             },
-        })
+        };
+        renderer.check_bindings()?;
+        Ok(renderer)
+    }
+
+    /// Checks every pass's pipelines against the sets it draws with (`gpu::check_bindings`):
+    /// each descriptor its shaders use is bound, and the ocean images are read only in stages
+    /// the compute timeline's wait covers. One line naming the pass, binding and stage.
+    fn check_bindings(&self) -> GpuResult<()> {
+        let frame = [&self.frame_uniforms[0].1];
+        let water = [frame[0], &self.water.textures().set];
+        for view in [ViewIndex::Main, ViewIndex::Reflection] {
+            check_bindings(names::SKY, &[self.sky.draw(&frame, view)])?;
+            check_bindings(names::SCENE, &self.terrain.draws(&frame, view))?;
+        }
+        let draws: Vec<Bindings> = self
+            .water
+            .pipelines()
+            .map(|pipeline| Bindings {
+                pipeline,
+                sets: &water,
+            })
+            .collect();
+        check_bindings(names::WATER, &draws)?;
+        check_bindings(names::TEXTURES_VIEW, &[self.textures_view.draw(&water)])?;
+        if let Some(pass) = &self.anti_aliasing {
+            let set = pass.set_ref();
+            check_bindings(names::ANTI_ALIASING, &pass.draws(&set))?;
+        }
+        Ok(())
     }
 
     pub fn camera(&self) -> &Camera {
@@ -423,14 +428,6 @@ impl Renderer {
         self.targets.output_extent()
     }
 
-    fn samplers(&self) -> WaterSamplers {
-        WaterSamplers {
-            clamp: self.clamp_sampler.raw,
-            depth: self.depth_sampler.raw,
-            repeat: self.repeat_sampler.raw,
-        }
-    }
-
     /// Recreates the size-dependent targets for a new output size (in the main target's
     /// format: a swapchain recreated with another byte order is reached by a blit). Waits for
     /// the device to go idle first (resizes are rare).
@@ -443,21 +440,25 @@ impl Renderer {
         let format = self.targets.display_format();
         let scales = (s.render_scale, s.rtt_scale);
         self.targets = Targets::new(&self.ctx, extent, format, scales, s.anti_aliased())?;
-        self.water
-            .resize(&self.targets, self.dudv.view, &self.samplers());
-        if let Some(pass) = &self.anti_aliasing {
-            pass.resize(&self.targets.main.colour, self.clamp_sampler.raw);
+        let samplers = WaterSamplers {
+            clamp: &self.clamp_sampler,
+            depth: &self.depth_sampler,
+            repeat: &self.repeat_sampler,
+        };
+        self.water.resize(&self.targets, &self.dudv, &samplers)?;
+        if let Some(pass) = &mut self.anti_aliasing {
+            pass.resize(&self.targets.main.colour, &self.clamp_sampler)?;
         }
         Ok(())
     }
 
-    /// Writes slot `slot`'s frame uniforms for this frame; returns the slot's frame set.
+    /// Writes slot `slot`'s frame uniforms for this frame (`frame_set(slot)` binds them).
     pub(super) fn write_uniforms(
         &mut self,
         slot: usize,
         output: &OutputTarget,
         inputs: &FrameInputs,
-    ) -> vk::DescriptorSet {
+    ) {
         // The main target's size (--render-scale of the output's).
         let extent = self.targets.main.extent();
         let s = &self.settings;
@@ -484,13 +485,13 @@ impl Renderer {
                 background: s.background,
             },
         );
-        let (buffer, frame_set) = &mut self.frame_uniforms[slot];
-        buffer.write(bytemuck::bytes_of(&uniforms));
-        *frame_set
+        self.frame_uniforms[slot]
+            .0
+            .write(bytemuck::bytes_of(&uniforms));
     }
 
     /// Slot `slot`'s frame descriptor set (uniforms, ocean images, sky cube).
-    pub(super) fn frame_set(&self, slot: usize) -> vk::DescriptorSet {
-        self.frame_uniforms[slot].1
+    pub(super) fn frame_set(&self, slot: usize) -> &BoundSet {
+        &self.frame_uniforms[slot].1
     }
 }

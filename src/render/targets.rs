@@ -49,7 +49,7 @@ impl ColourDepth {
     }
 
     pub fn extent(&self) -> vk::Extent2D {
-        self.colour.extent
+        self.colour.extent()
     }
 }
 
@@ -167,6 +167,6 @@ impl Targets {
 
     /// The main colour's format (the scene pipelines' for the main view).
     pub fn display_format(&self) -> vk::Format {
-        self.main.colour.format
+        self.main.colour.format()
     }
 }

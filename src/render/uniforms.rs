@@ -40,9 +40,13 @@ impl FrameInputs {
 /// What the scene passes sample of the ocean simulation.
 #[derive(Clone, Debug)]
 pub struct OceanBindings {
-    /// Per frame slot: displacement and normal+foam image views (GENERAL layout).
-    pub displacement: Vec<ash::vk::ImageView>,
-    pub normals: Vec<ash::vk::ImageView>,
+    /// Per frame slot: displacement and normal+foam images (GENERAL layout, written on the
+    /// compute queue).
+    pub displacement: Vec<crate::gpu::Image>,
+    pub normals: Vec<crate::gpu::Image>,
+    /// The stages at which a graphics submission waits for the compute timeline before
+    /// sampling them (`Simulation::GRAPHICS_WAIT_STAGES`): the frame set's `Order::Wait`.
+    pub wait_stages: ash::vk::PipelineStageFlags2,
     /// Patch side of each cascade (m), padded to four.
     pub patch_m: [f32; 4],
     pub cascades: u32,

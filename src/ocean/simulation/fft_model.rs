@@ -6,10 +6,9 @@ use std::sync::Arc;
 
 use ash::vk;
 
-use super::{scope, Kernel, ModelFrame, Timer, WaveModel};
-use crate::gpu::descriptors::{self, Write};
+use super::{scope, Kernel, ModelFrame, SlotImages, Timer, WaveModel};
 use crate::gpu::oneshot::upload_on;
-use crate::gpu::{Buffer, Context, DescriptorPool, MemoryLocation, Recorder, Tracked, Use};
+use crate::gpu::{Bind, Bindings, BoundSet, Buffer, Context, MemoryLocation, Order, Recorder};
 use crate::ocean::fft::{Direction, GpuFft};
 use crate::ocean::foam;
 use crate::ocean::moments::{Component, SeaMoments};
@@ -43,25 +42,25 @@ struct AssembleParams {
 pub(super) struct FftModel {
     /// h0 of every cascade, (K, N, N) complex.
     h0: Buffer,
-    /// Every element's quantized frequency ω/ω0 (`spectrum::omega_steps`), (K, N, N) u32.
-    omega_steps: Buffer,
+    /// Every element's quantized frequency ω/ω0 (`spectrum::omega_steps`), (K, N, N) u32
+    /// (bound by `evolve_set`).
+    _omega_steps: Buffer,
     fft: GpuFft,
     evolve: Kernel,
     assemble: Kernel,
-    evolve_set: vk::DescriptorSet,
+    evolve_set: BoundSet,
     /// Per slot: writes that slot's images, reads the other slot's normals (foam).
-    assemble_sets: Vec<vk::DescriptorSet>,
+    assemble_sets: Vec<BoundSet>,
 }
 
 impl FftModel {
-    /// The model's buffers, kernels and sets; `image_writes(slot)` binds a slot's images (at
-    /// bindings 1–3). Also returns a bound on the displacement (m) and the sea's height.
+    /// The model's buffers, kernels and sets; `images` are bound at bindings 1–3 of the
+    /// assemble sets. Also returns a bound on the displacement (m) and the sea's height.
     pub(super) fn new(
         ctx: &Arc<Context>,
         settings: &OceanSettings,
         cascades: &[Cascade],
-        pool: &DescriptorPool,
-        image_writes: &dyn Fn(usize) -> [Write; 3],
+        images: &SlotImages,
     ) -> anyhow::Result<(FftModel, f64, SeaMoments)> {
         let fft = GpuFft::new(ctx, settings.fft_size, 4 * cascades.len())?;
         let (h0_buffer, steps_buffer, max_displacement_m, sea) =
@@ -80,26 +79,26 @@ impl FftModel {
             shaders::OCEAN_ASSEMBLE_COMP,
             std::mem::size_of::<AssembleParams>(),
         )?;
-        let evolve_set = pool.allocate(&evolve.set_layout, "ocean evolve set")?;
-        let buffer = |binding, buffer: &Buffer| Write::StorageBuffer {
-            binding,
-            buffer: buffer.raw,
-        };
-        descriptors::update(
+        let t = Order::Tracked;
+        let evolve_set = BoundSet::new(
             ctx,
-            evolve_set,
+            &evolve.set_layout,
+            "ocean evolve set",
             &[
-                buffer(0, &h0_buffer),
-                buffer(1, &fft.data),
-                buffer(2, &steps_buffer),
+                (0, Bind::Storage(&h0_buffer, t)),
+                (1, Bind::Storage(&fft.data, t)),
+                (2, Bind::Storage(&steps_buffer, t)),
             ],
-        );
-        let data = fft.data.raw;
-        let assemble_sets =
-            assemble.slot_sets(ctx, pool, names::OCEAN_ASSEMBLE, |_| data, image_writes)?;
+        )?;
+        let assemble_sets = assemble.slot_sets(
+            ctx,
+            names::OCEAN_ASSEMBLE,
+            |_| Bind::Storage(&fft.data, t),
+            images,
+        )?;
         let model = FftModel {
             h0: h0_buffer,
-            omega_steps: steps_buffer,
+            _omega_steps: steps_buffer,
             fft,
             evolve,
             assemble,
@@ -179,13 +178,7 @@ fn upload_spectrum(
 }
 
 impl WaveModel for FftModel {
-    fn record(
-        &self,
-        rec: &Recorder,
-        timer: &mut Timer,
-        f: &ModelFrame,
-        images: &[(&dyn Tracked, Use)],
-    ) {
+    fn record(&self, rec: &Recorder, timer: &mut Timer, f: &ModelFrame) {
         let groups = f.n.div_ceil(8);
         let evolve_params = EvolveParams {
             patch_m: f.patch_m,
@@ -205,31 +198,23 @@ impl WaveModel for FftModel {
         let (evolve, assemble) = (&self.evolve, &self.assemble);
         scope(timer, rec, names::OCEAN_EVOLVE, || {
             // h(k, t) from h0 into the FFT data (the previous frame's FFT and assemble used it).
-            rec.uses(&[
-                (&self.h0, Use::ComputeRead),
-                (&self.omega_steps, Use::ComputeRead),
-                (&self.fft.data, Use::ComputeWrite),
-            ]);
-            rec.bind_pipeline(&evolve.pipeline);
-            rec.bind_sets(&evolve.pipeline, &evolve.layout, &[self.evolve_set]);
-            rec.push_constants(&evolve.layout, &evolve_params);
-            rec.dispatch(groups, groups, f.layers);
+            rec.push_constants(&evolve.pipeline, &evolve_params);
+            let b = Bindings {
+                pipeline: &evolve.pipeline,
+                sets: &[&self.evolve_set],
+            };
+            rec.dispatch_with(&b, [groups, groups, f.layers]);
         });
         scope(timer, rec, names::OCEAN_FFT, || {
             self.fft.record(rec, Direction::Inverse)
         });
         scope(timer, rec, names::OCEAN_ASSEMBLE, || {
-            let mut uses = images.to_vec();
-            uses.push((&self.fft.data, Use::ComputeRead));
-            rec.uses(&uses);
-            rec.bind_pipeline(&assemble.pipeline);
-            rec.bind_sets(
-                &assemble.pipeline,
-                &assemble.layout,
-                &[self.assemble_sets[f.slot]],
-            );
-            rec.push_constants(&assemble.layout, &assemble_params);
-            rec.dispatch(groups, groups, f.layers);
+            rec.push_constants(&assemble.pipeline, &assemble_params);
+            let b = Bindings {
+                pipeline: &assemble.pipeline,
+                sets: &[&self.assemble_sets[f.slot]],
+            };
+            rec.dispatch_with(&b, [groups, groups, f.layers]);
         });
     }
 

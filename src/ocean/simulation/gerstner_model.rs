@@ -6,9 +6,8 @@ use std::sync::Arc;
 
 use ash::vk;
 
-use super::{scope, Kernel, ModelFrame, Timer, WaveModel};
-use crate::gpu::descriptors::Write;
-use crate::gpu::{Buffer, Context, DescriptorPool, MemoryLocation, Recorder, Tracked, Use};
+use super::{scope, Kernel, ModelFrame, SlotImages, Timer, WaveModel};
+use crate::gpu::{Bind, Bindings, BoundSet, Buffer, Context, MemoryLocation, Order, Recorder};
 use crate::ocean::foam;
 use crate::ocean::gerstner::{Wave, G_SEED};
 use crate::ocean::moments::{Component, SeaMoments};
@@ -44,17 +43,16 @@ pub(super) struct GerstnerModel {
     buffers: Vec<Buffer>,
     kernel: Kernel,
     /// Per slot, like the FFT model's assemble sets.
-    sets: Vec<vk::DescriptorSet>,
+    sets: Vec<BoundSet>,
 }
 
 impl GerstnerModel {
-    /// The model's buffers, kernel and sets; `image_writes(slot)` binds a slot's images (at
-    /// bindings 1–3). Also returns a bound on the displacement (m) and the sea's height.
+    /// The model's buffers, kernel and sets; `images` are bound at bindings 1–3. Also returns
+    /// a bound on the displacement (m) and the sea's height.
     pub(super) fn new(
         ctx: &Arc<Context>,
         waves: &[Wave],
-        pool: &DescriptorPool,
-        image_writes: &dyn Fn(usize) -> [Write; 3],
+        images: &SlotImages,
     ) -> anyhow::Result<(GerstnerModel, f64, SeaMoments)> {
         anyhow::ensure!(!waves.is_empty(), "Gerstner mode needs at least one wave");
         let kernel = Kernel::image_writer(
@@ -74,12 +72,12 @@ impl GerstnerModel {
                 )
             })
             .collect::<Result<Vec<_>, _>>()?;
+        // The host writes a slot's waves once the slot's previous compute work is done.
         let sets = kernel.slot_sets(
             ctx,
-            pool,
             names::OCEAN_GERSTNER,
-            |slot| buffers[slot].raw,
-            image_writes,
+            |slot| Bind::Storage(&buffers[slot], Order::Host),
+            images,
         )?;
         // Each wave moves a point by at most a vertically and Q·a sideways.
         let max_displacement_m = waves
@@ -131,13 +129,7 @@ impl WaveModel for GerstnerModel {
         self.buffers[f.slot].write(bytemuck::cast_slice(&gpu_waves));
     }
 
-    fn record(
-        &self,
-        rec: &Recorder,
-        timer: &mut Timer,
-        f: &ModelFrame,
-        images: &[(&dyn Tracked, Use)],
-    ) {
+    fn record(&self, rec: &Recorder, timer: &mut Timer, f: &ModelFrame) {
         let params = GerstnerParams {
             window_m: f.window_m as f32,
             dt_s: f.dt_s,
@@ -150,12 +142,13 @@ impl WaveModel for GerstnerModel {
         };
         let kernel = &self.kernel;
         scope(timer, rec, names::OCEAN_GERSTNER, || {
-            rec.uses(images);
-            rec.bind_pipeline(&kernel.pipeline);
-            rec.bind_sets(&kernel.pipeline, &kernel.layout, &[self.sets[f.slot]]);
-            rec.push_constants(&kernel.layout, &params);
+            rec.push_constants(&kernel.pipeline, &params);
+            let b = Bindings {
+                pipeline: &kernel.pipeline,
+                sets: &[&self.sets[f.slot]],
+            };
             let groups = f.n.div_ceil(8);
-            rec.dispatch(groups, groups, 1);
+            rec.dispatch_with(&b, [groups, groups, 1]);
         });
     }
 

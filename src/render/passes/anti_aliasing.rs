@@ -17,33 +17,29 @@ use std::sync::Arc;
 use ash::vk;
 
 use super::SceneTarget;
-use crate::gpu::descriptors::{self, Write};
 use crate::gpu::{
-    Context, DescriptorPool, DescriptorSetLayout, GpuResult, GraphicsDesc, Image, Pipeline,
-    PipelineLayout, Recorder,
+    Bind, Bindings, BoundSet, Context, DescriptorSetLayout, GpuResult, GraphicsDesc, Image, Order,
+    Pipeline, PipelineLayout, Recorder, Sampler,
 };
 use crate::render::targets::DEPTH_FORMAT;
 use crate::shaders;
 
 pub struct AntiAliasingPass {
     ctx: Arc<Context>,
-    layout: PipelineLayout,
     /// First draw: copies the main colour, writes depth 1 on edges and 0 elsewhere.
     edges: Pipeline,
     /// Second draw, depth-tested (LESS, at depth 0): FXAA where the first draw wrote 1.
     fxaa: Pipeline,
-    /// Binding 0: the main colour, sampled linearly and clamped. Kept: `resize` updates the set.
-    _set_layout: DescriptorSetLayout,
-    /// Holds `set`.
-    _pool: DescriptorPool,
-    /// Points at the main colour (rewritten on resize).
-    set: vk::DescriptorSet,
+    /// Binding 0: the main colour, sampled linearly and clamped. Kept: `resize` makes a set.
+    set_layout: DescriptorSetLayout,
+    /// Binds the main colour (remade on resize).
+    set: BoundSet,
 }
 
 impl AntiAliasingPass {
     /// Reads `main` (the main colour, display colour in an 8-bit format) through `sampler`
     /// (linear, clamped) and draws into a target of `main`'s format.
-    pub fn new(ctx: &Arc<Context>, main: &Image, sampler: vk::Sampler) -> GpuResult<Self> {
+    pub fn new(ctx: &Arc<Context>, main: &Image, sampler: &Sampler) -> GpuResult<Self> {
         let set_layout = DescriptorSetLayout::new(
             ctx,
             "anti-aliasing set layout",
@@ -53,16 +49,10 @@ impl AntiAliasingPass {
                 vk::ShaderStageFlags::FRAGMENT,
             )],
         )?;
-        let pool = DescriptorPool::new(
-            ctx,
-            "anti-aliasing descriptors",
-            1,
-            &[(vk::DescriptorType::COMBINED_IMAGE_SAMPLER, 1)],
-        )?;
-        let set = pool.allocate(&set_layout, "anti-aliasing set (main colour)")?;
+        let set = Self::set(ctx, &set_layout, main, sampler)?;
         let layout = PipelineLayout::new(ctx, "anti-aliasing layout", &[&set_layout], None)?;
         // The shaders' DISPLAY_TARGET: whether samples come decoded (sRGB) or encoded (UNORM).
-        let display_mode = SceneTarget::Display(main.format).display_mode();
+        let display_mode = SceneTarget::Display(main.format()).display_mode();
         let pipeline = |name, fragment, depth_compare, depth_write| {
             Pipeline::graphics(
                 ctx,
@@ -76,7 +66,7 @@ impl AntiAliasingPass {
                         ),
                         (vk::ShaderStageFlags::FRAGMENT, fragment),
                     ],
-                    colour_formats: &[main.format],
+                    colour_formats: &[main.format()],
                     depth_format: Some(DEPTH_FORMAT),
                     depth_compare: Some(depth_compare),
                     depth_write,
@@ -98,41 +88,47 @@ impl AntiAliasingPass {
             vk::CompareOp::LESS,
             false,
         )?;
-        let pass = AntiAliasingPass {
+        Ok(AntiAliasingPass {
             ctx: ctx.clone(),
-            layout,
             edges,
             fxaa,
-            _set_layout: set_layout,
-            _pool: pool,
+            set_layout,
             set,
-        };
-        pass.resize(main, sampler);
-        Ok(pass)
+        })
     }
 
-    /// Points the pass at a new main colour. The caller makes sure no frame in flight uses the
-    /// set.
-    pub fn resize(&self, main: &Image, sampler: vk::Sampler) {
-        descriptors::update(
-            &self.ctx,
-            self.set,
-            &[Write::SampledImage {
-                binding: 0,
-                view: main.view,
-                sampler,
-                layout: vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL,
-            }],
-        );
+    fn set(
+        ctx: &Arc<Context>,
+        layout: &DescriptorSetLayout,
+        main: &Image,
+        sampler: &Sampler,
+    ) -> GpuResult<BoundSet> {
+        let bind = Bind::Sampled(main, sampler, Order::Tracked);
+        BoundSet::new(ctx, layout, "anti-aliasing set (main colour)", &[(0, bind)])
+    }
+
+    /// Points the pass at a new main colour (a new set; the old one retires with its frames).
+    pub fn resize(&mut self, main: &Image, sampler: &Sampler) -> GpuResult<()> {
+        self.set = Self::set(&self.ctx, &self.set_layout, main, sampler)?;
+        Ok(())
+    }
+
+    /// Its two draws: edges, then FXAA, each with the main colour's set.
+    pub fn draws<'a>(&'a self, sets: &'a [&'a BoundSet; 1]) -> [Bindings<'a>; 2] {
+        [&self.edges, &self.fxaa].map(|pipeline| Bindings { pipeline, sets })
+    }
+
+    /// The set `draws` takes.
+    pub fn set_ref(&self) -> [&BoundSet; 1] {
+        [&self.set]
     }
 
     /// Draws the anti-aliased picture, inside a rendering scope whose colour attachment is the
     /// anti-aliased colour and whose depth attachment (contents not loaded) has its size, and
-    /// which samples the main colour.
-    pub fn record(&self, rec: &Recorder) {
-        for pipeline in [&self.edges, &self.fxaa] {
-            rec.bind_pipeline(pipeline);
-            rec.bind_sets(pipeline, &self.layout, &[self.set]);
+    /// which declared `draws`.
+    pub fn record(&self, rec: &Recorder, draws: &[Bindings; 2]) {
+        for draw in draws {
+            rec.bind(draw);
             rec.draw(3, 1);
         }
     }

@@ -27,7 +27,8 @@ pub use textures_view::TexturesViewPass;
 pub use water::WaterPass;
 
 use crate::gpu::{
-    Context, DescriptorSetLayout, GpuResult, GraphicsDesc, Pipeline, PipelineLayout, Recorder,
+    Bindings, Context, DescriptorSetLayout, GpuResult, GraphicsDesc, Pipeline, PipelineLayout,
+    Recorder,
 };
 use crate::render::targets::{DEPTH_FORMAT, HDR_FORMAT};
 use crate::render::uniforms::ViewIndex;
@@ -182,15 +183,9 @@ pub fn scene_pipeline(
     )
 }
 
-/// Binds a scene pipeline with its sets and selects the view.
-pub fn bind_scene(
-    rec: &Recorder,
-    pipeline: &Pipeline,
-    layout: &PipelineLayout,
-    sets: &[vk::DescriptorSet],
-    view: ViewIndex,
-) {
-    rec.bind_pipeline(pipeline);
-    rec.bind_sets(pipeline, layout, sets);
-    rec.push_constants(layout, &ViewPush { view: view as u32 });
+/// Binds a scene pipeline with its sets (one of the draws its rendering scope declared) and
+/// selects the view.
+pub fn bind_scene(rec: &Recorder, draw: &Bindings, view: ViewIndex) {
+    rec.bind(draw);
+    rec.push_constants(draw.pipeline, &ViewPush { view: view as u32 });
 }

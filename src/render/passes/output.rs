@@ -11,7 +11,7 @@
 
 use ash::vk;
 
-use crate::gpu::{Image, Recorder, Use};
+use crate::gpu::{Image, Recorder};
 
 use crate::render::OutputTarget;
 
@@ -19,16 +19,14 @@ use crate::render::OutputTarget;
 /// colour attachment) into `output`. Outside any rendering scope. A blit that scales filters
 /// with `scale_filter`.
 pub fn record(rec: &Recorder, main: &Image, output: &OutputTarget, scale_filter: vk::Filter) {
-    rec.uses(&[(main, Use::TransferSrc), (output.image, Use::TransferDst)]);
-    let raw = output.raw();
-    if main.extent == output.extent && main.format == output.format {
-        rec.copy_image(main.raw, raw, output.extent);
+    if main.extent() == output.extent && main.format() == output.format {
+        rec.copy_image(main, output.image);
     } else {
-        let filter = if main.extent == output.extent {
+        let filter = if main.extent() == output.extent {
             vk::Filter::NEAREST
         } else {
             scale_filter
         };
-        rec.blit_image((main.raw, main.extent), (raw, output.extent), filter);
+        rec.blit_image(main, output.image, filter);
     }
 }

@@ -10,10 +10,11 @@ use ash::vk;
 use super::{bind_scene, scene_layout, scene_pipeline, Depth, PerTarget};
 use crate::gpu::oneshot::upload_image_with;
 use crate::gpu::{
-    Attachment, Context, DescriptorSetLayout, GpuResult, GraphicsDesc, Image, ImageDesc, Load,
-    Pipeline, PipelineLayout, Recorder, Use,
+    Bindings, BoundSet, Context, DescriptorSetLayout, GpuResult, GraphicsDesc, Image, ImageDesc,
+    Load, Pipeline, PipelineLayout, Recorder, Target,
 };
 use crate::input::{decode_png_rgba8, png_size, regular_file, InputError};
+use crate::pass_names as names;
 use crate::render::atmosphere::{Sky, SUN_IRRADIANCE};
 use crate::render::targets::HDR_FORMAT;
 use crate::render::uniforms::ViewIndex;
@@ -69,7 +70,6 @@ pub fn skybox_side(dir: &Path, max_side: u32) -> Result<u32, InputError> {
 pub const SKYBOX_FACES: [&str; 6] = ["px", "nx", "py", "ny", "pz", "nz"];
 
 pub struct SkyPass {
-    layout: PipelineLayout,
     /// Into HDR (the reflection texture) and into the main target.
     pipelines: PerTarget<Pipeline>,
 }
@@ -101,18 +101,21 @@ impl SkyPass {
                 target,
             )
         })?;
-        Ok(SkyPass { layout, pipelines })
+        Ok(SkyPass { pipelines })
     }
 
-    /// Draws the sky where nothing else was drawn (last, inside a scene rendering scope).
-    pub fn record(&self, rec: &Recorder, frame_set: vk::DescriptorSet, view: ViewIndex) {
-        bind_scene(
-            rec,
-            self.pipelines.for_view(view),
-            &self.layout,
-            &[frame_set],
-            view,
-        );
+    /// What `record` binds for `view`: its pipeline with `sets` (the frame set).
+    pub fn draw<'a>(&'a self, sets: &'a [&'a BoundSet], view: ViewIndex) -> Bindings<'a> {
+        Bindings {
+            pipeline: self.pipelines.for_view(view),
+            sets,
+        }
+    }
+
+    /// Draws the sky where nothing else was drawn (last, inside a scene rendering scope that
+    /// declared `draw(sets, view)`).
+    pub fn record(&self, rec: &Recorder, sets: &[&BoundSet], view: ViewIndex) {
+        bind_scene(rec, &self.draw(sets, view), view);
         rec.draw(3, 1);
     }
 }
@@ -203,43 +206,47 @@ impl SkyCube {
     }
 
     /// Renders the analytic sky into the six faces for this sun and cloud cover. Outside any
-    /// rendering scope; leaves the cube in SHADER_READ_ONLY_OPTIMAL. Earlier frames sampling
-    /// the cube are ordered before it by the barrier (same queue).
+    /// rendering scope. Earlier frames sampling the cube are ordered before it by the barrier
+    /// (same queue); the passes that sample it next wait for it at the stages their shaders
+    /// read it in (`Recorder::rendering`).
     pub fn update(&mut self, rec: &Recorder, sky: &Sky) {
-        let Some((layout, pipeline)) = &self.render else {
+        let Some((_, pipeline)) = &self.render else {
             return;
         };
         // What every texel's sky shares, once (common/sky.glsl `sky_radiance`).
         let [sr, sg, sb] = sky.sun_light();
         let [zr, zg, zb] = sky.zenith_radiance();
-        // All six faces at once; each face is then a rendering scope of its own.
-        rec.uses(&[(&self.image, Use::Colour { keep: false })]);
-        for (face, view) in self.image.layer_views.iter().enumerate() {
-            rec.begin_rendering(
-                self.image.extent,
-                &[Attachment {
-                    view: *view,
-                    layout: vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL,
-                    load: Load::DontCare,
-                }],
-                None,
-            );
-            rec.bind_pipeline(pipeline);
-            rec.push_constants(
-                layout,
-                &FacePush {
-                    sun_dir: sky.sun_dir.normalize().extend(0.0).to_array(),
-                    sky: [sky.cloud_cover, SUN_IRRADIANCE, 0.0, 0.0],
-                    sunlight: [sr, sg, sb, 0.0],
-                    zenith: [zr, zg, zb, 0.0],
-                    face: face as u32,
-                },
-            );
-            rec.draw(3, 1);
-            rec.end_rendering();
+        // Each face a rendering scope of its own (the first one's barrier covers the whole
+        // cube: every face is written anew).
+        let draw = Bindings {
+            pipeline,
+            sets: &[],
+        };
+        for face in 0..self.image.layers() {
+            // Face 0's barrier discards the whole cube; the later faces keep what the earlier
+            // ones wrote (a layout change from UNDEFINED would discard them).
+            let load = if face == 0 {
+                Load::DontCare
+            } else {
+                Load::Keep
+            };
+            let target = [Target::layer(&self.image, face, load)];
+            let scope = rec.rendering(names::SKY_CUBE, &target, None, &[draw]);
+            scope.record(|| {
+                rec.bind(&draw);
+                rec.push_constants(
+                    pipeline,
+                    &FacePush {
+                        sun_dir: sky.sun_dir.normalize().extend(0.0).to_array(),
+                        sky: [sky.cloud_cover, SUN_IRRADIANCE, 0.0, 0.0],
+                        sunlight: [sr, sg, sb, 0.0],
+                        zenith: [zr, zg, zb, 0.0],
+                        face,
+                    },
+                );
+                rec.draw(3, 1);
+            });
         }
-        // Every pass samples the cube through the frame's descriptor set.
-        rec.uses(&[(&self.image, Use::FragmentSampled)]);
         self.rendered_for = Some(*sky);
     }
 }

@@ -12,8 +12,8 @@ use ash::vk;
 use super::{bind_scene, scene_layout, scene_pipeline, Depth, PerTarget, SceneTarget};
 use crate::gpu::oneshot::upload;
 use crate::gpu::{
-    Buffer, Context, DescriptorSetLayout, GpuResult, GraphicsDesc, MemoryLocation, Pipeline,
-    PipelineLayout, Recorder,
+    Bindings, BoundSet, Buffer, Context, DescriptorSetLayout, GpuResult, GraphicsDesc,
+    MemoryLocation, Pipeline, Recorder,
 };
 use crate::render::uniforms::ViewIndex;
 use crate::shaders;
@@ -29,7 +29,6 @@ pub struct TerrainPass {
     /// runs on one CPU thread, so this matters in every view). The main view's cells are one
     /// lattice step wide, the HDR views' (reflection, refraction) two.
     meshes: PerTarget<Mesh>,
-    layout: PipelineLayout,
     /// Island and objects into HDR (reflection, refraction) and into the main target.
     pipelines: PerTarget<[Pipeline; 2]>,
 }
@@ -87,21 +86,27 @@ impl TerrainPass {
             let name = format!("terrain indices ({})", target.label());
             Mesh::new(ctx, &name, &lattice_triangles(quads, step))
         })?;
-        Ok(TerrainPass {
-            meshes,
-            layout,
-            pipelines,
-        })
+        Ok(TerrainPass { meshes, pipelines })
     }
 
-    /// Draws the island and the objects inside a scene rendering scope.
-    pub fn record(&self, rec: &Recorder, frame_set: vk::DescriptorSet, view: ViewIndex) {
-        let [terrain, objects] = self.pipelines.for_view(view);
+    /// What `record` binds for `view`: the island's and the objects' pipelines with `sets`
+    /// (the frame set).
+    pub fn draws<'a>(&'a self, sets: &'a [&'a BoundSet], view: ViewIndex) -> [Bindings<'a>; 2] {
+        self.pipelines
+            .for_view(view)
+            .each_ref()
+            .map(|pipeline| Bindings { pipeline, sets })
+    }
+
+    /// Draws the island and the objects inside a scene rendering scope that declared
+    /// `draws(sets, view)`.
+    pub fn record(&self, rec: &Recorder, sets: &[&BoundSet], view: ViewIndex) {
+        let [terrain, objects] = self.draws(sets, view);
         let mesh = self.meshes.for_view(view);
-        bind_scene(rec, terrain, &self.layout, &[frame_set], view);
+        bind_scene(rec, &terrain, view);
         rec.bind_index_buffer(&mesh.buffer);
         rec.draw_indexed(mesh.count, 1);
-        bind_scene(rec, objects, &self.layout, &[frame_set], view);
+        bind_scene(rec, &objects, view);
         rec.draw(OBJECT_SEGMENTS * 9, OBJECTS);
     }
 }

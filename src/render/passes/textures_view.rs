@@ -9,14 +9,13 @@ use ash::vk;
 use super::water::WaterTextures;
 use super::{bind_scene, scene_layout, scene_pipeline, Depth, SceneTarget};
 use crate::gpu::{
-    Context, DescriptorSetLayout, GpuResult, GraphicsDesc, Pipeline, PipelineLayout, Recorder,
+    Bindings, BoundSet, Context, DescriptorSetLayout, GpuResult, GraphicsDesc, Pipeline, Recorder,
 };
 use crate::render::uniforms::ViewIndex;
 use crate::render::ViewMode;
 use crate::shaders;
 
 pub struct TexturesViewPass {
-    layout: PipelineLayout,
     pipeline: Pipeline,
 }
 
@@ -51,7 +50,7 @@ impl TexturesViewPass {
             Depth::None,
             SceneTarget::Display(display_format),
         )?;
-        Ok(TexturesViewPass { layout, pipeline })
+        Ok(TexturesViewPass { pipeline })
     }
 
     /// Whether `view` is one this pass draws.
@@ -62,16 +61,18 @@ impl TexturesViewPass {
         )
     }
 
+    /// What `record` binds: its pipeline with `sets` (the frame set, the water's textures).
+    pub fn draw<'a>(&'a self, sets: &'a [&'a BoundSet]) -> Bindings<'a> {
+        Bindings {
+            pipeline: &self.pipeline,
+            sets,
+        }
+    }
+
     /// Draws the texture `--view` names over the whole main target, inside a rendering scope
-    /// with the main colour attachment only.
-    pub fn record(&self, rec: &Recorder, frame_set: vk::DescriptorSet, textures: &WaterTextures) {
-        bind_scene(
-            rec,
-            &self.pipeline,
-            &self.layout,
-            &[frame_set, textures.set],
-            ViewIndex::Main,
-        );
+    /// with the main colour attachment only that declared `draw(sets)`.
+    pub fn record(&self, rec: &Recorder, sets: &[&BoundSet]) {
+        bind_scene(rec, &self.draw(sets), ViewIndex::Main);
         rec.draw(3, 1);
     }
 }

@@ -10,10 +10,9 @@ use std::sync::Arc;
 use ash::vk;
 
 use super::{bind_scene, scene_layout, scene_pipeline, Depth, SceneTarget};
-use crate::gpu::descriptors::{self, Write};
 use crate::gpu::{
-    Context, DescriptorPool, DescriptorSetLayout, GpuResult, GraphicsDesc, Pipeline,
-    PipelineLayout, Recorder,
+    Bind, Bindings, BoundSet, Context, DescriptorSetLayout, GpuResult, GraphicsDesc, Image, Order,
+    Pipeline, Recorder, Sampler,
 };
 use crate::render::targets::Targets;
 use crate::render::uniforms::ViewIndex;
@@ -24,13 +23,13 @@ use crate::shaders;
 pub use crate::shared::PATCHES;
 
 /// Samplers the water's textures use.
-pub struct WaterSamplers {
+pub struct WaterSamplers<'a> {
     /// Linear, clamped: reflection (all its layers) and refraction colour.
-    pub clamp: vk::Sampler,
+    pub clamp: &'a Sampler,
     /// Nearest, clamped: refraction depth.
-    pub depth: vk::Sampler,
+    pub depth: &'a Sampler,
     /// Linear, repeating: the DU/DV map.
-    pub repeat: vk::Sampler,
+    pub repeat: &'a Sampler,
 }
 
 /// The water's textures (set 1 of the water and of the textures view): reflection colour,
@@ -38,15 +37,15 @@ pub struct WaterSamplers {
 pub struct WaterTextures {
     ctx: Arc<Context>,
     pub layout: DescriptorSetLayout,
-    _pool: DescriptorPool,
-    pub set: vk::DescriptorSet,
+    /// Remade on resize (a set is never rewritten; the old one retires with its frames).
+    pub set: BoundSet,
 }
 
 impl WaterTextures {
     pub fn new(
         ctx: &Arc<Context>,
         targets: &Targets,
-        dudv: vk::ImageView,
+        dudv: &Image,
         samplers: &WaterSamplers,
     ) -> GpuResult<WaterTextures> {
         let sampled = vk::DescriptorType::COMBINED_IMAGE_SAMPLER;
@@ -61,56 +60,59 @@ impl WaterTextures {
                 (3, sampled, fragment),
             ],
         )?;
-        let pool = DescriptorPool::new(ctx, "water descriptors", 1, &[(sampled, 4)])?;
-        let set = pool.allocate(&layout, "water textures set")?;
-        let textures = WaterTextures {
+        let set = Self::set(ctx, &layout, targets, dudv, samplers)?;
+        Ok(WaterTextures {
             ctx: ctx.clone(),
             layout,
-            _pool: pool,
             set,
-        };
-        textures.resize(targets, dudv, samplers);
-        Ok(textures)
+        })
     }
 
-    /// Points the set at new targets. The caller makes sure no frame in flight uses the set.
-    pub fn resize(&self, targets: &Targets, dudv: vk::ImageView, samplers: &WaterSamplers) {
-        let read = vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL;
-        descriptors::update(
-            &self.ctx,
-            self.set,
+    fn set(
+        ctx: &Arc<Context>,
+        layout: &DescriptorSetLayout,
+        targets: &Targets,
+        dudv: &Image,
+        samplers: &WaterSamplers,
+    ) -> GpuResult<BoundSet> {
+        // Each tracked: the passes that sample them wait for their writers (graphics 1's
+        // reflection and refraction passes, the DU/DV map's upload).
+        let t = Order::Tracked;
+        BoundSet::new(
+            ctx,
+            layout,
+            "water textures set",
             &[
-                Write::SampledImage {
-                    binding: 0,
-                    view: targets.reflection.colour.view,
-                    sampler: samplers.clamp,
-                    layout: read,
-                },
-                Write::SampledImage {
-                    binding: 1,
-                    view: targets.refraction.colour.view,
-                    sampler: samplers.clamp,
-                    layout: read,
-                },
-                Write::SampledImage {
-                    binding: 2,
-                    view: targets.refraction.depth.view,
-                    sampler: samplers.depth,
-                    layout: read,
-                },
-                Write::SampledImage {
-                    binding: 3,
-                    view: dudv,
-                    sampler: samplers.repeat,
-                    layout: read,
-                },
+                (
+                    0,
+                    Bind::Sampled(&targets.reflection.colour, samplers.clamp, t),
+                ),
+                (
+                    1,
+                    Bind::Sampled(&targets.refraction.colour, samplers.clamp, t),
+                ),
+                (
+                    2,
+                    Bind::Sampled(&targets.refraction.depth, samplers.depth, t),
+                ),
+                (3, Bind::Sampled(dudv, samplers.repeat, t)),
             ],
-        );
+        )
+    }
+
+    /// Binds new targets: a new set (the old one is retired through the deletion queue).
+    pub fn resize(
+        &mut self,
+        targets: &Targets,
+        dudv: &Image,
+        samplers: &WaterSamplers,
+    ) -> GpuResult<()> {
+        self.set = Self::set(&self.ctx, &self.layout, targets, dudv, samplers)?;
+        Ok(())
     }
 }
 
 pub struct WaterPass {
-    layout: PipelineLayout,
     fill: Pipeline,
     /// The surface seen from under the water (the camera below it): its own pipeline
     /// (specialization constant 2 of water.frag), because lavapipe pays for a branch it does
@@ -130,7 +132,7 @@ impl WaterPass {
         ctx: &Arc<Context>,
         frame_layout: &DescriptorSetLayout,
         targets: &Targets,
-        dudv: vk::ImageView,
+        dudv: &Image,
         samplers: &WaterSamplers,
         cascades: u32,
         manual_filter: bool,
@@ -175,7 +177,6 @@ impl WaterPass {
             None
         };
         Ok(WaterPass {
-            layout,
             fill,
             from_below,
             wireframe,
@@ -188,9 +189,21 @@ impl WaterPass {
         &self.textures
     }
 
-    /// Points the pass at new targets. The caller makes sure no frame in flight uses the set.
-    pub fn resize(&self, targets: &Targets, dudv: vk::ImageView, samplers: &WaterSamplers) {
-        self.textures.resize(targets, dudv, samplers);
+    /// Points the pass at new targets (a new textures set).
+    pub fn resize(
+        &mut self,
+        targets: &Targets,
+        dudv: &Image,
+        samplers: &WaterSamplers,
+    ) -> GpuResult<()> {
+        self.textures.resize(targets, dudv, samplers)
+    }
+
+    /// Its pipelines (the renderer checks their bindings at creation).
+    pub fn pipelines(&self) -> impl Iterator<Item = &Pipeline> {
+        [&self.fill, &self.from_below]
+            .into_iter()
+            .chain(self.wireframe.as_ref())
     }
 
     /// Whether `--view wireframe` can draw lines on this device.
@@ -198,28 +211,27 @@ impl WaterPass {
         self.wireframe.is_some()
     }
 
-    /// Draws the ocean patches inside the main rendering scope: as lines for
-    /// `ViewMode::Wireframe` (where the device draws lines), filled otherwise, from below when
-    /// the camera is `underwater`.
-    pub fn record(
-        &self,
-        rec: &Recorder,
-        frame_set: vk::DescriptorSet,
+    /// What `record` binds: the pipeline for `view` (lines for `ViewMode::Wireframe` where the
+    /// device draws lines, from below when the camera is `underwater`, filled otherwise) with
+    /// `sets` (the frame set and [`WaterPass::textures`]' set).
+    pub fn draw<'a>(
+        &'a self,
+        sets: &'a [&'a BoundSet],
         view: ViewMode,
         underwater: bool,
-    ) {
+    ) -> Bindings<'a> {
         let pipeline = match (&self.wireframe, view) {
             (Some(lines), ViewMode::Wireframe) => lines,
             _ if underwater => &self.from_below,
             _ => &self.fill,
         };
-        bind_scene(
-            rec,
-            pipeline,
-            &self.layout,
-            &[frame_set, self.textures.set],
-            ViewIndex::Main,
-        );
+        Bindings { pipeline, sets }
+    }
+
+    /// Draws the ocean patches inside the main rendering scope, which declared
+    /// `draw(sets, view, underwater)`.
+    pub fn record(&self, rec: &Recorder, sets: &[&BoundSet], view: ViewMode, underwater: bool) {
+        bind_scene(rec, &self.draw(sets, view, underwater), ViewIndex::Main);
         // One instance per row of patches (see water.vert).
         rec.draw(PATCHES * 4, PATCHES);
     }
