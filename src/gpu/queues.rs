@@ -11,14 +11,15 @@
 //!   one; else the graphics queue itself (lavapipe), where the two submissions simply run in
 //!   order.
 //!
-//! Resources both families touch (the simulation images: compute writes, graphics samples and
-//! reads back; h0: uploaded and downloaded on graphics, read by compute) are created
-//! CONCURRENT between the two families, so no queue-family ownership transfer is ever needed:
+//! Resources both families touch (the simulation images: compute writes, graphics samples) are
+//! created CONCURRENT between the two families, so no queue-family ownership transfer is ever needed:
 //! the timeline semaphores alone order the work and carry the memory dependencies (a
 //! semaphore signal's first access scope and a wait's second access scope are all memory
 //! accesses, Vulkan spec §7.4.1/7.4.2). Everything else has one user family and stays
-//! EXCLUSIVE. On one family (or two queues of one family) everything is EXCLUSIVE: ownership
-//! belongs to families, not queues.
+//! EXCLUSIVE: h0 and the ω steps are uploaded, read and (`--dump`) read back on the compute
+//! queue only (src/ocean/simulation/fft_model.rs, readback.rs), and every buffer is created
+//! EXCLUSIVE (src/gpu/buffer.rs). On one family (or two queues of one family) everything is
+//! EXCLUSIVE: ownership belongs to families, not queues.
 
 use ash::vk;
 
@@ -36,7 +37,7 @@ pub enum QueueUsers {
     Graphics,
     /// The compute queue only (the FFT's working buffers, Gerstner wave tables written by the host).
     Compute,
-    /// Both (simulation images, h0).
+    /// Both (the simulation images).
     Both,
 }
 
