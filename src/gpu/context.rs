@@ -468,14 +468,14 @@ fn create_device(
     chosen: &Candidate,
     swapchain: bool,
 ) -> GpuResult<ash::Device> {
-    let priorities = [1.0f32; 2];
-    let requests = chosen.plan.queue_requests();
+    // Graphics above a compute queue of its own (queues.rs, Khronos' async-compute sample).
+    let requests = chosen.plan.queue_priorities();
     let queue_infos: Vec<_> = requests
         .iter()
-        .map(|&(family, count)| {
+        .map(|(family, priorities)| {
             vk::DeviceQueueCreateInfo::default()
-                .queue_family_index(family)
-                .queue_priorities(&priorities[..count as usize])
+                .queue_family_index(*family)
+                .queue_priorities(priorities)
         })
         .collect();
     let features = vk::PhysicalDeviceFeatures::default()

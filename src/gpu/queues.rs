@@ -20,8 +20,20 @@
 //! queue only (src/ocean/simulation/fft_model.rs, readback.rs), and every buffer is created
 //! EXCLUSIVE (src/gpu/buffer.rs). On one family (or two queues of one family) everything is
 //! EXCLUSIVE: ownership belongs to families, not queues.
+//!
+//! Priorities (`queue_priorities`): when compute has a queue of its own, the graphics and
+//! present queue gets 1.0 and the compute queue 0.5, as in Khronos' async-compute sample
+//! (KhronosGroup/Vulkan-Samples, `performance/async_compute`): the frame the user waits for
+//! is drawn and presented on the graphics queue, and the simulation has a frame of slack
+//! (double-buffered images). One queue (lavapipe) keeps 1.0.
 
 use ash::vk;
+
+/// Priority of the graphics and present queue: the frame on screen waits for it.
+pub const GRAPHICS_PRIORITY: f32 = 1.0;
+/// Priority of a compute queue of its own: lower than graphics, as in Khronos' async-compute
+/// sample; the simulation runs a frame ahead of the graphics work that samples it.
+pub const COMPUTE_PRIORITY: f32 = 0.5;
 
 /// A queue: its family and its index in that family.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -123,6 +135,27 @@ impl QueuePlan {
         }
     }
 
+    /// Priorities of the queues to create, per entry of `queue_requests` (same order): the
+    /// graphics and present queue 1.0, a compute queue of its own 0.5 (see the file's doc).
+    pub fn queue_priorities(&self) -> Vec<(u32, Vec<f32>)> {
+        self.queue_requests()
+            .into_iter()
+            .map(|(family, count)| {
+                let priorities = (0..count)
+                    .map(|index| {
+                        let queue = QueueSlot { family, index };
+                        if queue == self.graphics {
+                            GRAPHICS_PRIORITY
+                        } else {
+                            COMPUTE_PRIORITY
+                        }
+                    })
+                    .collect();
+                (family, priorities)
+            })
+            .collect()
+    }
+
     /// How a resource used on `users` is shared: CONCURRENT between the two families only when
     /// both use it and they differ.
     pub fn sharing(&self, users: QueueUsers) -> Sharing {
@@ -219,6 +252,16 @@ mod tests {
         for &(family, count) in queues {
             assert!(count <= families[family as usize].queue_count);
         }
+        // One priority per queue created; graphics 1.0, a compute queue of its own 0.5.
+        let priorities = plan.queue_priorities();
+        let expected: Vec<(u32, Vec<f32>)> = if !plan.separate_queues() {
+            vec![(graphics.family, vec![1.0])]
+        } else if plan.separate_families() {
+            vec![(graphics.family, vec![1.0]), (compute.family, vec![0.5])]
+        } else {
+            vec![(graphics.family, vec![1.0, 0.5])]
+        };
+        assert_eq!(priorities, expected);
     }
 
     #[test]
