@@ -559,7 +559,8 @@ impl<'a> Recorder<'a> {
     }
 
     pub(crate) fn begin_query(&self, pool: vk::QueryPool, query: u32) {
-        // SAFETY: recording-state invariant; the query was reset earlier in this command buffer.
+        // SAFETY: recording-state invariant; the query is unavailable when this executes: see
+        // `write_timestamp` (the statistics pool is reset beside the timestamp pool).
         unsafe {
             self.ctx
                 .device
@@ -573,7 +574,12 @@ impl<'a> Recorder<'a> {
     }
 
     pub(crate) fn write_timestamp(&self, pool: vk::QueryPool, query: u32) {
-        // SAFETY: recording-state invariant; the query was reset earlier in this command buffer.
+        // SAFETY: recording-state invariant. The query is unavailable when this executes: the
+        // only caller, `Profiler` (timestamps.rs), resets the slot's whole pool in `begin_frame`,
+        // recorded at the start of the frame's first command buffer on this profiler's queue
+        // (graphics 1, or the compute submission), and writes each query at most once after
+        // that; a later command buffer of the frame (graphics 2, after `resume`) runs after the
+        // reset by submission order on the same queue. Not reset in every command buffer.
         unsafe {
             self.ctx.device.cmd_write_timestamp2(
                 self.cmd,
