@@ -1,8 +1,11 @@
 //! `vkocean bench fft`: our GPU FFT against rustfft on the CPU, same transforms, same process.
 //!
 //! GPU: each measured "frame" restores the input (a copy outside the timed scope, so values never
-//! grow without bound), then runs the batch of 2D inverse transforms inside one profiler pass;
-//! times are GPU timestamps, the first `WARMUP_FRAMES` frames (pipeline JIT) excluded, median of
+//! grow without bound), then runs the batch of 2D inverse transforms inside one profiler pass,
+//! submitted on the compute queue the simulation ships on (`ComputeQueue`, timed by
+//! `Profiler::for_compute`: that family's `timestampValidBits`; on lavapipe the one queue);
+//! an empty graphics frame waits for it, so frame pacing and deferred deletion run as in a
+//! frame of the renderer; times are GPU timestamps, the first `WARMUP_FRAMES` frames (pipeline JIT) excluded, median of
 //! the rest. CPU: rustfft (one thread) on the same data and batch: rows, transpose, rows,
 //! transpose back, which is the work the GPU does. `rustfft_ms` (the ratio's denominator) counts
 //! the 2·batch·N one-dimensional transforms only, the measure of the anchors in MEASURED.md
@@ -22,8 +25,9 @@ use serde_json::json;
 
 use super::CpuTimes;
 use crate::frontend::Outcome;
-use crate::gpu::oneshot::upload;
-use crate::gpu::{Buffer, Context, Frames, MemoryLocation, Profiler, Submission, Use};
+use crate::gpu::compute::ComputeQueue;
+use crate::gpu::oneshot::upload_on;
+use crate::gpu::{Buffer, Context, Frames, MemoryLocation, Profiler, Use};
 use crate::ocean::fft::{Direction, GpuFft, Kernel};
 use crate::output::PendingFile;
 use crate::profile::{Stats, WARMUP_FRAMES};
@@ -166,12 +170,16 @@ fn measure(
         vk::BufferUsageFlags::TRANSFER_SRC | vk::BufferUsageFlags::TRANSFER_DST,
         MemoryLocation::GpuOnly,
     )?;
-    upload(ctx, &pristine, &bytes)?;
+    // Used on the compute queue only, like every simulation buffer (EXCLUSIVE there).
+    upload_on(ctx, ctx.compute, &pristine, &bytes)?;
     let mut frames = Frames::new(ctx)?;
-    let mut profiler = Profiler::new(ctx, WARMUP_FRAMES, false)?;
+    let mut compute = ComputeQueue::new(ctx)?;
+    // Disabled when the compute family's timestampValidBits is 0.
+    let mut profiler = Profiler::for_compute(ctx, WARMUP_FRAMES)?;
     if !profiler.enabled() {
         anyhow::bail!(
-            "{} has no timestamp queries; cannot time the GPU FFT",
+            "{}'s compute queue family has no timestamp queries (timestampValidBits 0); \
+             cannot time the GPU FFT",
             ctx.info.name
         );
     }
@@ -195,16 +203,19 @@ fn measure(
             cpu_times_before = CpuTimes::now();
         }
         let frame = frames.begin()?;
-        {
-            let rec = frame.recorder(ctx, Submission::Ocean);
-            profiler.begin_frame(&rec, &frame)?;
+        let value = frame.signal_value();
+        // The previous run was waited for: nothing to wait on before the compute work.
+        compute.submit(frame.slot, value, None, |rec| {
+            profiler.begin_frame(rec, &frame)?;
             // After the previous frame's transform read and wrote `data`.
             rec.uses(&[(&pristine, Use::CopySrc), (&fft.data, Use::CopyDst)]);
             rec.copy_buffer(&pristine, &fft.data, bytes.len() as u64);
-            profiler.pass(&rec, "fft", || fft.record(&rec, Direction::Inverse));
-            profiler.end_frame(&rec);
-        }
-        frames.submit(frame, &[], &[])?;
+            profiler.pass(rec, "fft", || fft.record(rec, Direction::Inverse));
+            profiler.end_frame(rec);
+            Ok(())
+        })?;
+        let wait = compute.graphics_wait(value, vk::PipelineStageFlags2::ALL_COMMANDS);
+        frames.submit(frame, &[wait], &[])?;
         frames.wait_all()?;
         let (fft_ms, total_ms) = cpu.run();
         if run >= WARMUP_FRAMES as usize {
