@@ -166,7 +166,7 @@ fn overlay_frame<'o>(
         ..egui::RawInput::default()
     };
     let (_, textures) = o.run(input, session);
-    o.upload(textures, session)?;
+    o.upload(textures)?;
     Ok(o.draw())
 }
 

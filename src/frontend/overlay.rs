@@ -172,14 +172,13 @@ impl Overlay {
         (self.edit != self.applied && !self.egui.egui_is_using_pointer()).then(|| self.edit.clone())
     }
 
-    /// Uploads egui's texture changes: after every submitted frame has finished (they replace
-    /// textures earlier frames drew with), so only when there are any (the first frame, new
-    /// glyphs).
-    pub fn upload(&mut self, mut delta: TexturesDelta, session: &mut Session) -> GpuResult<()> {
+    /// Uploads egui's texture changes (the first frame, new glyphs) before the frame that draws
+    /// them; textures egui frees are retired through the deletion queue (`gpu::egui`), so no
+    /// wait for the frames in flight.
+    pub fn upload(&mut self, mut delta: TexturesDelta) -> GpuResult<()> {
         if delta.is_empty() {
             return Ok(());
         }
-        session.frames.wait_all()?;
         let set: Vec<_> = delta
             .set
             .drain()

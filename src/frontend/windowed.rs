@@ -335,7 +335,7 @@ impl App {
         let draw = if state.overlay.visible {
             let input = state.egui_input.take_egui_input(&state.window);
             let (asked, textures) = state.overlay.run(input, &state.session);
-            state.overlay.upload(textures, &mut state.session)?;
+            state.overlay.upload(textures)?;
             requests = asked;
             Some(state.overlay.draw())
         } else {

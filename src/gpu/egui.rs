@@ -6,14 +6,19 @@
 //!   transition from `UNDEFINED`, which lets a driver discard the rest of the texture (egui
 //!   patches its font atlas when new glyphs appear). The painter keeps a CPU copy of each
 //!   texture, applies the patch there and uploads the whole image as a new texture.
-//! - **Uploads and frees wait for the frames in flight.** The crate uploads with its own
-//!   submission followed by `vkQueueWaitIdle`, and frees at once; both happen between frames,
-//!   after the caller waited for every submitted frame (`Frames::wait_all`). Both are rare: the
-//!   first frame's font atlas, new glyphs, a new DPI.
+//! - **Freed textures are retired through the deletion queue.** egui frees a texture after the
+//!   frame that last draws with it; the crate would destroy it at once. The painter keeps the
+//!   freed ids until it records the next frame's overlay (the frame that may still draw them,
+//!   egui's `TexturesDelta::free` contract), then hands them to `Context::defer`
+//!   (`Garbage::Release`); once the frame timeline passes that frame they come back and the
+//!   crate destroys them. A replaced texture (new glyphs, a new DPI) needs no wait of ours: the
+//!   crate's upload ends in `vkQueueWaitIdle` on the graphics queue, so every frame drawn with
+//!   the old texture has finished before the crate destroys it. Both are rare: the first
+//!   frame's font atlas, new glyphs, a new DPI.
 
 use std::collections::HashMap;
 use std::mem::ManuallyDrop;
-use std::sync::Arc;
+use std::sync::{Arc, Mutex};
 
 use ash::vk;
 use egui::epaint::{ClippedPrimitive, ColorImage, ImageData, ImageDelta, TextureId};
@@ -21,6 +26,7 @@ use egui_ash_renderer::allocator::GpuAllocator;
 use egui_ash_renderer::{DynamicRendering, Options, RenderMode, Renderer};
 
 use super::error::VkResultExt;
+use super::garbage::Garbage;
 use super::{Context, GpuError, GpuResult, Recorder, FRAMES_IN_FLIGHT};
 
 /// egui-ash-renderer's errors as ours.
@@ -38,6 +44,11 @@ pub struct EguiPainter {
     pub format: vk::Format,
     /// CPU copies of egui's textures (patches are applied here, then uploaded whole).
     textures: HashMap<TextureId, ColorImage>,
+    /// Freed by egui, possibly drawn by the next frame: deferred when that frame is recorded.
+    freed: Vec<TextureId>,
+    /// Retired through the deletion queue and now unused by the GPU: destroyed at the next
+    /// `update_textures` or `draw`.
+    released: Arc<Mutex<Vec<TextureId>>>,
 }
 
 impl EguiPainter {
@@ -77,16 +88,19 @@ impl EguiPainter {
             pool,
             format,
             textures: HashMap::new(),
+            freed: Vec::new(),
+            released: Arc::default(),
         })
     }
 
-    /// Applies egui's texture changes. Call between frames, after every submitted frame has
-    /// finished (module comment): the textures replaced or freed may have been drawn with.
+    /// Applies egui's texture changes. Call between frames, before the frame that draws this
+    /// delta's primitives; frees are retired through the deletion queue (module comment).
     pub fn update_textures(
         &mut self,
         set: &[(TextureId, ImageDelta)],
         free: &[TextureId],
     ) -> GpuResult<()> {
+        self.destroy_released()?;
         for (id, delta) in set {
             let ImageData::Color(patch) = &delta.image;
             let whole = match (delta.pos, self.textures.get_mut(id)) {
@@ -115,7 +129,17 @@ impl EguiPainter {
         }
         for id in free {
             self.textures.remove(id);
-            self.renderer.free_texture(*id).map_err(egui_error)?;
+            self.freed.push(*id);
+        }
+        Ok(())
+    }
+
+    /// Destroys the textures the deletion queue handed back (the GPU is done with them).
+    fn destroy_released(&mut self) -> GpuResult<()> {
+        let released =
+            std::mem::take(&mut *self.released.lock().unwrap_or_else(|p| p.into_inner()));
+        for id in released {
+            self.renderer.free_texture(id).map_err(egui_error)?;
         }
         Ok(())
     }
@@ -128,9 +152,18 @@ impl EguiPainter {
         pixels_per_point: f32,
         primitives: &[ClippedPrimitive],
     ) -> GpuResult<()> {
+        self.destroy_released()?;
         self.renderer
             .cmd_draw(rec.raw(), extent, pixels_per_point, primitives)
-            .map_err(egui_error)
+            .map_err(egui_error)?;
+        // Freed before this frame: it is the last that may draw them; tagged with its value.
+        for id in self.freed.drain(..) {
+            let released = self.released.clone();
+            self.ctx.defer(Garbage::Release(Box::new(move || {
+                released.lock().unwrap_or_else(|p| p.into_inner()).push(id);
+            })));
+        }
+        Ok(())
     }
 }
 

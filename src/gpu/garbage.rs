@@ -8,6 +8,9 @@ use gpu_allocator::vulkan::{Allocation, Allocator};
 
 /// A Vulkan object waiting for the GPU to finish with it.
 pub(crate) enum Garbage {
+    /// An object this layer does not own (egui-ash-renderer's textures): `release` runs once
+    /// the GPU finished the frames that may use it and hands it back to its owner to destroy.
+    Release(Box<dyn FnOnce() + Send>),
     Buffer(vk::Buffer, Allocation),
     Image {
         image: vk::Image,
@@ -31,12 +34,21 @@ impl Garbage {
     pub(crate) fn destroy(self, d: &ash::Device, allocator: &mut Allocator) -> u64 {
         let count = match &self {
             Garbage::Image { views, .. } => 1 + views.len() as u64,
+            Garbage::Release(_) => 0,
             _ => 1,
+        };
+        let garbage = match self {
+            Garbage::Release(release) => {
+                release();
+                return count;
+            }
+            garbage => garbage,
         };
         // SAFETY: the object was created from `d`, its owner is gone, and the frame
         // timeline says the GPU finished every submission that could reference it.
         unsafe {
-            match self {
+            match garbage {
+                Garbage::Release(_) => unreachable!("released above"),
                 Garbage::Buffer(buffer, allocation) => {
                     d.destroy_buffer(buffer, None);
                     free(allocator, allocation);
