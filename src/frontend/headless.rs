@@ -221,7 +221,7 @@ impl Offscreen {
 
     /// The target as the renderer's output (its state carries over from frame to frame).
     pub fn output(&self) -> OutputTarget<'_> {
-        OutputTarget::new(Output::Image(&self.image))
+        OutputTarget::new(Output::Image(&self.image), true)
     }
 }
 

@@ -320,7 +320,8 @@ impl App {
 
         // Free for writing once the acquire semaphore's wait is done.
         let swapchain_image = image.target(extent, state.swapchain.format, ACQUIRE_WAIT_STAGE);
-        let output = OutputTarget::new(Output::External(&swapchain_image));
+        let transfer_dst = state.swapchain.transfer_dst;
+        let output = OutputTarget::new(Output::External(&swapchain_image), transfer_dst);
         let now = std::time::Instant::now();
         let step = self
             .last_frame

@@ -271,6 +271,14 @@ impl BoundSet {
     pub fn name(&self) -> &str {
         &self.name
     }
+
+    /// Whether `binding` binds `image`.
+    pub fn binds_image(&self, binding: u32, image: &Image) -> bool {
+        matches!(
+            self.bindings.get(&binding).map(|b| &b.resource),
+            Some(Resource::Image(i)) if i.same(image)
+        )
+    }
 }
 
 /// The layout a sampled image is bound in: SHADER_READ_ONLY_OPTIMAL when tracked by its reader,

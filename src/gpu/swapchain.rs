@@ -119,6 +119,8 @@ pub struct Swapchain {
     pub present_mode: vk::PresentModeKHR,
     /// Whether images can be copied out (F12 / --screenshot).
     pub can_copy: bool,
+    /// Whether images can be copied into; else the output pass draws into them.
+    pub transfer_dst: bool,
     /// Number of swapchains created so far (reported at exit; the window test checks resizes).
     pub generation: u32,
 }
@@ -141,6 +143,7 @@ impl Swapchain {
             extent: vk::Extent2D::default(),
             present_mode: vk::PresentModeKHR::FIFO,
             can_copy: false,
+            transfer_dst: false,
             generation: 0,
         };
         // Pushed one by one: an error drops (and frees) what exists so far.
@@ -260,23 +263,11 @@ impl Swapchain {
         if caps.max_image_count > 0 {
             image_count = image_count.min(caps.max_image_count);
         }
-        let can_copy = caps
-            .supported_usage_flags
-            .contains(vk::ImageUsageFlags::TRANSFER_SRC);
-        // The renderer's output pass copies (or blits) each frame into the image.
-        if !caps
-            .supported_usage_flags
-            .contains(vk::ImageUsageFlags::TRANSFER_DST)
-        {
-            return Err(GpuError::Unsupported(
-                "the window surface's images cannot be copied into (no TRANSFER_DST usage), and vkocean's output pass copies every frame into them".into(),
-            ));
-        }
-        // Colour attachment: the overlay pass draws into the image (every surface supports it).
-        let mut usage = vk::ImageUsageFlags::TRANSFER_DST | vk::ImageUsageFlags::COLOR_ATTACHMENT;
-        if can_copy {
-            usage |= vk::ImageUsageFlags::TRANSFER_SRC;
-        }
+        // Only COLOR_ATTACHMENT is a guaranteed usage: the overlay pass draws into the image,
+        // and so does the output pass where TRANSFER_DST (its copy or blit) is not offered.
+        // Screenshots copy the image out and need TRANSFER_SRC (else F12 and --screenshot
+        // say they cannot).
+        let (usage, can_copy, transfer_dst) = swapchain_usage(caps.supported_usage_flags);
         let old = self.raw;
         let info = vk::SwapchainCreateInfoKHR::default()
             .surface(*surface)
@@ -325,6 +316,7 @@ impl Swapchain {
         self.extent = extent;
         self.present_mode = present_mode;
         self.can_copy = can_copy;
+        self.transfer_dst = transfer_dst;
         log::info!(
             "swapchain #{}: {}x{} {:?} {:?}, {} images",
             self.generation,
@@ -449,9 +441,44 @@ impl Drop for Swapchain {
     }
 }
 
+/// The usage to request of swapchain images from the surface's `supportedUsageFlags`, and
+/// whether it includes TRANSFER_SRC (screenshots) and TRANSFER_DST (the output's copy).
+fn swapchain_usage(supported: vk::ImageUsageFlags) -> (vk::ImageUsageFlags, bool, bool) {
+    let optional = vk::ImageUsageFlags::TRANSFER_SRC | vk::ImageUsageFlags::TRANSFER_DST;
+    let usage = vk::ImageUsageFlags::COLOR_ATTACHMENT | (supported & optional);
+    (
+        usage,
+        usage.contains(vk::ImageUsageFlags::TRANSFER_SRC),
+        usage.contains(vk::ImageUsageFlags::TRANSFER_DST),
+    )
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn swapchain_usage_asks_only_for_what_the_surface_offers() {
+        use vk::ImageUsageFlags as U;
+        let all = U::COLOR_ATTACHMENT | U::TRANSFER_SRC | U::TRANSFER_DST | U::STORAGE;
+        assert_eq!(
+            swapchain_usage(all),
+            (
+                U::COLOR_ATTACHMENT | U::TRANSFER_SRC | U::TRANSFER_DST,
+                true,
+                true
+            )
+        );
+        // The guaranteed minimum: drawn output, no screenshots.
+        assert_eq!(
+            swapchain_usage(U::COLOR_ATTACHMENT),
+            (U::COLOR_ATTACHMENT, false, false)
+        );
+        assert_eq!(
+            swapchain_usage(U::COLOR_ATTACHMENT | U::TRANSFER_SRC),
+            (U::COLOR_ATTACHMENT | U::TRANSFER_SRC, true, false)
+        );
+    }
 
     fn offer(formats: &[vk::Format]) -> Vec<vk::SurfaceFormatKHR> {
         formats

@@ -268,8 +268,9 @@ pub fn record_frame(
             });
         }
         profiler.pass(&rec, names::OUTPUT, || {
-            super::passes::output::record(&rec, t.final_colour(), output, r.scale_filter)
-        });
+            r.output
+                .record(&rec, t.final_colour(), output, r.scale_filter)
+        })?;
         if let Some(o) = overlay {
             // Over the finished picture: the output image is the attachment, loaded.
             let target = [Target::output(output.image, Load::Keep)];

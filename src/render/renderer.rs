@@ -10,6 +10,7 @@ use ash::vk;
 
 use super::atmosphere::Sky;
 use super::camera::Camera;
+use super::passes::output::OutputPass;
 use super::passes::water::WaterSamplers;
 use super::passes::{AntiAliasingPass, SkyCube, SkyPass, TerrainPass, TexturesViewPass, WaterPass};
 use super::scene::{dudv_size, generate_dudv, load_dudv, DUDV_SIDE};
@@ -36,14 +37,19 @@ pub struct OutputTarget<'a> {
     pub extent: vk::Extent2D,
     /// An 8-bit sRGB format (or UNORM, with the shaders encoding).
     pub format: vk::Format,
+    /// It has TRANSFER_DST usage: the output pass copies or blits into it; else it draws into
+    /// it as a colour attachment (a swapchain whose surface does not offer TRANSFER_DST).
+    pub transfer_dst: bool,
 }
 
 impl<'a> OutputTarget<'a> {
-    pub fn new(image: Output<'a>) -> OutputTarget<'a> {
+    /// `transfer_dst`: the image has TRANSFER_DST usage.
+    pub fn new(image: Output<'a>, transfer_dst: bool) -> OutputTarget<'a> {
         OutputTarget {
             image,
             extent: image.extent(),
             format: image.format(),
+            transfer_dst,
         }
     }
 }
@@ -57,7 +63,8 @@ fn check_formats(
     anti_aliased: bool,
 ) -> GpuResult<()> {
     use vk::FormatFeatureFlags as F;
-    let mut display_features = F::COLOR_ATTACHMENT | F::TRANSFER_SRC;
+    // Sampled: by the output pass where it draws (passes/output.rs).
+    let mut display_features = F::COLOR_ATTACHMENT | F::TRANSFER_SRC | F::SAMPLED_IMAGE;
     if scaled {
         // Blitted up to the output (linearly where it filters; `output::record`).
         display_features |= F::BLIT_SRC;
@@ -150,6 +157,8 @@ pub struct Renderer {
     /// How the output pass scales the main target: linear where its format filters linearly
     /// (optional in Vulkan), else nearest.
     pub(super) scale_filter: vk::Filter,
+    /// Copies, blits or draws the picture into the output.
+    pub(super) output: OutputPass,
 }
 
 impl Renderer {
@@ -348,6 +357,7 @@ impl Renderer {
             } else {
                 vk::Filter::NEAREST
             },
+            output: OutputPass::new(ctx),
         };
         renderer.check_bindings()?;
         Ok(renderer)
@@ -449,6 +459,7 @@ impl Renderer {
         if let Some(pass) = &mut self.anti_aliasing {
             pass.resize(&self.targets.main.colour, &self.clamp_sampler)?;
         }
+        self.output.resize();
         Ok(())
     }
 

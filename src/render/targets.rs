@@ -124,18 +124,21 @@ impl Targets {
         let layers = (32 - rtt.height.leading_zeros()).clamp(2, REFLECTION_LAYERS);
         let blits = vk::ImageUsageFlags::TRANSFER_SRC | vk::ImageUsageFlags::TRANSFER_DST;
         let blurred = (HDR_FORMAT, vk::ImageUsageFlags::SAMPLED | blits, layers);
-        // The output pass copies the main colour, or the anti-aliasing pass samples it.
+        // The output pass copies the main colour or (into an output without TRANSFER_DST)
+        // samples it; or the anti-aliasing pass samples it.
         let main_usage = if anti_aliased {
             vk::ImageUsageFlags::SAMPLED
         } else {
-            vk::ImageUsageFlags::TRANSFER_SRC
+            vk::ImageUsageFlags::TRANSFER_SRC | vk::ImageUsageFlags::SAMPLED
         };
         // The refraction depth is sampled by the water; the other depths are attachments only.
         let (only, sampled) = (vk::ImageUsageFlags::empty(), vk::ImageUsageFlags::SAMPLED);
         let anti_aliased = anti_aliased
             .then(|| {
-                let usage =
-                    vk::ImageUsageFlags::COLOR_ATTACHMENT | vk::ImageUsageFlags::TRANSFER_SRC;
+                // Copied, or sampled, by the output pass.
+                let usage = vk::ImageUsageFlags::COLOR_ATTACHMENT
+                    | vk::ImageUsageFlags::TRANSFER_SRC
+                    | vk::ImageUsageFlags::SAMPLED;
                 let name = "anti-aliased colour";
                 plain_image(ctx, name, main_extent, display_format, usage, 1)
             })

@@ -4,29 +4,193 @@
 //! format; otherwise a blit, bilinear when the sizes differ, which also
 //! converts between RGBA and BGRA byte orders (a recreated swapchain may change it).
 //!
+//! Drawn instead where the output takes no copies: only COLOR_ATTACHMENT is a guaranteed usage
+//! of swapchain images (`supportedUsageFlags`), so without TRANSFER_DST
+//! (`OutputTarget::transfer_dst` false) a full-screen triangle samples the picture into the
+//! output as a colour attachment (shaders/post/output.frag; nearest at the same size, bilinear
+//! when scaling). `VKOCEAN_OUTPUT=draw` forces this path (tests/output.rs compares it with the
+//! copy and the blit). Its pipeline and descriptor set are made at the first drawn frame and
+//! remade when the output's format or the sampled picture changes (the old ones go to the
+//! deletion queue).
+//!
 //! Why the tone map is not a pass of its own here: at 1280x720 on lavapipe a full-screen
 //! tone-map pass at the output's size cost 12–14 ms, the blit from a half-size main target
 //! 3.2–3.6 ms. The scene shaders tone-map per fragment at the main target's size instead
 //! (shaders/common/display.glsl), and the sRGB attachment format encodes.
 
+use std::cell::RefCell;
+use std::sync::Arc;
+
 use ash::vk;
 
-use crate::gpu::{Image, Recorder};
-
+use crate::gpu::{
+    Bind, Bindings, BoundSet, Context, DescriptorSetLayout, GpuResult, GraphicsDesc, Image, Load,
+    Order, Pipeline, PipelineLayout, Recorder, Sampler, Target,
+};
+use crate::pass_names as names;
 use crate::render::OutputTarget;
+use crate::shaders;
 
-/// Records the copy or blit of `main` (the main or the anti-aliased colour, last written as a
-/// colour attachment) into `output`. Outside any rendering scope. A blit that scales filters
-/// with `scale_filter`.
-pub fn record(rec: &Recorder, main: &Image, output: &OutputTarget, scale_filter: vk::Filter) {
-    if main.extent() == output.extent && main.format() == output.format {
-        rec.copy_image(main, output.image);
-    } else {
+/// Set to `draw` to draw the output even where it takes copies (tests, experiments).
+pub const OUTPUT_ENV: &str = "VKOCEAN_OUTPUT";
+
+/// The output pass: a copy or blit, or (`Drawn`, made when first needed) a draw.
+pub struct OutputPass {
+    ctx: Arc<Context>,
+    /// Draws even into an output that takes copies (`VKOCEAN_OUTPUT=draw`).
+    force_draw: bool,
+    /// The drawing pipeline, and its set for the picture it last sampled.
+    drawn: RefCell<Option<Drawn>>,
+}
+
+/// What drawing the output needs, for one output format.
+struct Drawn {
+    format: vk::Format,
+    pipeline: Pipeline,
+    /// Binding 0: the picture. Kept: sets are allocated from it.
+    set_layout: DescriptorSetLayout,
+    /// Nearest (same size) and linear (scaling), clamped.
+    nearest: Sampler,
+    linear: Sampler,
+    /// The set and the filter it samples with; remade when the picture or the filter changes
+    /// (a set is never rewritten; the old one retires with the frames that bind it).
+    set: Option<(BoundSet, vk::Filter)>,
+}
+
+impl OutputPass {
+    pub fn new(ctx: &Arc<Context>) -> OutputPass {
+        OutputPass {
+            ctx: ctx.clone(),
+            force_draw: std::env::var(OUTPUT_ENV).is_ok_and(|v| v == "draw"),
+            drawn: RefCell::new(None),
+        }
+    }
+
+    /// Forgets the drawn path's set: the picture it sampled is about to be replaced (the set
+    /// would keep the old one alive). Called by `Renderer::resize`.
+    pub fn resize(&self) {
+        if let Some(drawn) = self.drawn.borrow_mut().as_mut() {
+            drawn.set = None;
+        }
+    }
+
+    /// Records the copy, blit or draw of `main` (the main or the anti-aliased colour, last
+    /// written as a colour attachment) into `output`. Outside any rendering scope. Scaling
+    /// filters with `scale_filter`.
+    pub fn record(
+        &self,
+        rec: &Recorder,
+        main: &Image,
+        output: &OutputTarget,
+        scale_filter: vk::Filter,
+    ) -> GpuResult<()> {
         let filter = if main.extent() == output.extent {
             vk::Filter::NEAREST
         } else {
             scale_filter
         };
-        rec.blit_image(main, output.image, filter);
+        if self.force_draw || !output.transfer_dst {
+            return self.draw(rec, main, output, filter);
+        }
+        if main.extent() == output.extent && main.format() == output.format {
+            rec.copy_image(main, output.image);
+        } else {
+            rec.blit_image(main, output.image, filter);
+        }
+        Ok(())
+    }
+
+    /// The drawn output: a full-screen triangle sampling `main` with `filter`.
+    fn draw(
+        &self,
+        rec: &Recorder,
+        main: &Image,
+        output: &OutputTarget,
+        filter: vk::Filter,
+    ) -> GpuResult<()> {
+        let mut slot = self.drawn.borrow_mut();
+        if slot.as_ref().is_none_or(|d| d.format != output.format) {
+            *slot = Some(Drawn::new(&self.ctx, output.format)?);
+        }
+        let drawn = slot.as_mut().expect("made above");
+        drawn.set_for(&self.ctx, main, filter)?;
+        let drawn = &*drawn;
+        let sets = [&drawn.set.as_ref().expect("made by set_for").0];
+        let draw = Bindings {
+            pipeline: &drawn.pipeline,
+            sets: &sets,
+        };
+        let target = [Target::output(output.image, Load::DontCare)];
+        rec.rendering(names::OUTPUT, &target, None, &[draw])
+            .record(|| {
+                rec.bind(&draw);
+                rec.draw(3, 1);
+            });
+        Ok(())
+    }
+}
+
+impl Drawn {
+    fn new(ctx: &Arc<Context>, format: vk::Format) -> GpuResult<Drawn> {
+        let set_layout = DescriptorSetLayout::new(
+            ctx,
+            "output set layout",
+            &[(
+                0,
+                vk::DescriptorType::COMBINED_IMAGE_SAMPLER,
+                vk::ShaderStageFlags::FRAGMENT,
+            )],
+        )?;
+        let layout = PipelineLayout::new(ctx, "output layout", &[&set_layout], None)?;
+        let pipeline = Pipeline::graphics(
+            ctx,
+            &layout,
+            &GraphicsDesc {
+                name: "output (drawn)",
+                stages: &[
+                    (
+                        vk::ShaderStageFlags::VERTEX,
+                        shaders::COMMON_FULLSCREEN_VERT,
+                    ),
+                    (vk::ShaderStageFlags::FRAGMENT, shaders::POST_OUTPUT_FRAG),
+                ],
+                colour_formats: &[format],
+                ..Default::default()
+            },
+        )?;
+        let clamp = vk::SamplerAddressMode::CLAMP_TO_EDGE;
+        Ok(Drawn {
+            format,
+            pipeline,
+            set_layout,
+            nearest: Sampler::new(ctx, "output sampler (nearest)", vk::Filter::NEAREST, clamp)?,
+            linear: Sampler::linear(ctx, "output sampler (linear)", clamp)?,
+            set: None,
+        })
+    }
+
+    /// Makes `set` sample `picture` with `filter`: keeps the last one, or makes a new one (the
+    /// old one, which a frame in flight may still bind, goes to the deletion queue).
+    fn set_for(
+        &mut self,
+        ctx: &Arc<Context>,
+        picture: &Image,
+        filter: vk::Filter,
+    ) -> GpuResult<()> {
+        let current = self
+            .set
+            .as_ref()
+            .is_some_and(|(set, f)| *f == filter && set.binds_image(0, picture));
+        if !current {
+            let sampler = if filter == vk::Filter::LINEAR {
+                &self.linear
+            } else {
+                &self.nearest
+            };
+            let bind = Bind::Sampled(picture, sampler, Order::Tracked);
+            let set = BoundSet::new(ctx, &self.set_layout, "output set (picture)", &[(0, bind)])?;
+            self.set = Some((set, filter));
+        }
+        Ok(())
     }
 }
