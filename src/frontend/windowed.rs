@@ -252,18 +252,22 @@ impl App {
         let Some(state) = self.state.as_mut() else {
             return Ok(());
         };
+        // The surface's capabilities are queried only when the swapchain is recreated: on a
+        // resize event, an out-of-date or suboptimal acquire or present (`needs_recreate`).
         let window_size = physical_size(state.size);
-        let extent = state.swapchain.surface_extent(window_size)?;
-        if extent.width == 0 || extent.height == 0 {
-            self.title_since = None; // the title's next frame time starts after the pause
-            return Ok(()); // minimised: pause until the next resize
+        let mut minimised = window_size.width == 0 || window_size.height == 0;
+        if !minimised && state.needs_recreate {
+            let mode = self.settings.present_mode;
+            // `false`: the surface itself has zero size (minimised before the event arrived).
+            minimised = !state.swapchain.recreate(window_size, mode)?;
+            if !minimised {
+                state.session.renderer.resize(state.swapchain.extent)?;
+                state.needs_recreate = false;
+            }
         }
-        if state.needs_recreate || extent != state.swapchain.extent {
-            state
-                .swapchain
-                .recreate(window_size, self.settings.present_mode)?;
-            state.session.renderer.resize(state.swapchain.extent)?;
-            state.needs_recreate = false;
+        if minimised {
+            self.title_since = None; // the title's next frame time starts after the pause
+            return Ok(()); // pause until the next resize
         }
         let extent = state.swapchain.extent;
         if state.overlay.format() != state.swapchain.format {

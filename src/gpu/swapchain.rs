@@ -3,6 +3,10 @@
 //! semaphores are per swapchain image (an image's previous present has consumed its semaphore
 //! by the time the image is acquired again).
 //!
+//! The surface's capabilities are queried once per (re)creation, not per frame: the frontend
+//! recreates on a resize event, an out-of-date or suboptimal acquire or present, and skips
+//! frames while the window has zero size (minimised).
+//!
 //! Retiring a swapchain: `vkDeviceWaitIdle` does not cover the presentation engine's semaphore
 //! waits (no present fences without VK_EXT_swapchain_maintenance1), so a retired swapchain and
 //! its ready semaphores are kept until the new swapchain has presented `RETIRE_AFTER_PRESENTS`
@@ -151,7 +155,12 @@ impl Swapchain {
             let s = swapchain.semaphore(&format!("swapchain acquire slot {i}"))?;
             swapchain.acquire.push(s);
         }
-        swapchain.recreate(size, mode)?;
+        if !swapchain.recreate(size, mode)? {
+            return Err(GpuError::Unsupported(
+                "the window's surface has zero size (minimised?); cannot create its swapchain"
+                    .into(),
+            ));
+        }
         Ok(swapchain)
     }
 
@@ -182,24 +191,6 @@ impl Swapchain {
         Ok(view)
     }
 
-    /// The surface's current extent, or `fallback` (the window size) when the surface lets the
-    /// application choose. A zero extent means the window is minimised.
-    pub fn surface_extent(&self, fallback: vk::Extent2D) -> GpuResult<vk::Extent2D> {
-        let caps = self.capabilities()?;
-        Ok(if caps.current_extent.width != u32::MAX {
-            caps.current_extent
-        } else {
-            vk::Extent2D {
-                width: fallback
-                    .width
-                    .clamp(caps.min_image_extent.width, caps.max_image_extent.width),
-                height: fallback
-                    .height
-                    .clamp(caps.min_image_extent.height, caps.max_image_extent.height),
-            }
-        })
-    }
-
     fn capabilities(&self) -> GpuResult<vk::SurfaceCapabilitiesKHR> {
         let (fns, surface) = self
             .ctx
@@ -211,18 +202,25 @@ impl Swapchain {
             .vk("vkGetPhysicalDeviceSurfaceCapabilitiesKHR")
     }
 
-    /// (Re)creates the swapchain. Waits for the device to go idle first (resizes are rare); the
-    /// old swapchain is retired (see the module comment).
+    /// (Re)creates the swapchain at the surface's extent (`size`, the window's, where the surface
+    /// leaves it to the application). Waits for the device to go idle first (resizes are rare);
+    /// the old swapchain is retired (see the module comment). `Ok(false)`: the surface has zero
+    /// size (a minimised window) and nothing changed; call again later.
     // Long: the swapchain's creation (capabilities, format, mode, extent, images, per-image
     // semaphores) with the old swapchain handed over; each step needs the previous one.
-    pub fn recreate(&mut self, size: vk::Extent2D, mode: PresentMode) -> GpuResult<()> {
+    pub fn recreate(&mut self, size: vk::Extent2D, mode: PresentMode) -> GpuResult<bool> {
+        // The one query of the capabilities for this swapchain.
+        let caps = self.capabilities()?;
+        let extent = surface_extent(&caps, size);
+        if extent.width == 0 || extent.height == 0 {
+            return Ok(false);
+        }
         self.ctx.wait_idle()?;
         let (surface_fns, surface) = self
             .ctx
             .surface
             .as_ref()
             .expect("a windowed context has a surface");
-        let caps = self.capabilities()?;
         // SAFETY: surface and physical device are live.
         let formats =
             unsafe { surface_fns.get_physical_device_surface_formats(self.ctx.physical, *surface) }
@@ -258,7 +256,6 @@ impl Swapchain {
         .into_iter()
         .find(|a| caps.supported_composite_alpha.contains(*a))
         .unwrap_or(vk::CompositeAlphaFlagsKHR::OPAQUE);
-        let extent = self.surface_extent(size)?;
         let mut image_count = caps.min_image_count + 1;
         if caps.max_image_count > 0 {
             image_count = image_count.min(caps.max_image_count);
@@ -326,7 +323,7 @@ impl Swapchain {
             present_mode,
             self.images.len()
         );
-        Ok(())
+        Ok(true)
     }
 
     /// Waits until the next frame's slot is free (its acquire semaphore then is unsignalled and
@@ -437,6 +434,24 @@ impl Drop for Swapchain {
                 self.fns.destroy_swapchain(self.raw, None);
                 self.ctx.count_destroyed(1);
             }
+        }
+    }
+}
+
+/// The surface's current extent, or `fallback` (the window size) clamped to the allowed range
+/// when the surface lets the application choose (`currentExtent` 0xFFFFFFFF). A zero extent
+/// means the window is minimised.
+fn surface_extent(caps: &vk::SurfaceCapabilitiesKHR, fallback: vk::Extent2D) -> vk::Extent2D {
+    if caps.current_extent.width != u32::MAX {
+        caps.current_extent
+    } else {
+        vk::Extent2D {
+            width: fallback
+                .width
+                .clamp(caps.min_image_extent.width, caps.max_image_extent.width),
+            height: fallback
+                .height
+                .clamp(caps.min_image_extent.height, caps.max_image_extent.height),
         }
     }
 }
