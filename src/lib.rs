@@ -1,9 +1,11 @@
 //! vkocean: a real-time FFT ocean on hand-written Vulkan.
 //!
-//! Layers, bottom up: [`gpu`] (with [`platform`], the only `unsafe`: Vulkan objects, frames,
-//! profiler; the OS calls that differ between Unix and Windows),
-//! [`render`] (passes that record the frame), [`frontend`] (window or headless output) and the
-//! command line in `main.rs` / [`cli`].
+//! Layers, bottom up (a module uses only lower layers; tests/layout.rs checks it):
+//! [`pass_names`], [`shared`], [`input`], [`platform`] (no crate imports); [`gpu`] (with
+//! [`platform`], the only `unsafe`: Vulkan objects, frames, profiler), [`interrupt`];
+//! [`ocean`], [`profile`], [`output`]; [`render`] (passes that record the frame); [`tuning`]
+//! (what a running sample can change, the presets); [`frontend`] (window or headless output);
+//! [`bench`]; the command line in [`cli`] and `main.rs`.
 
 pub mod bench;
 pub mod cli;
@@ -19,6 +21,7 @@ pub mod profile;
 pub mod render;
 /// Constants Rust and the shaders share (build.rs writes them as `shared.glsl`).
 pub mod shared;
+pub mod tuning;
 
 /// SPIR-V of every shader under `shaders/`, compiled by build.rs with glslc.
 pub mod shaders {

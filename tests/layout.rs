@@ -1,12 +1,40 @@
 //! The shape of the source, checked: no module imports another that imports it back (directly or
-//! around a loop), no source file over 700 lines, and no function over 100 lines unless a
-//! `// Long:` comment above it says why. (Issue 15: a reader follows the code in minutes.)
+//! around a loop), every `crate::` / `super::` path points down the layers (`LAYERS`), no source
+//! file over 700 lines, and no function over 100 lines unless a `// Long:` comment above it says
+//! why. (Issue 15: a reader follows the code in minutes; issue 31: arrows only run down.)
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
 
 const MAX_FILE_LINES: usize = 700;
 const MAX_FN_LINES: usize = 100;
+
+/// The crate's top-level modules, bottom layer first (README, Code layout). A module may use
+/// modules of lower layers only: not its own layer's others, not a higher one. The crate root
+/// (lib.rs, main.rs and the `shaders` lib.rs includes) is above and below everything: lib.rs
+/// declares the modules, main.rs is the top, `crate::shaders` and the `outln!` macro are the
+/// root's and free to use. A new top-level module must be given a layer here.
+const LAYERS: &[&[&str]] = &[
+    // Leaves: no crate imports. The frame's pass names, GLSL-shared constants, defensive input
+    // files, the OS differences.
+    &["pass_names", "shared", "input", "platform"],
+    // Vulkan (with the platform's loader advice); the stop flag (with its signal handlers).
+    &["gpu", "interrupt"],
+    // The simulation (on gpu); statistics and the profile JSON (gpu's timings); output files
+    // (checked against the stop flag).
+    &["ocean", "profile", "output"],
+    // The passes that record the frame.
+    &["render"],
+    // What a running sample can change, and the presets that fill it (ocean's and render's
+    // enums): below the frontend whose overlay edits it.
+    &["tuning"],
+    // Window or headless, the overlay, the session.
+    &["frontend"],
+    // bench fft / frames / gerstner (run sessions of the frontend).
+    &["bench"],
+    // The command line: parses, resolves presets, builds settings for frontend and bench.
+    &["cli"],
+];
 
 fn rust_files(dir: &Path, out: &mut Vec<PathBuf>) {
     for entry in std::fs::read_dir(dir).expect("source directory") {
@@ -126,17 +154,34 @@ fn referenced_paths(text: &str, module: &[String], is_mod_file: bool) -> Vec<Vec
 /// Module → the modules it uses (the longest module prefix of each path; children and
 /// parents of a module are not edges: a parent declares its children).
 fn module_graph(src: &Path, files: &[PathBuf]) -> BTreeMap<Vec<String>, BTreeSet<Vec<String>>> {
-    let modules: BTreeSet<Vec<String>> = files.iter().map(|f| module_path(f, src)).collect();
+    let texts: Vec<(PathBuf, String)> = files
+        .iter()
+        .map(|f| {
+            (
+                f.clone(),
+                std::fs::read_to_string(f).expect("readable source"),
+            )
+        })
+        .collect();
+    module_graph_of(src, &texts)
+}
+
+/// [`module_graph`] of (path, source text) pairs (the layer checker's test feeds it made-up
+/// files).
+fn module_graph_of(
+    src: &Path,
+    files: &[(PathBuf, String)],
+) -> BTreeMap<Vec<String>, BTreeSet<Vec<String>>> {
+    let modules: BTreeSet<Vec<String>> = files.iter().map(|(f, _)| module_path(f, src)).collect();
     let mut graph = BTreeMap::new();
-    for file in files {
+    for (file, text) in files {
         let module = module_path(file, src);
         let is_mod = matches!(
             file.file_name().and_then(|n| n.to_str()),
             Some("mod.rs" | "lib.rs" | "main.rs")
         );
-        let text = std::fs::read_to_string(file).expect("readable source");
         let mut deps = BTreeSet::new();
-        for path in referenced_paths(&text, &module, is_mod) {
+        for path in referenced_paths(text, &module, is_mod) {
             let target = (0..=path.len())
                 .rev()
                 .map(|n| path[..n].to_vec())
@@ -244,6 +289,123 @@ fn the_cycle_finder_finds_a_cycle() {
     );
     assert!(resolved.contains(&vec!["render".into(), "camera".into(), "Camera".into()]));
     assert!(resolved.contains(&vec!["gpu".into(), "track".into()]));
+}
+
+/// The layer of top-level module `name` (an index into `LAYERS`), `None` if it has none.
+fn layer_of(name: &str) -> Option<usize> {
+    LAYERS.iter().position(|layer| layer.contains(&name))
+}
+
+/// Every import that does not point down the layers, as "a::b uses c::d (layer i → j)", and
+/// every top-level module without a layer. The crate root (module path []) is exempt.
+fn layer_violations(graph: &BTreeMap<Vec<String>, BTreeSet<Vec<String>>>) -> Vec<String> {
+    let mut found = BTreeSet::new();
+    for (module, deps) in graph {
+        let Some(top) = module.first() else {
+            continue; // lib.rs, main.rs
+        };
+        let Some(from) = layer_of(top) else {
+            found.insert(format!("module `{top}` has no layer in LAYERS"));
+            continue;
+        };
+        for dep in deps {
+            let Some(target) = dep.first() else {
+                continue; // the root's `shaders`, `outln!`
+            };
+            if target == top {
+                continue; // inside one top-level module
+            }
+            match layer_of(target) {
+                Some(to) if to < from => {}
+                Some(to) => {
+                    found.insert(format!(
+                        "{} uses {} (layer {from} `{top}` → layer {to} `{target}`: not below)",
+                        module.join("::"),
+                        dep.join("::")
+                    ));
+                }
+                None => {
+                    found.insert(format!("module `{target}` has no layer in LAYERS"));
+                }
+            }
+        }
+    }
+    found.into_iter().collect()
+}
+
+#[test]
+fn every_import_points_down_the_layers() {
+    let src = root().join("src");
+    let mut files = Vec::new();
+    rust_files(&src, &mut files);
+    let graph = module_graph(&src, &files);
+    let violations = layer_violations(&graph);
+    assert!(
+        violations.is_empty(),
+        "imports against the layer order {LAYERS:?}:\n{}",
+        violations.join("\n")
+    );
+    // Every layer's modules exist (a renamed module must be renamed here too).
+    for name in LAYERS.iter().flat_map(|l| l.iter()) {
+        assert!(
+            graph
+                .keys()
+                .any(|m| m.first().map(String::as_str) == Some(*name)),
+            "LAYERS names `{name}`, which is not a module of src/"
+        );
+    }
+}
+
+#[test]
+fn the_layer_checker_finds_an_upward_import() {
+    // Made-up files: the frontend importing the command line (issue 31's arrow up the
+    // layers), through `crate::` and through `super::`, and one import down, which is fine.
+    let src = PathBuf::from("/made-up/src");
+    let file = |path: &str, text: &str| (src.join(path), text.to_string());
+    let files = [
+        file("lib.rs", "pub mod cli;\npub mod frontend;\npub mod gpu;\n"),
+        file("gpu/mod.rs", "pub struct Context;\n"),
+        file(
+            "cli/mod.rs",
+            "pub mod tuning;\nuse crate::frontend::RunSettings;\n",
+        ),
+        file("cli/tuning.rs", "pub struct Tunables;\n"),
+        file(
+            "frontend/mod.rs",
+            "pub mod overlay;\nuse crate::gpu::Context;\npub struct RunSettings;\n",
+        ),
+        file(
+            "frontend/overlay.rs",
+            "use crate::cli::tuning::Tunables;\nuse super::super::cli::{tuning};\n",
+        ),
+    ];
+    let graph = module_graph_of(&src, &files);
+    let violations = layer_violations(&graph);
+    // Only the overlay's imports (`cli` from `super::super::cli`, `cli::tuning` from both);
+    // cli → frontend and frontend → gpu point down.
+    assert!(
+        violations
+            .iter()
+            .any(|v| v.starts_with("frontend::overlay uses cli::tuning")),
+        "{violations:?}"
+    );
+    assert!(
+        violations
+            .iter()
+            .all(|v| v.starts_with("frontend::overlay uses cli")),
+        "{violations:?}"
+    );
+    // A module outside the order is reported too.
+    let stray = [
+        file("lib.rs", ""),
+        file("newthing.rs", "use crate::gpu::Context;\n"),
+    ];
+    let stray = [stray[0].clone(), stray[1].clone(), files[1].clone()];
+    let violations = layer_violations(&module_graph_of(&src, &stray));
+    assert_eq!(
+        violations,
+        vec!["module `newthing` has no layer in LAYERS".to_string()]
+    );
 }
 
 #[test]

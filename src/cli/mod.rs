@@ -8,11 +8,10 @@ use clap::{Parser, ValueEnum};
 
 mod bench;
 mod config;
-pub mod presets;
 mod retune;
-pub mod tuning;
 mod values;
 
+pub use crate::tuning::{self, presets};
 pub use bench::{
     check_bench_fft_flags, command, BenchCommand, BenchFftArgs, BenchFramesArgs, BenchGerstnerArgs,
     Command,

@@ -11,8 +11,8 @@ pub mod windowed;
 use std::path::PathBuf;
 use std::sync::Arc;
 
-use crate::cli::tuning::Tunables;
 use crate::gpu::{MessageCounters, PresentMode};
+use crate::tuning::Tunables;
 
 /// Everything a run needs, validated by the command line.
 #[derive(Clone, Debug)]

@@ -12,11 +12,11 @@ use egui::epaint::ClippedPrimitive;
 use egui::{ComboBox, RawInput, Slider, TexturesDelta, Ui};
 
 use super::session::Session;
-use crate::cli::presets::{PresetArg, QualityArg};
-use crate::cli::tuning::Tunables;
 use crate::gpu::egui::EguiPainter;
 use crate::gpu::{Context, GpuResult};
 use crate::render::OverlayDraw;
+use crate::tuning::presets::{PresetArg, QualityArg};
+use crate::tuning::Tunables;
 
 /// What the user asked for in this frame's panel.
 #[derive(Default)]

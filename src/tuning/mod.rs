@@ -1,13 +1,19 @@
 //! [`Tunables`]: the settings a running sample can change (the overlay's sliders), each one a
-//! command-line flag of the same name. `Cli::retuned` turns them back into a run's settings
-//! through the same resolution as the flags (`Cli::settings`), so a live change and a restart
-//! with the flag make the same sea; [`Tunables::to_toml`] writes them as a `--config` file.
+//! command-line flag of the same name, and the [`presets`] (`--quality`, `--preset`) that fill
+//! them. `Cli::retuned` turns them back into a run's settings through the same resolution as
+//! the flags (`Cli::settings`), so a live change and a restart with the flag make the same sea;
+//! [`Tunables::to_toml`] writes them as a `--config` file.
+//!
+//! A layer of its own under `frontend` (whose overlay edits them) and `cli` (which resolves
+//! them): the frontend never imports the command line (tests/layout.rs).
 
 use clap::ValueEnum;
 
-use super::presets::{quality_level, sea_preset, PresetArg, QualityArg};
+pub mod presets;
+
 use crate::ocean::SpectrumKind;
 use crate::render::{AntiAliasing, FresnelModel, ViewMode};
+use presets::{quality_level, sea_preset, PresetArg, QualityArg};
 
 /// Largest `--time-scale`.
 pub const MAX_TIME_SCALE: f64 = 100.0;
