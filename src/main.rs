@@ -129,7 +129,7 @@ fn run(user_args: Vec<std::ffi::OsString>) -> ExitCode {
     };
     match outcome.and_then(|o| vkocean::output::stdout_status().map(|_| o)) {
         Ok(outcome) => {
-            if cli.validation {
+            if cli.validation_on() {
                 eprintln!("{}", outcome.counters.summary());
                 if outcome.counters.warnings() + outcome.counters.errors() > 0 {
                     return ExitCode::from(3);

@@ -215,6 +215,94 @@ fn missing_validation_layer_is_reported() {
 }
 
 #[test]
+fn unknown_validation_extra_is_usage_error() {
+    for list in ["bogus", "best-practices,nope", ""] {
+        let name = list.rsplit(',').next().unwrap_or_default();
+        assert_fails(
+            &["--headless", "--validation-extra", list],
+            &[],
+            2,
+            &format!("unknown check '{name}' (known: best-practices, vendors, gpu-assisted)"),
+        );
+    }
+    assert_fails(
+        &["bench", "fft", "--validation-extra", "bogus"],
+        &[],
+        2,
+        "unknown check 'bogus'",
+    );
+}
+
+/// `--validation-extra best-practices` turns Best Practices on (`VkValidationFeaturesEXT`, in
+/// every layer version). Under the newest layer (tools/newest-layer, fetched by
+/// tools/validate-newest into target/newest-layer) the run must be clean; the installed layer
+/// may report Best Practices advice only (Debian 12's 1.3.239 reports three ids that 1.4.364
+/// no longer reports: README, Validation), never a core or synchronization message. The vendor
+/// checks need VK_EXT_layer_settings: without it, one line saying so.
+#[test]
+fn validation_extra_best_practices() {
+    let args = [
+        "--validation-extra",
+        "best-practices",
+        "--headless",
+        "--size",
+        "160x90",
+        "--frames",
+        "3",
+    ];
+    let out = run(&args);
+    let err = stderr(&out);
+    match out.status.code() {
+        Some(0) => {
+            common::clean_run(&out, "best-practices, installed layer");
+        }
+        Some(3) => {
+            assert_eq!(
+                common::validation_counts(&err).map(|c| c.1),
+                Some(0),
+                "{err}"
+            );
+            for line in err.lines().filter(|l| l.starts_with('[')) {
+                assert!(line.contains("BestPractices"), "not Best Practices: {line}");
+            }
+        }
+        code => panic!("exit {code:?}: {err}"),
+    }
+
+    let newest = std::env::var("VKOCEAN_NEWEST_LAYER")
+        .map(std::path::PathBuf::from)
+        .unwrap_or_else(|_| {
+            std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("target/newest-layer")
+        });
+    if newest.join("VkLayer_khronos_validation.json").is_file() {
+        let env = [("VK_LAYER_PATH", newest.to_str().expect("a UTF-8 path"))];
+        common::clean_run(&run_with_env(&args, &env), "best-practices, newest layer");
+    } else {
+        eprintln!(
+            "no newest layer in {} (tools/newest-layer): its clean run not checked",
+            newest.display()
+        );
+    }
+
+    let vendors = run(&[
+        "--validation-extra",
+        "vendors",
+        "--headless",
+        "--size",
+        "16x16",
+    ]);
+    if vendors.status.code() == Some(1) {
+        assert_one_line(&vendors, 1, "has no VK_EXT_layer_settings", "vendors");
+    } else {
+        assert!(
+            matches!(vendors.status.code(), Some(0 | 3)),
+            "{}",
+            stderr(&vendors)
+        );
+    }
+}
+
+#[test]
 fn window_without_display_says_use_headless() {
     let out = std::process::Command::new(common::bin())
         .args(["--frames", "1"])

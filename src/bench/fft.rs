@@ -42,6 +42,7 @@ pub struct FftBenchSettings {
     pub runs: Option<usize>,
     pub json: Option<PathBuf>,
     pub validation: bool,
+    pub validation_extras: crate::gpu::ValidationExtras,
     pub gpu: Option<usize>,
 }
 
@@ -72,7 +73,7 @@ const MAX_RUNS: usize = 2000;
 
 pub fn fft(s: &FftBenchSettings) -> anyhow::Result<Outcome> {
     let json_file = PendingFile::create_if("--json", s.json.as_deref())?;
-    let ctx = Context::headless(s.validation, s.gpu)?;
+    let ctx = Context::headless(s.validation, s.validation_extras, s.gpu)?;
     let counters = ctx.counters();
     for &n in &s.sizes {
         crate::ocean::fft::check_plan(&ctx, n, s.batch).map_err(anyhow::Error::msg)?;

@@ -226,7 +226,7 @@ pub fn cost_settings(run: &RunSettings) -> Vec<(&'static str, Value)> {
 pub fn frames(s: &FramesBenchSettings) -> anyhow::Result<Outcome> {
     let json_file = PendingFile::create_if("--json", s.json.as_deref())?;
     let csv_file = PendingFile::create_if("--csv", s.csv.as_deref())?;
-    let ctx = Context::headless(s.run.validation, s.run.gpu)?;
+    let ctx = Context::headless(s.run.validation, s.run.validation_extras, s.run.gpu)?;
     let counters = ctx.counters();
     let settings = cost_settings(&s.run);
     let settings_line: Vec<String> = settings

@@ -141,14 +141,15 @@ impl BenchFftArgs {
             batch: self.batch,
             runs: self.runs,
             json: self.json.clone(),
-            validation: cli.validation,
+            validation: cli.validation_on(),
+            validation_extras: cli.validation_extra.unwrap_or_default(),
             gpu: cli.gpu,
         })
     }
 }
 
-/// The flags `bench fft` takes besides its own (`--config` may set them too).
-const FFT_GLOBALS: [&str; 3] = ["gpu", "validation", "config"];
+/// The flags `bench fft` takes besides its own (`--config` may set them too), as written.
+const FFT_GLOBALS: [&str; 4] = ["gpu", "validation", "validation-extra", "config"];
 
 /// The command line's clap command, with `bench fft`'s help listing only the flags that apply
 /// there (clap would list every global scene and sea flag, which `bench fft` rejects).
@@ -160,7 +161,8 @@ pub fn command() -> clap::Command {
             .about("Time our GPU FFT against rustfft (one CPU thread) on the same 2D transforms."),
     );
     for id in FFT_GLOBALS {
-        if let Some(arg) = cli.get_arguments().find(|a| a.get_id() == id) {
+        let id = id.replace('-', "_"); // clap's id is the field's name
+        if let Some(arg) = cli.get_arguments().find(|a| a.get_id() == id.as_str()) {
             fft = fft.arg(arg.clone().global(false));
         }
     }
@@ -186,7 +188,7 @@ pub fn check_bench_fft_flags(user_args: &[std::ffi::OsString]) -> Result<(), Usa
         let name = name.split('=').next().unwrap_or(name);
         if !own.contains(&name) && !FFT_GLOBALS.contains(&name) {
             return Err(UsageError(format!(
-                "--{name} does not apply to bench fft (it times the FFT alone; it takes --sizes, --batch, --runs, --json, --gpu, --validation and --config)"
+                "--{name} does not apply to bench fft (it times the FFT alone; it takes --sizes, --batch, --runs, --json, --gpu, --validation, --validation-extra and --config)"
             )));
         }
     }

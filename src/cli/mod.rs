@@ -72,6 +72,13 @@ pub struct Cli {
     #[arg(long, global = true)]
     pub validation: bool,
 
+    /// With --validation (implied): the layer's extra checks, a comma list of best-practices
+    /// (Best Practices), vendors (with its AMD, Arm, IMG and NVIDIA checks; needs a layer with
+    /// VK_EXT_layer_settings, 1.3.268 or newer) and gpu-assisted (GPU-assisted validation).
+    /// What they report on lavapipe is listed in README.
+    #[arg(long, global = true, value_name = "LIST", value_parser = parse_validation_extras)]
+    pub validation_extra: Option<crate::gpu::ValidationExtras>,
+
     /// Write GPU timestamps per pass and frame times as JSON (first 5 frames are warm-up).
     #[arg(long, value_name = "PATH")]
     pub profile: Option<PathBuf>,
@@ -443,6 +450,12 @@ impl Cli {
         Ok(run)
     }
 
+    /// Whether the validation layer is on: `--validation`, or `--validation-extra`, which
+    /// implies it.
+    pub fn validation_on(&self) -> bool {
+        self.validation || self.validation_extra.is_some()
+    }
+
     /// The quality level: `--quality`, else the device's default (`cpu_device`), else high.
     pub fn quality_in_force(&self) -> QualityArg {
         self.quality
@@ -558,7 +571,8 @@ impl Cli {
             screenshot: self.screenshot.clone(),
             profile: self.profile.clone(),
             frame_graph: self.frame_graph.clone(),
-            validation: self.validation,
+            validation: self.validation_on(),
+            validation_extras: self.validation_extra.unwrap_or_default(),
             gpu: self.gpu,
             present_mode: self.present_mode,
             inject_sync_hazard: self.inject_sync_hazard,

@@ -133,6 +133,11 @@ pub fn require_extension(
     }
 }
 
+/// `--validation-extra`: a comma list of the layer's extra checks.
+pub fn parse_validation_extras(s: &str) -> Result<crate::gpu::ValidationExtras, String> {
+    crate::gpu::ValidationExtras::parse(s)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -28,6 +28,8 @@ pub struct RunSettings {
     /// `--frame-graph PATH`: one frame's graph, as JSON or (`.dot`) Graphviz.
     pub frame_graph: Option<PathBuf>,
     pub validation: bool,
+    /// `--validation-extra`: the layer's checks beyond the core and synchronization ones.
+    pub validation_extras: crate::gpu::ValidationExtras,
     pub gpu: Option<usize>,
     pub present_mode: PresentMode,
     /// Test-only: record a deliberate synchronization hazard in the first frame.

@@ -204,6 +204,7 @@ impl App {
             .as_raw();
         let ctx = Context::new(&ContextDesc {
             validation: self.settings.validation,
+            validation_extras: self.settings.validation_extras,
             gpu_index: self.settings.gpu,
             window: Some((display, handle)),
         })?;

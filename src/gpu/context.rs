@@ -22,7 +22,7 @@ use super::track::{Access, Use};
 
 /// How long a GPU wait may take before the device is declared hung (s).
 pub const WAIT_TIMEOUT_S: u64 = 60;
-use super::instance::{create_instance, load_entry};
+use super::instance::{create_instance, load_entry, ValidationExtras};
 use super::physical::{best_usable, inspect, type_name, Candidate};
 pub use super::physical::{chosen_device_is_cpu, list_devices, DeviceInfo, DeviceSummary};
 use super::queues::{QueuePlan, QueueUsers, Sharing};
@@ -32,6 +32,8 @@ use super::queues::{QueuePlan, QueueUsers, Sharing};
 pub struct ContextDesc {
     /// Enable VK_LAYER_KHRONOS_validation with synchronization validation.
     pub validation: bool,
+    /// With `validation`: the layer's extra checks (`--validation-extra`).
+    pub validation_extras: ValidationExtras,
     /// `--gpu N`: index into the device list (`--list-gpus`); `None` picks the best device.
     pub gpu_index: Option<usize>,
     /// Window to present to (windowed frontend); `None` for headless.
@@ -88,9 +90,14 @@ pub struct Context {
 
 impl Context {
     /// A context without a window (headless runs and benchmarks).
-    pub fn headless(validation: bool, gpu_index: Option<usize>) -> GpuResult<Arc<Context>> {
+    pub fn headless(
+        validation: bool,
+        validation_extras: ValidationExtras,
+        gpu_index: Option<usize>,
+    ) -> GpuResult<Arc<Context>> {
         Context::new(&ContextDesc {
             validation,
+            validation_extras,
             gpu_index,
             window: None,
         })
@@ -104,8 +111,13 @@ impl Context {
     pub fn new(desc: &ContextDesc) -> GpuResult<Arc<Context>> {
         let entry = load_entry()?;
         let counters = Arc::new(MessageCounters::new(desc.validation));
-        let (instance, debug_utils) =
-            create_instance(&entry, desc.validation, desc.window.map(|w| w.0), &counters)?;
+        let (instance, debug_utils) = create_instance(
+            &entry,
+            desc.validation,
+            desc.validation_extras,
+            desc.window.map(|w| w.0),
+            &counters,
+        )?;
         // From here on, partial state is torn down by `Partial`'s Drop on early return.
         let mut partial = Partial {
             instance: Some(instance.clone()),

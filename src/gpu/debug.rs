@@ -47,6 +47,13 @@ impl MessageCounters {
     }
 }
 
+/// Warnings in which the validation layer describes its own set-up, not our use of the API:
+/// logged at info and not counted. With GPU-assisted validation (`--validation-extra
+/// gpu-assisted`) layers 1.4 say that core checks slow it down (`VALIDATION-SETTINGS`) and that
+/// they forced the device features their instrumentation needs on
+/// (`WARNING-Setting-Limit-Adjusted`).
+const LAYER_NOTICES: [&str; 2] = ["VALIDATION-SETTINGS", "WARNING-Setting-Limit-Adjusted"];
+
 /// Severities we subscribe to: the ones that mean our API use is wrong or questionable.
 pub(crate) fn severities() -> vk::DebugUtilsMessageSeverityFlagsEXT {
     vk::DebugUtilsMessageSeverityFlagsEXT::WARNING | vk::DebugUtilsMessageSeverityFlagsEXT::ERROR
@@ -92,16 +99,22 @@ unsafe extern "system" fn on_message(
         };
         (counters, id, message)
     };
+    let id = id.as_deref().map(str::trim).unwrap_or_default().to_string();
     let (counter, level) = if severity.contains(vk::DebugUtilsMessageSeverityFlagsEXT::ERROR) {
-        (&counters.errors, log::Level::Error)
+        (Some(&counters.errors), log::Level::Error)
+    } else if LAYER_NOTICES.contains(&id.as_str()) {
+        (None, log::Level::Info)
     } else {
-        (&counters.warnings, log::Level::Warn)
+        (Some(&counters.warnings), log::Level::Warn)
     };
-    counter.fetch_add(1, Ordering::Relaxed);
+    if let Some(counter) = counter {
+        counter.fetch_add(1, Ordering::Relaxed);
+    }
     let message = message.unwrap_or_else(|| "(no message)".into());
-    let id = match id.as_deref().map(str::trim) {
-        Some(id) if !id.is_empty() => format!("[{id}] "),
-        _ => String::new(),
+    let id = if id.is_empty() {
+        id
+    } else {
+        format!("[{id}] ")
     };
     log::log!(
         if counters.loud {

@@ -39,6 +39,7 @@ pub use formats::FormatUse;
 pub use frame::{Frame, Frames, Submission, FRAMES_IN_FLIGHT};
 pub use gpu_allocator::MemoryLocation;
 pub use image::{Image, ImageDesc, Output, Sampler};
+pub use instance::ValidationExtras;
 pub use pass::{check_bindings, Bindings, Rendering, Target};
 pub use pipeline::{GraphicsDesc, Pipeline, PipelineLayout};
 pub use queues::{QueuePlan, QueueUsers};

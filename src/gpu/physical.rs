@@ -271,7 +271,7 @@ pub(crate) struct DeviceSummaryParts {
 pub fn list_devices() -> GpuResult<Vec<DeviceSummary>> {
     let entry = load_entry()?;
     let counters = Arc::new(MessageCounters::new(false));
-    let (instance, _) = create_instance(&entry, false, None, &counters)?;
+    let (instance, _) = create_instance(&entry, false, Default::default(), None, &counters)?;
     // SAFETY: the instance is live; it is destroyed below, after its last use.
     let physicals = unsafe { instance.enumerate_physical_devices() };
     let list = physicals.map(|physicals| {
