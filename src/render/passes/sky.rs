@@ -222,6 +222,9 @@ impl SkyCube {
             pipeline,
             sets: &[],
         };
+        // Bound once for the six scopes (a binding outlives a rendering scope; each scope
+        // declares it): Best Practices' Pipeline-SortAndBind counted each face's rebinding.
+        rec.bind(&draw);
         for face in 0..self.image.layers() {
             // Face 0's barrier discards the whole cube; the later faces keep what the earlier
             // ones wrote (a layout change from UNDEFINED would discard them).
@@ -233,7 +236,6 @@ impl SkyCube {
             let target = [Target::layer(&self.image, face, load)];
             let scope = rec.rendering(names::SKY_CUBE, &target, None, &[draw]);
             scope.record(|| {
-                rec.bind(&draw);
                 rec.push_constants(
                     pipeline,
                     &FacePush {
