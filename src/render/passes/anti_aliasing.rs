@@ -26,9 +26,11 @@ use crate::shaders;
 
 pub struct AntiAliasingPass {
     ctx: Arc<Context>,
-    /// First draw: copies the main colour, writes depth 1 on edges and 0 elsewhere.
+    /// First draw: copies the main colour, writes depth 0 on edges and 1 elsewhere.
     edges: Pipeline,
-    /// Second draw, depth-tested (LESS, at depth 0): FXAA where the first draw wrote 1.
+    /// Second draw, depth-tested (GREATER_OR_EQUAL, at depth 0): FXAA where the first draw
+    /// wrote 0. The compare keeps the scene's reversed-Z direction (GREATER): NVIDIA's Z-cull
+    /// works in one direction per depth buffer (Best Practices' Zcull-LessGreaterRatio).
     fxaa: Pipeline,
     /// Binding 0: the main colour, sampled linearly and clamped. Kept: `resize` makes a set.
     set_layout: DescriptorSetLayout,
@@ -81,11 +83,11 @@ impl AntiAliasingPass {
             vk::CompareOp::ALWAYS,
             true,
         )?;
-        // fullscreen.vert draws at depth 0: 0 < 1 on the marked pixels only.
+        // fullscreen.vert draws at depth 0: 0 >= 0 on the marked pixels only.
         let fxaa = pipeline(
             "anti-aliasing fxaa",
             shaders::POST_FXAA_FRAG,
-            vk::CompareOp::LESS,
+            vk::CompareOp::GREATER_OR_EQUAL,
             false,
         )?;
         Ok(AntiAliasingPass {
