@@ -136,7 +136,7 @@ fn a_texture_sampled_in_the_vertex_stage_is_waited_for_there() {
         "the barrier waits for {:?}, not the colour write",
         after.stage
     );
-    assert_eq!(read.layout, vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL);
+    assert_eq!(read.layout, Some(vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL));
     drop((set, pipeline, set_layout, sampler, texture, target));
     // Synchronization validation checks the same barrier independently.
     assert_validation_clean(ctx);

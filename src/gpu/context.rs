@@ -18,7 +18,7 @@ use super::debug::{self, DebugNames, MessageCounters};
 use super::error::{GpuError, GpuResult, VkResultExt};
 use super::garbage::Garbage;
 use super::graph::{FrameGraph, Journal, SemaphoreRecord};
-use super::track::{Access, Use};
+use super::track::Access;
 
 /// How long a GPU wait may take before the device is declared hung (s).
 pub const WAIT_TIMEOUT_S: u64 = 60;
@@ -317,15 +317,20 @@ impl Context {
         self.journal(|j| j.pass(name));
     }
 
-    /// The frame graph: a use, its barrier, or what orders it instead.
+    /// The frame graph: a use of `resource` (an image in `layout`, a buffer without), its
+    /// barrier, or what orders it instead.
     pub(super) fn journal_use(
         &self,
         resource: &str,
-        next: Use,
+        (access, layout): (Access, Option<vk::ImageLayout>),
+        writes: bool,
         barrier: Option<(Access, Access)>,
         ordered_by: Option<&str>,
     ) {
-        self.journal(|j| j.record(resource, next, barrier, ordered_by));
+        self.journal(|j| {
+            let record = Journal::use_record(resource, access, layout, barrier, ordered_by);
+            j.record(record, writes)
+        });
     }
 
     /// The frame graph: a submission to `queue` of the passes recorded since the last.

@@ -10,7 +10,11 @@ use std::fmt::Write as _;
 use ash::vk;
 use serde_json::{json, Value};
 
-use super::track::{Access, Use};
+use super::track::Access;
+
+/// `ordered_by` of a read of what the host wrote before the submission (uniforms, tables):
+/// listed in the JSON, left out of the picture.
+pub const HOST_WRITES: &str = "the host's writes before the submission";
 
 /// One use of a resource by a pass.
 #[derive(Clone, Debug)]
@@ -18,7 +22,8 @@ pub struct UseRecord {
     pub resource: String,
     pub stages: vk::PipelineStageFlags2,
     pub access: vk::AccessFlags2,
-    pub layout: vk::ImageLayout,
+    /// The image's layout during the use (`None` for buffers).
+    pub layout: Option<vk::ImageLayout>,
     /// The barrier recorded before it: (waited-for stages and accesses, this use's).
     pub barrier: Option<(Access, Access)>,
     /// What orders it when no barrier of this queue does (a semaphore wait).
@@ -84,39 +89,32 @@ impl Journal {
         }
     }
 
-    pub fn record(
-        &mut self,
-        resource: &str,
-        next: Use,
-        barrier: Option<(Access, Access)>,
-        ordered_by: Option<&str>,
-    ) {
+    pub fn record(&mut self, record: UseRecord, writes: bool) {
         if self.passes.is_empty() {
             self.pass("(outside any pass)");
         }
-        let (access, layout) = next.scope();
-        // What a semaphore wait orders stays where its writer left it: sampled in GENERAL
-        // (`descriptors::sampled_layout`), not in the layout a tracked read moves it to.
-        let layout = match ordered_by {
-            Some(_) => super::descriptors::sampled_layout(super::descriptors::Order::Wait {
-                by: "",
-                stages: vk::PipelineStageFlags2::NONE,
-            }),
-            None => layout,
-        };
-        let record = UseRecord {
+        let pass = self.passes.last_mut().expect("a pass");
+        if writes {
+            pass.writes.push(record);
+        } else {
+            pass.reads.push(record);
+        }
+    }
+
+    pub fn use_record(
+        resource: &str,
+        access: Access,
+        layout: Option<vk::ImageLayout>,
+        barrier: Option<(Access, Access)>,
+        ordered_by: Option<&str>,
+    ) -> UseRecord {
+        UseRecord {
             resource: resource.to_string(),
             stages: access.stage,
             access: access.access,
             layout,
             barrier,
             ordered_by: ordered_by.map(str::to_string),
-        };
-        let pass = self.passes.last_mut().expect("a pass");
-        if next.writes() {
-            pass.writes.push(record);
-        } else {
-            pass.reads.push(record);
         }
     }
 
@@ -173,6 +171,24 @@ pub fn layout_name(layout: vk::ImageLayout) -> String {
     format!("VK_IMAGE_LAYOUT_{layout:?}")
 }
 
+/// Stage names for a picture: `tessellation_evaluation_shader|fragment_shader`.
+fn short(stages: vk::PipelineStageFlags2) -> String {
+    stage_names(stages)
+        .iter()
+        .map(|n| {
+            n.trim_start_matches("VK_PIPELINE_STAGE_2_")
+                .trim_end_matches("_BIT")
+                .to_lowercase()
+        })
+        .collect::<Vec<_>>()
+        .join("|")
+}
+
+/// A name inside a Graphviz string.
+fn quote(s: &str) -> String {
+    s.replace('"', "'")
+}
+
 impl FrameGraph {
     /// `{"submissions": [{"name", "queue", "queue_family", "waits", "signals", "passes":
     /// [{"name", "reads", "writes"}]}]}`, flags as arrays of Vulkan names.
@@ -185,8 +201,10 @@ impl FrameGraph {
                 "resource": u.resource,
                 "stages": stage_names(u.stages),
                 "access": access_names(u.access),
-                "layout": layout_name(u.layout),
             });
+            if let Some(layout) = u.layout {
+                v["layout"] = json!(layout_name(layout));
+            }
             if let Some((src, dst)) = &u.barrier {
                 v["barrier"] = json!({"after": access(src), "before": access(dst)});
             }
@@ -220,18 +238,6 @@ impl FrameGraph {
     /// pass that last wrote a resource to each pass that then uses it, labelled with the
     /// resource and the reading stages; semaphores as edges between submissions.
     pub fn to_dot(&self) -> String {
-        let short = |stages: vk::PipelineStageFlags2| {
-            stage_names(stages)
-                .iter()
-                .map(|n| {
-                    n.trim_start_matches("VK_PIPELINE_STAGE_2_")
-                        .trim_end_matches("_BIT")
-                        .to_lowercase()
-                })
-                .collect::<Vec<_>>()
-                .join("|")
-        };
-        let quote = |s: &str| s.replace('"', "'");
         let mut out = String::from(
             "digraph frame {\n  rankdir=TB;\n  node [shape=box, style=rounded, fontname=\"Helvetica\"];\n  edge [fontname=\"Helvetica\", fontsize=10];\n",
         );
@@ -277,7 +283,8 @@ impl FrameGraph {
             }
             for (pi, p) in s.passes.iter().enumerate() {
                 let node = format!("s{si}p{pi}");
-                for u in p.reads.iter().chain(&p.writes) {
+                let drawn = p.reads.iter().chain(&p.writes);
+                for u in drawn.filter(|u| u.ordered_by.as_deref() != Some(HOST_WRITES)) {
                     if !writer.contains_key(&u.resource)
                         && !p.writes.iter().any(|w| w.resource == u.resource)
                     {

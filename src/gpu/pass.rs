@@ -16,11 +16,11 @@
 use ash::vk;
 
 use super::command::{Attachment, BindingsKey, ImageBarrier, Load, Recorder};
-use super::descriptors::{BoundSet, Order, Resource};
+use super::descriptors::{sampled_layout, BoundSet, Order, Resource};
 use super::image::{Image, Output};
 use super::pipeline::Pipeline;
 use super::reflect::{pipeline_stages, Kind};
-use super::track::{transition, Handle, Raw, State, StateCell, Tracked, Use};
+use super::track::{transition, Access, Handle, Raw, State, StateCell, Tracked, Use};
 
 /// One layer of an image, tracked on its own while `Recorder::halve_down_layers` runs.
 struct Layer<'a> {
@@ -180,8 +180,16 @@ impl Recorder<'_> {
                 matches!(handle, Raw::Image(..)),
             );
             resource.state().set(after);
-            self.ctx
-                .journal_use(resource.name(), *next, barrier.map(|b| (b.2, b.3)), None);
+            let (access, layout) = next.scope();
+            let layout = matches!(handle, Raw::Image(..)).then_some(layout);
+            let barrier_scopes = barrier.map(|b| (b.2, b.3));
+            self.ctx.journal_use(
+                resource.name(),
+                (access, layout),
+                next.writes(),
+                barrier_scopes,
+                None,
+            );
             let Some((old_layout, new_layout, src, dst)) = barrier else {
                 continue;
             };
@@ -259,6 +267,7 @@ impl Recorder<'_> {
             uses.push((t.image, Use::Depth { keep }));
         }
         let mut sampled: Vec<(&Image, vk::PipelineStageFlags2)> = Vec::new();
+        let mut host: Vec<(&Resource, vk::PipelineStageFlags2)> = Vec::new();
         for b in draws {
             for read in reads(pass, b).unwrap_or_else(|e| panic!("{e}")) {
                 let stages = pipeline_stages(read.stages);
@@ -269,14 +278,34 @@ impl Recorder<'_> {
                             None => sampled.push((image, stages)),
                         }
                     }
-                    (Order::Wait { by, .. }, Resource::Image(image)) => {
+                    // Ordered by a semaphore wait, sampled where its writer left it.
+                    (order @ Order::Wait { by, .. }, Resource::Image(image)) => {
+                        let access = Access {
+                            stage: stages,
+                            access: vk::AccessFlags2::SHADER_SAMPLED_READ,
+                        };
+                        let layout = Some(sampled_layout(order));
+                        let journal = (access, layout);
                         self.ctx
-                            .journal_use(image.name(), Use::Sampled(stages), None, Some(by));
+                            .journal_use(image.name(), journal, false, None, Some(by));
                     }
                     // Uniforms, written by the host before the submission.
-                    _ => {}
+                    (_, resource) => {
+                        let same = |r: &Resource| std::ptr::eq(r, resource);
+                        match host.iter_mut().find(|(r, _)| same(r)) {
+                            Some((_, s)) => *s |= stages,
+                            None => host.push((resource, stages)),
+                        }
+                    }
                 }
             }
+        }
+        for (resource, stages) in host {
+            let access = Access {
+                stage: stages,
+                access: vk::AccessFlags2::UNIFORM_READ,
+            };
+            self.journal_host(resource, access);
         }
         for (image, stages) in &sampled {
             uses.push((*image, Use::Sampled(*stages)));
@@ -323,6 +352,8 @@ impl Recorder<'_> {
         let mut uses: Vec<(&dyn Tracked, Use)> = Vec::new();
         for read in reads(b.pipeline.name(), b).unwrap_or_else(|e| panic!("{e}")) {
             if read.order != Order::Tracked {
+                // Written by the host before the submission (tables, twiddles).
+                self.journal_host(read.resource, Access::COMPUTE_READ);
                 continue;
             }
             let next = compute_use(&read);
@@ -334,6 +365,16 @@ impl Recorder<'_> {
         self.uses(&uses);
         self.bind(b);
         self.dispatch(groups[0], groups[1], groups[2]);
+    }
+
+    /// The frame graph: a read of what the host wrote before the submission.
+    fn journal_host(&self, resource: &Resource, access: Access) {
+        let name = match resource {
+            Resource::Image(i) => i.name(),
+            Resource::Buffer(b) => b.name(),
+        };
+        let by = Some(super::graph::HOST_WRITES);
+        self.ctx.journal_use(name, (access, None), false, None, by);
     }
 
     /// Names the pass the following uses belong to in the frame graph (uses outside any
