@@ -25,7 +25,7 @@ use super::session::{check_size, readback_buffer, Session};
 use super::{Outcome, RunSettings};
 use crate::gpu::{Buffer, Context, ContextDesc, MessageCounters, Output, Swapchain};
 use crate::output::{encode_png, PendingFile, Staged};
-use crate::render::{Delivery, FrameInputs, OutputTarget, SwapchainSync, ACQUIRE_WAIT_STAGE};
+use crate::render::{Delivery, FrameInputs, OutputTarget, ACQUIRE_WAIT_STAGE};
 
 pub fn run(s: &RunSettings) -> anyhow::Result<Outcome> {
     crate::platform::check_display()?;
@@ -324,7 +324,7 @@ impl App {
         };
 
         // Free for writing once the acquire semaphore's wait is done.
-        let swapchain_image = image.target(extent, state.swapchain.format, ACQUIRE_WAIT_STAGE);
+        let swapchain_image = image.target(ACQUIRE_WAIT_STAGE);
         let transfer_dst = state.swapchain.transfer_dst;
         let output = OutputTarget::new(Output::External(&swapchain_image), transfer_dst);
         let now = std::time::Instant::now();
@@ -349,10 +349,7 @@ impl App {
         };
         let delivery = Delivery {
             readback,
-            present: Some(SwapchainSync {
-                acquired: image.acquired,
-                ready: image.ready,
-            }),
+            present: Some(image),
         };
         state.session.frame(&output, &inputs, &delivery, draw)?;
         self.capture_next |= requests.screenshot;

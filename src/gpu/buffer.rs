@@ -29,6 +29,7 @@ pub(super) struct BufferCore {
     /// Always `Some` until `Drop` moves it into the deletion queue.
     allocation: Option<Allocation>,
     pub(super) size: vk::DeviceSize,
+    usage: vk::BufferUsageFlags,
     name: String,
     /// What the last recorded use left (`track`).
     pub(super) state: StateCell,
@@ -84,6 +85,7 @@ impl Buffer {
             raw,
             allocation: Some(allocation),
             size,
+            usage,
             name: name.to_string(),
             state: StateCell::new(State::NEW),
         };
@@ -106,6 +108,12 @@ impl Buffer {
 
     pub(super) fn raw(&self) -> vk::Buffer {
         self.core.raw
+    }
+
+    /// Panics unless the buffer was created with `usage` (for `what`): the GPU layer's safe
+    /// functions refuse what would be invalid usage.
+    pub(super) fn expect_usage(&self, usage: vk::BufferUsageFlags, what: &str) {
+        self.core.expect_usage(usage, what);
     }
 
     /// The handle descriptor sets keep alive.
@@ -145,6 +153,16 @@ impl Buffer {
     }
 }
 
+impl BufferCore {
+    fn expect_usage(&self, usage: vk::BufferUsageFlags, what: &str) {
+        assert!(
+            self.usage.contains(usage),
+            "buffer {} lacks {usage:?} usage, which {what} needs",
+            self.name
+        );
+    }
+}
+
 impl Drop for BufferCore {
     fn drop(&mut self) {
         if let Some(allocation) = self.allocation.take() {
@@ -173,12 +191,45 @@ impl BufferView {
         buffer: &Buffer,
         format: vk::Format,
     ) -> GpuResult<BufferView> {
+        use vk::BufferUsageFlags as U;
+        use vk::FormatFeatureFlags as F;
+        // Every texel-buffer use the buffer has must be a feature of the format, and the view
+        // within maxTexelBufferElements: otherwise one line, not invalid usage.
+        let usage = buffer.core.usage;
+        let features = ctx.buffer_format_features(format);
+        let needs = [
+            (U::UNIFORM_TEXEL_BUFFER, F::UNIFORM_TEXEL_BUFFER),
+            (U::STORAGE_TEXEL_BUFFER, F::STORAGE_TEXEL_BUFFER),
+        ];
+        let texel = U::UNIFORM_TEXEL_BUFFER | U::STORAGE_TEXEL_BUFFER;
+        let missing = needs
+            .iter()
+            .any(|(u, f)| usage.contains(*u) && !features.contains(*f));
+        let texel_bytes: u64 = match format {
+            vk::Format::R32G32B32A32_SFLOAT => 16,
+            vk::Format::R32G32_SFLOAT => 8,
+            vk::Format::R32_SFLOAT | vk::Format::R8G8B8A8_UNORM => 4,
+            _ => 0,
+        };
+        let elements = buffer
+            .core
+            .size
+            .checked_div(texel_bytes)
+            .unwrap_or(u64::MAX);
+        let limit = ctx.info.limits.max_texel_buffer_elements as u64;
+        if !usage.intersects(texel) || missing || elements > limit {
+            return Err(GpuError::Unsupported(format!(
+                "buffer view {name} of {} ({} bytes) as {format:?}: needs a texel-buffer usage the format supports and at most {limit} texels",
+                buffer.core.name, buffer.core.size
+            )));
+        }
         let info = vk::BufferViewCreateInfo::default()
             .buffer(buffer.raw())
             .format(format)
             .offset(0)
             .range(vk::WHOLE_SIZE);
-        // SAFETY: `buffer` is live and the create info is valid for it (caller's usage contract).
+        // SAFETY: `buffer` is live, has a texel-buffer usage the format supports and fits in
+        // maxTexelBufferElements (all checked above).
         let raw = unsafe { ctx.device.create_buffer_view(&info, None) }.vk("vkCreateBufferView")?;
         ctx.count_created(1);
         ctx.name(raw, name);
@@ -191,6 +242,11 @@ impl BufferView {
 
     pub(super) fn raw(&self) -> vk::BufferView {
         self.0.raw
+    }
+
+    /// Panics unless the viewed buffer has `usage` (for `what`).
+    pub(super) fn expect_usage(&self, usage: vk::BufferUsageFlags, what: &str) {
+        self.0.buffer.expect_usage(usage, what);
     }
 
     /// The viewed buffer (tracked).

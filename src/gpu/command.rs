@@ -34,7 +34,7 @@ pub enum Load {
 
 /// A colour or depth attachment of a rendering scope.
 #[derive(Clone, Copy)]
-pub struct Attachment {
+pub(super) struct Attachment {
     pub view: vk::ImageView,
     pub layout: vk::ImageLayout,
     /// What happens to the previous contents at the start of rendering.
@@ -305,6 +305,8 @@ impl<'a> Recorder<'a> {
             "copy of {need} bytes into a {}-byte buffer",
             buffer.size()
         );
+        image.expect_usage(vk::ImageUsageFlags::TRANSFER_SRC, "a copy to a buffer");
+        buffer.expect_usage(vk::BufferUsageFlags::TRANSFER_DST, "a copy from an image");
         self.uses(&[(image.tracked(), Use::CopySrc), (buffer, Use::CopyDst)]);
         let region = packed_region(extent, 1);
         // SAFETY: recording-state invariant; the image is in TRANSFER_SRC_OPTIMAL (the barrier
@@ -333,6 +335,8 @@ impl<'a> Recorder<'a> {
             dst.extent(),
             dst.format()
         );
+        src.expect_usage(vk::ImageUsageFlags::TRANSFER_SRC, "a copy's source");
+        dst.expect_usage(vk::ImageUsageFlags::TRANSFER_DST, "a copy's destination");
         self.uses(&[(src, Use::TransferSrc), (dst.tracked(), Use::TransferDst)]);
         let layer = packed_region(extent, 1).image_subresource;
         let region = vk::ImageCopy {
@@ -365,6 +369,8 @@ impl<'a> Recorder<'a> {
     /// channel order followed), with its barriers. The formats' BLIT_SRC / BLIT_DST and linear
     /// filtering are checked by the renderer's format check at creation.
     pub fn blit_image(&self, src: &Image, dst: Output, filter: vk::Filter) {
+        src.expect_usage(vk::ImageUsageFlags::TRANSFER_SRC, "a blit's source");
+        dst.expect_usage(vk::ImageUsageFlags::TRANSFER_DST, "a blit's destination");
         self.uses(&[(src, Use::TransferSrc), (dst.tracked(), Use::TransferDst)]);
         let layer = packed_region(src.extent, 1).image_subresource;
         let corners = |e: vk::Extent2D| {
@@ -403,6 +409,10 @@ impl<'a> Recorder<'a> {
     /// (TRANSFER_SRC_OPTIMAL) onto the top `half_height(layer)` rows of layer `layer`
     /// (TRANSFER_DST_OPTIMAL), full width, with a linear filter: each row the mean of two.
     pub fn blit_half_height(&self, image: &super::image::Image, layer: u32) {
+        image.expect_usage(
+            vk::ImageUsageFlags::TRANSFER_SRC | vk::ImageUsageFlags::TRANSFER_DST,
+            "blits between its layers",
+        );
         let rows = |layer| {
             [
                 vk::Offset3D::default(),
@@ -455,6 +465,8 @@ impl<'a> Recorder<'a> {
             buffer.size() >= Self::layers_bytes(image),
             "readback buffer too small"
         );
+        image.expect_usage(vk::ImageUsageFlags::TRANSFER_SRC, "a copy to a buffer");
+        buffer.expect_usage(vk::BufferUsageFlags::TRANSFER_DST, "a copy from an image");
         self.uses(&[(image, Use::CopySrc), (buffer, Use::CopyDst)]);
         let region = packed_region(image.extent, image.layers);
         // SAFETY: recording-state invariant; the image is in TRANSFER_SRC_OPTIMAL (the barrier
@@ -477,6 +489,8 @@ impl<'a> Recorder<'a> {
             buffer.size() >= Self::layers_bytes(image),
             "upload buffer too small"
         );
+        buffer.expect_usage(vk::BufferUsageFlags::TRANSFER_SRC, "a copy to an image");
+        image.expect_usage(vk::ImageUsageFlags::TRANSFER_DST, "a copy from a buffer");
         self.uses(&[(buffer, Use::CopySrc), (image, Use::CopyDst)]);
         let region = packed_region(image.extent, image.layers);
         // SAFETY: recording-state invariant; the image is in TRANSFER_DST_OPTIMAL (the barrier
@@ -494,6 +508,7 @@ impl<'a> Recorder<'a> {
 
     /// Clears every layer of a colour image to zero (in GENERAL), with its barrier.
     pub fn clear_image(&self, image: &Image) {
+        image.expect_usage(vk::ImageUsageFlags::TRANSFER_DST, "a clear");
         self.uses(&[(image, Use::Clear)]);
         let range = image.range();
         // SAFETY: recording-state invariant; the image has TRANSFER_DST usage (a validation
@@ -512,6 +527,7 @@ impl<'a> Recorder<'a> {
     /// Fills a whole buffer with a 32-bit value, without a barrier (the deliberate hazard of
     /// `selftest` only).
     pub(super) fn fill_buffer_unsynchronized(&self, buffer: &Buffer, value: u32) {
+        buffer.expect_usage(vk::BufferUsageFlags::TRANSFER_DST, "a fill");
         // SAFETY: recording-state invariant; the buffer has TRANSFER_DST usage.
         unsafe {
             self.ctx
@@ -523,6 +539,8 @@ impl<'a> Recorder<'a> {
     /// Copies `size` bytes from the start of `src` to the start of `dst`, without a barrier
     /// (`copy_buffer` and the deliberate hazard of `selftest`). Panics if either is smaller.
     pub(super) fn copy_buffer_unsynchronized(&self, src: &Buffer, dst: &Buffer, size: u64) {
+        src.expect_usage(vk::BufferUsageFlags::TRANSFER_SRC, "a copy's source");
+        dst.expect_usage(vk::BufferUsageFlags::TRANSFER_DST, "a copy's destination");
         assert!(
             size <= src.size() && size <= dst.size(),
             "copy of {size} bytes between buffers of {} and {} bytes",

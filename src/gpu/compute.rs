@@ -13,14 +13,14 @@ use super::context::Context;
 use super::error::{GpuResult, VkResultExt};
 use super::frame::{command_slot, FRAMES_IN_FLIGHT};
 use super::garbage::Garbage;
-use super::submit;
+use super::submit::{self, SemaphoreOp};
 
 pub struct ComputeQueue {
     ctx: Arc<Context>,
     /// Per slot: command pool and its command buffer.
     slots: Vec<(vk::CommandPool, vk::CommandBuffer)>,
     /// Signalled with frame values by compute submissions.
-    pub timeline: vk::Semaphore,
+    pub(super) timeline: vk::Semaphore,
 }
 
 impl ComputeQueue {
@@ -114,15 +114,13 @@ impl ComputeQueue {
     }
 
     /// The wait a graphics submission adds to sample this frame's compute results.
-    pub fn graphics_wait(
-        &self,
-        value: u64,
-        stages: vk::PipelineStageFlags2,
-    ) -> vk::SemaphoreSubmitInfo<'static> {
-        vk::SemaphoreSubmitInfo::default()
-            .semaphore(self.timeline)
-            .value(value)
-            .stage_mask(stages)
+    pub fn graphics_wait(&self, value: u64, stages: vk::PipelineStageFlags2) -> SemaphoreOp {
+        SemaphoreOp(
+            vk::SemaphoreSubmitInfo::default()
+                .semaphore(self.timeline)
+                .value(value)
+                .stage_mask(stages),
+        )
     }
 }
 

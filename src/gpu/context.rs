@@ -54,7 +54,7 @@ pub struct Context {
     pub(super) instance: ash::Instance,
     messenger: Option<(ash::ext::debug_utils::Instance, vk::DebugUtilsMessengerEXT)>,
     /// Object names and labels.
-    pub debug: DebugNames,
+    pub(super) debug: DebugNames,
     /// Surface functions and the window's surface (windowed frontend only).
     pub(super) surface: Option<(ash::khr::surface::Instance, vk::SurfaceKHR)>,
     pub(super) physical: vk::PhysicalDevice,
@@ -283,7 +283,7 @@ impl Context {
     }
 
     /// Names a Vulkan object (see [`DebugNames::name`]).
-    pub fn name<H: vk::Handle + Copy>(&self, handle: H, name: &str) {
+    pub(super) fn name<H: vk::Handle + Copy>(&self, handle: H, name: &str) {
         if H::TYPE == vk::ObjectType::SEMAPHORE {
             lock(&self.semaphore_names).insert(handle.as_raw(), name.to_string());
         }
@@ -415,7 +415,7 @@ impl Context {
 
     /// Blocks until the timeline `semaphore` reaches `value`; a device that does not get there
     /// within `WAIT_TIMEOUT_S` is reported as hung.
-    pub fn wait_timeline(&self, semaphore: vk::Semaphore, value: u64) -> GpuResult<()> {
+    pub(super) fn wait_timeline(&self, semaphore: vk::Semaphore, value: u64) -> GpuResult<()> {
         let semaphores = [semaphore];
         let values = [value];
         let info = vk::SemaphoreWaitInfo::default()

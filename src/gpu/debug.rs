@@ -143,7 +143,7 @@ pub struct DebugNames {
 
 impl DebugNames {
     /// Names any Vulkan object, so validation messages and captures say which one.
-    pub fn name<H: vk::Handle>(&self, handle: H, name: &str) {
+    pub(super) fn name<H: vk::Handle>(&self, handle: H, name: &str) {
         let Some(fns) = &self.device_fns else { return };
         let name = CString::new(name.replace('\0', " ")).expect("NULs were replaced");
         let info = vk::DebugUtilsObjectNameInfoEXT::default()
@@ -155,7 +155,7 @@ impl DebugNames {
     }
 
     /// Opens a labelled region in a command buffer in the recording state.
-    pub(crate) fn begin_label(&self, cmd: vk::CommandBuffer, name: &str) {
+    pub(super) fn begin_label(&self, cmd: vk::CommandBuffer, name: &str) {
         let Some(fns) = &self.device_fns else { return };
         let name = CString::new(name.replace('\0', " ")).expect("NULs were replaced");
         let label = vk::DebugUtilsLabelEXT::default().label_name(&name);
@@ -164,7 +164,7 @@ impl DebugNames {
     }
 
     /// Closes the innermost labelled region.
-    pub(crate) fn end_label(&self, cmd: vk::CommandBuffer) {
+    pub(super) fn end_label(&self, cmd: vk::CommandBuffer) {
         let Some(fns) = &self.device_fns else { return };
         // SAFETY: `cmd` is recording and has an open label (paired with `begin_label`).
         unsafe { fns.cmd_end_debug_utils_label(cmd) };

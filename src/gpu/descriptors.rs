@@ -154,6 +154,7 @@ impl BoundSet {
         };
         let mut sizes: BTreeMap<i32, u32> = BTreeMap::new();
         for (binding, bind) in binds {
+            expect_bind_usage(name, *binding, bind);
             let ty = ty_of(bind);
             let declared = layout.bindings.iter().find(|b| b.0 == *binding);
             if declared.map(|b| b.1) != Some(ty) {
@@ -278,6 +279,21 @@ impl BoundSet {
             self.bindings.get(&binding).map(|b| &b.resource),
             Some(Resource::Image(i)) if i.same(image)
         )
+    }
+}
+
+/// Panics unless what `bind` binds has the usage its descriptor type needs.
+fn expect_bind_usage(set: &str, binding: u32, bind: &Bind) {
+    use vk::BufferUsageFlags as B;
+    use vk::ImageUsageFlags as I;
+    let what = format!("set {set} binding {binding}");
+    match bind {
+        Bind::Uniform(b) => b.expect_usage(B::UNIFORM_BUFFER, &what),
+        Bind::Storage(b, _) => b.expect_usage(B::STORAGE_BUFFER, &what),
+        Bind::Sampled(i, _, _) => i.expect_usage(I::SAMPLED, &what),
+        Bind::StorageImage(i, _) => i.expect_usage(I::STORAGE, &what),
+        Bind::UniformTexel(v, _) => v.expect_usage(B::UNIFORM_TEXEL_BUFFER, &what),
+        Bind::StorageTexel(v, _) => v.expect_usage(B::STORAGE_TEXEL_BUFFER, &what),
     }
 }
 

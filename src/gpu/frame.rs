@@ -17,7 +17,7 @@ use super::command::Recorder;
 use super::context::Context;
 use super::error::{GpuError, GpuResult, VkResultExt};
 use super::garbage::Garbage;
-use super::submit;
+use super::submit::{self, SemaphoreOp};
 
 /// Number of frames the CPU may record ahead of the GPU.
 pub const FRAMES_IN_FLIGHT: usize = 2;
@@ -194,8 +194,8 @@ impl Frames {
     pub fn submit(
         &mut self,
         mut frame: Frame,
-        waits: &[vk::SemaphoreSubmitInfo],
-        signals: &[vk::SemaphoreSubmitInfo],
+        waits: &[SemaphoreOp],
+        signals: &[SemaphoreOp],
     ) -> GpuResult<()> {
         if !frame.scene_submitted {
             self.submit_scene(&mut frame)?;
@@ -205,7 +205,7 @@ impl Frames {
             .semaphore(self.ctx.frame_timeline)
             .value(frame.signal_value())
             .stage_mask(vk::PipelineStageFlags2::ALL_COMMANDS)];
-        all_signals.extend_from_slice(signals);
+        all_signals.extend(submit::infos(signals));
         let queue = self.ctx.graphics.raw;
         // SAFETY: `cmd` is recording (begun in `begin`) graphics commands; the semaphores are
         // live; only this thread submits.
@@ -214,7 +214,7 @@ impl Frames {
                 &self.ctx,
                 queue,
                 cmd,
-                waits,
+                &submit::infos(waits),
                 &all_signals,
                 vk::Fence::null(),
             )?

@@ -55,6 +55,7 @@ pub struct ImageCore {
     pub(super) extent: vk::Extent2D,
     pub(super) layers: u32,
     pub(super) aspect: vk::ImageAspectFlags,
+    pub(super) usage: vk::ImageUsageFlags,
     name: String,
     /// What the last recorded use left (`track`), on the queue that uses the image.
     pub(super) state: StateCell,
@@ -162,6 +163,7 @@ impl Image {
             extent: desc.extent,
             layers,
             aspect,
+            usage: desc.usage,
             name: desc.name.to_string(),
             state: StateCell::new(State::NEW),
         };
@@ -253,6 +255,25 @@ impl ImageCore {
     pub fn name(&self) -> &str {
         &self.name
     }
+
+    /// Panics unless the image was created with `usage` (for `what`): using it otherwise is
+    /// invalid usage, so the GPU layer's safe functions refuse it.
+    pub(super) fn expect_usage(&self, usage: vk::ImageUsageFlags, what: &str) {
+        expect_usage(&self.name, self.usage, usage, what);
+    }
+}
+
+/// Panics unless `have` contains `want` (a programming error, named).
+pub(super) fn expect_usage(
+    name: &str,
+    have: vk::ImageUsageFlags,
+    want: vk::ImageUsageFlags,
+    what: &str,
+) {
+    assert!(
+        have.contains(want),
+        "image {name} lacks {want:?} usage, which {what} needs"
+    );
 }
 
 /// Every layer of the single mip level.
@@ -390,6 +411,13 @@ impl<'a> Output<'a> {
         match self {
             Output::Image(i) => i.view,
             Output::External(e) => e.view,
+        }
+    }
+    /// Panics unless the image has `usage` (for `what`).
+    pub(super) fn expect_usage(self, usage: vk::ImageUsageFlags, what: &str) {
+        match self {
+            Output::Image(i) => i.expect_usage(usage, what),
+            Output::External(e) => expect_usage(&e.name, e.usage, usage, what),
         }
     }
 }

@@ -23,14 +23,14 @@ pub mod pipeline;
 pub mod queues;
 pub mod reflect;
 pub mod selftest;
-mod submit;
+pub mod submit;
 pub mod swapchain;
 pub mod timestamps;
 pub mod track;
 
 pub use ash::vk;
 pub use buffer::{Buffer, BufferView};
-pub use command::{Access, Attachment, Load, Recorder};
+pub use command::{Access, Load, Recorder};
 pub use context::{Context, ContextDesc, DeviceInfo, DeviceSummary};
 pub use debug::MessageCounters;
 pub use descriptors::{Bind, BoundSet, DescriptorSetLayout, Order};
@@ -43,7 +43,8 @@ pub use instance::ValidationExtras;
 pub use pass::{check_bindings, Bindings, Rendering, Target};
 pub use pipeline::{GraphicsDesc, Pipeline, PipelineLayout};
 pub use queues::{QueuePlan, QueueUsers};
-pub use swapchain::{PresentMode, Swapchain};
+pub use submit::SemaphoreOp;
+pub use swapchain::{AcquiredImage, PresentMode, Swapchain};
 pub use timestamps::{
     DrawStatistics, FrameTimes, GpuTimings, Profiler, Profilers, COMPUTE, GRAPHICS_OCEAN,
     GRAPHICS_SCENE,

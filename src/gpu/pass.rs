@@ -50,14 +50,15 @@ impl Tracked for Layer<'_> {
 /// layered one, or another view, e.g. a cube face) and what the scope does with its previous
 /// contents.
 pub struct Target<'a> {
-    pub image: &'a dyn Tracked,
-    pub view: vk::ImageView,
-    pub extent: vk::Extent2D,
-    pub load: Load,
+    image: &'a dyn Tracked,
+    view: vk::ImageView,
+    extent: vk::Extent2D,
+    load: Load,
 }
 
 impl<'a> Target<'a> {
     pub fn new(image: &'a Image, load: Load) -> Target<'a> {
+        expect_attachment(image);
         Target {
             image,
             view: image.layer_views.first().copied().unwrap_or(image.view),
@@ -68,6 +69,7 @@ impl<'a> Target<'a> {
 
     /// Face or layer `layer` of a cube or layered image.
     pub fn layer(image: &'a Image, layer: u32, load: Load) -> Target<'a> {
+        expect_attachment(image);
         Target {
             image,
             view: image.layer_views[layer as usize],
@@ -78,6 +80,7 @@ impl<'a> Target<'a> {
 
     /// The frame's output image.
     pub fn output(output: Output<'a>, load: Load) -> Target<'a> {
+        output.expect_usage(vk::ImageUsageFlags::COLOR_ATTACHMENT, "a rendering scope");
         Target {
             image: output.tracked(),
             view: output.view(),
@@ -85,6 +88,16 @@ impl<'a> Target<'a> {
             load,
         }
     }
+}
+
+/// Panics unless `image` can be a colour or depth attachment (by its aspect).
+fn expect_attachment(image: &Image) {
+    let usage = if image.aspect.contains(vk::ImageAspectFlags::DEPTH) {
+        vk::ImageUsageFlags::DEPTH_STENCIL_ATTACHMENT
+    } else {
+        vk::ImageUsageFlags::COLOR_ATTACHMENT
+    };
+    image.expect_usage(usage, "a rendering scope");
 }
 
 /// What a draw or dispatch binds: a pipeline and its descriptor sets, set 0 first.
@@ -216,6 +229,10 @@ impl Recorder<'_> {
     /// l − 1 a blit source while layer l is its destination) and end together in
     /// TRANSFER_SRC_OPTIMAL, as one state again.
     pub fn halve_down_layers(&self, image: &Image) {
+        image.expect_usage(
+            vk::ImageUsageFlags::TRANSFER_SRC | vk::ImageUsageFlags::TRANSFER_DST,
+            "blits between its layers",
+        );
         if image.layers < 2 {
             return;
         }

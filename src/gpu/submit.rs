@@ -61,3 +61,14 @@ pub(super) unsafe fn end_and_submit(
     // (caller).
     unsafe { ctx.device.queue_submit2(queue, &[submit], fence) }.vk("vkQueueSubmit2")
 }
+
+/// A semaphore wait or signal of a submission: which semaphore, which timeline value, at which
+/// stages. Made by the GPU layer only (`ComputeQueue::graphics_wait`, `AcquiredImage`), so no
+/// code above it holds a raw semaphore.
+#[derive(Clone, Copy, Debug)]
+pub struct SemaphoreOp(pub(super) vk::SemaphoreSubmitInfo<'static>);
+
+/// The raw infos of `ops`.
+pub(super) fn infos(ops: &[SemaphoreOp]) -> Vec<vk::SemaphoreSubmitInfo<'static>> {
+    ops.iter().map(|op| op.0).collect()
+}

@@ -66,31 +66,49 @@ pub fn choose_surface_format(formats: &[vk::SurfaceFormatKHR]) -> Option<vk::Sur
 /// An acquired swapchain image.
 #[derive(Clone, Copy, Debug)]
 pub struct AcquiredImage {
-    pub index: u32,
-    pub image: vk::Image,
+    pub(super) index: u32,
+    pub(super) image: vk::Image,
     /// Its colour view (the overlay draws into the image).
-    pub view: vk::ImageView,
+    pub(super) view: vk::ImageView,
     /// Signalled when the image may be written (wait on it where the frame first touches the
     /// image: the output pass's copy or blit).
-    pub acquired: vk::Semaphore,
+    pub(super) acquired: vk::Semaphore,
     /// Signal this when rendering is done; presentation waits on it.
-    pub ready: vk::Semaphore,
+    pub(super) ready: vk::Semaphore,
+    /// The swapchain's image size, format and usage.
+    pub(super) extent: vk::Extent2D,
+    pub(super) format: vk::Format,
+    pub(super) usage: vk::ImageUsageFlags,
 }
 
 impl AcquiredImage {
-    /// The image as a frame's output (`extent`, `format`: the swapchain's), free for writing
-    /// once the acquire semaphore's wait at `after` is done.
-    pub fn target(
-        &self,
-        extent: vk::Extent2D,
-        format: vk::Format,
-        after: vk::PipelineStageFlags2,
-    ) -> super::ExternalImage {
+    /// The wait for the acquire, at `stage` (where the frame first writes the image).
+    pub fn acquire_wait(&self, stage: vk::PipelineStageFlags2) -> super::SemaphoreOp {
+        super::SemaphoreOp(
+            vk::SemaphoreSubmitInfo::default()
+                .semaphore(self.acquired)
+                .stage_mask(stage),
+        )
+    }
+
+    /// The signal the presentation waits for, after every command of the submission.
+    pub fn ready_signal(&self) -> super::SemaphoreOp {
+        super::SemaphoreOp(
+            vk::SemaphoreSubmitInfo::default()
+                .semaphore(self.ready)
+                .stage_mask(vk::PipelineStageFlags2::ALL_COMMANDS),
+        )
+    }
+
+    /// The image as a frame's output, free for writing once the acquire semaphore's wait at
+    /// `after` is done.
+    pub fn target(&self, after: vk::PipelineStageFlags2) -> super::ExternalImage {
         super::ExternalImage {
             raw: self.image,
             view: self.view,
-            extent,
-            format,
+            extent: self.extent,
+            format: self.format,
+            usage: self.usage,
             name: format!("swapchain image {}", self.index),
             state: super::track::StateCell::new(super::State::available_after(after)),
         }
@@ -127,6 +145,8 @@ pub struct Swapchain {
     pub transfer_dst: bool,
     /// Number of swapchains created so far (reported at exit; the window test checks resizes).
     pub generation: u32,
+    /// The images' usage (what `supportedUsageFlags` offered of what we ask).
+    usage: vk::ImageUsageFlags,
 }
 
 impl Swapchain {
@@ -149,6 +169,7 @@ impl Swapchain {
             can_copy: false,
             transfer_dst: false,
             generation: 0,
+            usage: vk::ImageUsageFlags::empty(),
         };
         // Pushed one by one: an error drops (and frees) what exists so far.
         for i in 0..FRAMES_IN_FLIGHT {
@@ -314,6 +335,7 @@ impl Swapchain {
         self.present_mode = present_mode;
         self.can_copy = can_copy;
         self.transfer_dst = transfer_dst;
+        self.usage = usage;
         log::info!(
             "swapchain #{}: {}x{} {:?} {:?}, {} images",
             self.generation,
@@ -349,6 +371,9 @@ impl Swapchain {
                     view: self.views[i],
                     acquired: semaphore,
                     ready: self.ready[i],
+                    extent: self.extent,
+                    format: self.format,
+                    usage: self.usage,
                 };
                 Ok(Some((image, suboptimal)))
             }

@@ -394,6 +394,7 @@ pub struct ExternalImage {
     pub(super) view: vk::ImageView,
     pub(super) extent: vk::Extent2D,
     pub(super) format: vk::Format,
+    pub(super) usage: vk::ImageUsageFlags,
     pub(super) name: String,
     pub(super) state: StateCell,
 }

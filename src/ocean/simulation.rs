@@ -31,7 +31,7 @@ use super::spectrum::Cascade;
 use crate::gpu::compute::ComputeQueue;
 use crate::gpu::{
     Bind, BoundSet, Buffer, Context, DescriptorSetLayout, FormatUse, Frame, GpuResult, Image,
-    ImageDesc, Order, Pipeline, PipelineLayout, Profiler, Recorder, FRAMES_IN_FLIGHT,
+    ImageDesc, Order, Pipeline, PipelineLayout, Profiler, Recorder, SemaphoreOp, FRAMES_IN_FLIGHT,
 };
 use crate::pass_names as names;
 
@@ -486,7 +486,7 @@ impl Simulation {
     }
 
     /// The wait a graphics submission adds before sampling frame `value`'s images.
-    pub fn graphics_wait(&self, value: u64) -> vk::SemaphoreSubmitInfo<'static> {
+    pub fn graphics_wait(&self, value: u64) -> SemaphoreOp {
         self.queue.graphics_wait(value, GRAPHICS_WAIT_STAGES)
     }
 

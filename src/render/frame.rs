@@ -40,8 +40,8 @@ use super::FrameInputs;
 use crate::gpu::egui::EguiPainter;
 use crate::gpu::selftest::SyncHazard;
 use crate::gpu::{
-    Bindings, Buffer, Context, Frames, GpuResult, Load, Profilers, Recorder, Rendering, Submission,
-    Target, Use, GRAPHICS_OCEAN, GRAPHICS_SCENE,
+    AcquiredImage, Bindings, Buffer, Context, Frames, GpuResult, Load, Profilers, Recorder,
+    Rendering, Submission, Target, Use, GRAPHICS_OCEAN, GRAPHICS_SCENE,
 };
 use crate::ocean::simulation::Simulation;
 use crate::pass_names as names;
@@ -70,16 +70,9 @@ pub struct Delivery<'a> {
     /// Copy the output into this host-visible buffer (screenshots).
     pub readback: Option<&'a Buffer>,
     /// A swapchain image: present it after the frame.
-    pub present: Option<SwapchainSync>,
-}
-
-/// A swapchain image's semaphores.
-#[derive(Clone, Copy)]
-pub struct SwapchainSync {
-    /// Signalled by the acquire; graphics 2 waits for it before the output's first write.
-    pub acquired: vk::Semaphore,
-    /// Signalled by graphics 2; the presentation waits for it.
-    pub ready: vk::Semaphore,
+    /// (Graphics 2 waits for its acquire before the output's first write, at
+    /// `ACQUIRE_WAIT_STAGE`, and signals what the presentation waits for.)
+    pub present: Option<AcquiredImage>,
 }
 
 /// The overlay's part of a frame: egui's triangles, drawn last into the output image.
@@ -206,17 +199,9 @@ pub fn record_frame(
     // ── graphics 2: after the simulation ────────────────────────────────────────────────────
     let mut waits = vec![simulation.graphics_wait(value)];
     let mut signals = Vec::new();
-    if let Some(sync) = delivery.present {
-        waits.push(
-            vk::SemaphoreSubmitInfo::default()
-                .semaphore(sync.acquired)
-                .stage_mask(ACQUIRE_WAIT_STAGE),
-        );
-        signals.push(
-            vk::SemaphoreSubmitInfo::default()
-                .semaphore(sync.ready)
-                .stage_mask(vk::PipelineStageFlags2::ALL_COMMANDS),
-        );
+    if let Some(image) = delivery.present {
+        waits.push(image.acquire_wait(ACQUIRE_WAIT_STAGE));
+        signals.push(image.ready_signal());
     }
     {
         let rec = frame.recorder(ctx, Submission::Ocean);

@@ -17,9 +17,7 @@ use glam::Vec3;
 use crate::shared;
 
 pub use camera::Camera;
-pub use frame::{
-    record_frame, Delivery, FrameParts, OverlayDraw, SwapchainSync, ACQUIRE_WAIT_STAGE,
-};
+pub use frame::{record_frame, Delivery, FrameParts, OverlayDraw, ACQUIRE_WAIT_STAGE};
 pub use renderer::{OutputTarget, Renderer};
 pub use uniforms::{FrameInputs, FrameUniforms, OceanBindings, SceneLayout};
 
