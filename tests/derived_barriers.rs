@@ -248,3 +248,31 @@ fn a_draw_its_scope_did_not_declare_is_refused() {
         });
     });
 }
+
+#[test]
+#[should_panic(expected = "in a submission without waits")]
+fn a_read_ordered_by_a_wait_in_a_submission_without_waits_is_refused() {
+    let ctx = gpu_context();
+    let texture = image(&ctx, "waited texture", vk::ImageUsageFlags::SAMPLED);
+    let target = image(&ctx, "test target", vk::ImageUsageFlags::COLOR_ATTACHMENT);
+    let sampler =
+        Sampler::linear(&ctx, "test sampler", vk::SamplerAddressMode::CLAMP_TO_EDGE).unwrap();
+    let (set_layout, pipeline) = pipeline(&ctx, vk::ShaderStageFlags::VERTEX);
+    let pipeline = pipeline.unwrap();
+    let wait = Order::Wait {
+        by: "compute timeline",
+        stages: vk::PipelineStageFlags2::VERTEX_SHADER,
+    };
+    let bind = Bind::Sampled(&texture, &sampler, wait);
+    let set = BoundSet::new(&ctx, &set_layout, "waited set", &[(0, bind)]).unwrap();
+    let sets = [&set];
+    let draw = Bindings {
+        pipeline: &pipeline,
+        sets: &sets,
+    };
+    // A one-shot waits for nothing: the read has no wait to rely on.
+    let _ = run_once(&ctx, "read without its wait", |rec| {
+        let target = [Target::new(&target, Load::DontCare)];
+        let _ = rec.rendering("early reader", &target, None, &[draw]);
+    });
+}

@@ -96,7 +96,7 @@ fn the_water_reads_the_sky_cube_where_its_shaders_sample_it() {
         assert_eq!(r["access"][0], "VK_ACCESS_2_SHADER_SAMPLED_READ_BIT");
     }
     let displacement = read(water, "ocean displacement slot 0");
-    assert_eq!(displacement["ordered_by"], "the compute timeline's wait");
+    assert_eq!(displacement["ordered_by"], "compute timeline");
     assert_eq!(displacement["layout"], "VK_IMAGE_LAYOUT_GENERAL");
 
     // The submission with the water waits for the compute timeline at the value the compute

@@ -27,7 +27,7 @@ use super::CpuTimes;
 use crate::frontend::Outcome;
 use crate::gpu::compute::ComputeQueue;
 use crate::gpu::oneshot::upload_on;
-use crate::gpu::{Buffer, Context, Frames, MemoryLocation, Profiler, Use};
+use crate::gpu::{Buffer, Context, Frames, MemoryLocation, Profiler};
 use crate::ocean::fft::{Direction, GpuFft, Kernel};
 use crate::output::PendingFile;
 use crate::profile::{Stats, WARMUP_FRAMES};
@@ -208,8 +208,8 @@ fn measure(
         // The previous run was waited for: nothing to wait on before the compute work.
         compute.submit(frame.slot, value, None, |rec| {
             profiler.begin_frame(rec, &frame)?;
-            // After the previous frame's transform read and wrote `data`.
-            rec.uses(&[(&pristine, Use::CopySrc), (&fft.data, Use::CopyDst)]);
+            // After the previous frame's transform read and wrote `data` (the copy records its
+            // barrier).
             rec.copy_buffer(&pristine, &fft.data, bytes.len() as u64);
             profiler.pass(rec, "fft", || fft.record(rec, Direction::Inverse));
             profiler.end_frame(rec);

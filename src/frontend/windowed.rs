@@ -349,7 +349,7 @@ impl App {
         };
         let delivery = Delivery {
             readback,
-            present: Some(image),
+            present: Some(&image),
         };
         state.session.frame(&output, &inputs, &delivery, draw)?;
         self.capture_next |= requests.screenshot;

@@ -46,6 +46,9 @@ impl Buffer {
         usage: vk::BufferUsageFlags,
         location: MemoryLocation,
     ) -> GpuResult<Buffer> {
+        if size == 0 {
+            return Err(GpuError::Unsupported(format!("buffer {name}: 0 bytes")));
+        }
         let info = vk::BufferCreateInfo::default()
             .size(size)
             .usage(usage)
@@ -99,6 +102,11 @@ impl Buffer {
             core: Rc::new(core),
             mapped,
         })
+    }
+
+    /// Whether `self` and `other` are the same buffer.
+    pub fn is(&self, other: &Buffer) -> bool {
+        Rc::ptr_eq(&self.core, &other.core)
     }
 
     /// Size in bytes.
@@ -260,6 +268,9 @@ impl Drop for BufferViewCore {
         self.ctx.defer(Garbage::BufferView(self.raw));
     }
 }
+
+impl super::track::sealed::Sealed for Buffer {}
+impl super::track::sealed::Sealed for BufferCore {}
 
 impl Tracked for Buffer {
     fn handle(&self) -> Handle {

@@ -19,6 +19,11 @@ pub struct ComputeQueue {
     ctx: Arc<Context>,
     /// Per slot: command pool and its command buffer.
     slots: Vec<(vk::CommandPool, vk::CommandBuffer)>,
+    /// Per slot: the timeline value its last submission signals (0: none yet). `submit` waits
+    /// for it before resetting the slot, whatever slot the caller names.
+    slot_values: Vec<u64>,
+    /// The last value submitted (values must increase: the timeline only moves up).
+    last_value: u64,
     /// Signalled with frame values by compute submissions.
     pub(super) timeline: vk::Semaphore,
 }
@@ -40,6 +45,8 @@ impl ComputeQueue {
         let mut queue = ComputeQueue {
             ctx: ctx.clone(),
             slots: Vec::new(),
+            slot_values: vec![0; FRAMES_IN_FLIGHT],
+            last_value: ctx.signaled_value(),
             timeline,
         };
         for i in 0..FRAMES_IN_FLIGHT {
@@ -59,7 +66,15 @@ impl ComputeQueue {
         wait_graphics: Option<u64>,
         record: impl FnOnce(&Recorder) -> GpuResult<()>,
     ) -> GpuResult<()> {
+        assert!(
+            value > self.last_value,
+            "compute value {value} after {}: a timeline only moves up",
+            self.last_value
+        );
         self.wait_for_slot(value)?;
+        // Whatever slot is named, its previous submission is done before its reset.
+        self.ctx
+            .wait_timeline(self.timeline, self.slot_values[slot])?;
         let (pool, cmd) = self.slots[slot];
         // SAFETY: the slot's previous submission has completed (waited above); the reset puts
         // its command buffer in the initial state.
@@ -68,7 +83,7 @@ impl ComputeQueue {
             submit::begin_one_time(&self.ctx, &[cmd])?;
         }
         {
-            let rec = Recorder::new(&self.ctx, cmd);
+            let rec = Recorder::new(&self.ctx, cmd, self.ctx.compute.family);
             rec.begin_label(&format!("compute frame value {value}"));
             let recorded = record(&rec);
             rec.end_label();
@@ -97,8 +112,11 @@ impl ComputeQueue {
         // SAFETY: recording began above, on a pool of the compute family; the semaphores are
         // live; one submitting thread.
         unsafe {
-            submit::end_and_submit(&self.ctx, queue, cmd, &waits, &signals, vk::Fence::null())
-        }
+            submit::end_and_submit(&self.ctx, queue, cmd, &waits, &signals, vk::Fence::null())?
+        };
+        self.slot_values[slot] = value;
+        self.last_value = value;
+        Ok(())
     }
 
     /// Waits until the compute work of the frame two before `value` (the previous user of the

@@ -290,6 +290,13 @@ impl Context {
         self.debug.name(handle, name);
     }
 
+    /// The name a semaphore was created with.
+    pub(super) fn semaphore_name(&self, semaphore: vk::Semaphore) -> Option<String> {
+        lock(&self.semaphore_names)
+            .get(&vk::Handle::as_raw(semaphore))
+            .cloned()
+    }
+
     /// Records the frame graph of what is recorded and submitted from now until
     /// [`Context::take_frame_graph`] (`--frame-graph`).
     pub fn capture_frame_graph(&self) {
@@ -370,7 +377,7 @@ impl Context {
     }
 
     /// The memory allocator.
-    pub(crate) fn allocator(&self) -> std::sync::MutexGuard<'_, Allocator> {
+    pub(super) fn allocator(&self) -> std::sync::MutexGuard<'_, Allocator> {
         self.allocator
             .lock()
             .unwrap_or_else(|poisoned| poisoned.into_inner())
@@ -378,13 +385,13 @@ impl Context {
 
     /// The allocator, for a renderer of another crate that allocates through it (the overlay's).
     /// Its holder must be dropped before the context (it holds an `Arc<Context>` too).
-    pub(crate) fn shared_allocator(&self) -> Arc<Mutex<Allocator>> {
+    pub(super) fn shared_allocator(&self) -> Arc<Mutex<Allocator>> {
         Arc::clone(&self.allocator)
     }
 
     /// Hands an object to the deletion queue: it is destroyed once the GPU has finished every
     /// submission up to the one being recorded now.
-    pub(crate) fn defer(&self, garbage: Garbage) {
+    pub(super) fn defer(&self, garbage: Garbage) {
         let tag = self.pending_value.load(Ordering::Acquire);
         self.garbage
             .lock()
@@ -397,12 +404,12 @@ impl Context {
         self.signaled_value.load(Ordering::Acquire)
     }
 
-    pub(crate) fn set_signaled_value(&self, value: u64) {
+    pub(super) fn set_signaled_value(&self, value: u64) {
         self.signaled_value.store(value, Ordering::Release);
     }
 
     /// Sets the timeline value the next graphics submission signals (called by `Frames`).
-    pub(crate) fn set_pending_value(&self, value: u64) {
+    pub(super) fn set_pending_value(&self, value: u64) {
         self.pending_value.store(value, Ordering::Release);
     }
 
@@ -438,12 +445,12 @@ impl Context {
     }
 
     /// Counts `n` device objects just created (every `vkCreate*` of the GPU layer reports here).
-    pub(crate) fn count_created(&self, n: u64) {
+    pub(super) fn count_created(&self, n: u64) {
         self.objects_created.fetch_add(n, Ordering::Relaxed);
     }
 
     /// Counts `n` device objects just destroyed (every `vkDestroy*` of the GPU layer).
-    pub(crate) fn count_destroyed(&self, n: u64) {
+    pub(super) fn count_destroyed(&self, n: u64) {
         self.objects_destroyed.fetch_add(n, Ordering::Relaxed);
     }
 
@@ -458,7 +465,7 @@ impl Context {
     }
 
     /// Destroys the garbage whose frames the GPU has finished.
-    pub(crate) fn collect_garbage(&self) -> GpuResult<()> {
+    pub(super) fn collect_garbage(&self) -> GpuResult<()> {
         let done = self.completed_value()?;
         let ready: Vec<Garbage> = {
             let mut list = self.garbage.lock().unwrap_or_else(|p| p.into_inner());

@@ -55,11 +55,11 @@ impl MessageCounters {
 const LAYER_NOTICES: [&str; 2] = ["VALIDATION-SETTINGS", "WARNING-Setting-Limit-Adjusted"];
 
 /// Severities we subscribe to: the ones that mean our API use is wrong or questionable.
-pub(crate) fn severities() -> vk::DebugUtilsMessageSeverityFlagsEXT {
+pub(super) fn severities() -> vk::DebugUtilsMessageSeverityFlagsEXT {
     vk::DebugUtilsMessageSeverityFlagsEXT::WARNING | vk::DebugUtilsMessageSeverityFlagsEXT::ERROR
 }
 
-pub(crate) fn message_types() -> vk::DebugUtilsMessageTypeFlagsEXT {
+pub(super) fn message_types() -> vk::DebugUtilsMessageTypeFlagsEXT {
     vk::DebugUtilsMessageTypeFlagsEXT::GENERAL
         | vk::DebugUtilsMessageTypeFlagsEXT::VALIDATION
         | vk::DebugUtilsMessageTypeFlagsEXT::PERFORMANCE
@@ -67,7 +67,7 @@ pub(crate) fn message_types() -> vk::DebugUtilsMessageTypeFlagsEXT {
 
 /// Create info for a messenger reporting into `counters`; also chained into `VkInstanceCreateInfo`
 /// so that instance creation and destruction are covered.
-pub(crate) fn messenger_info(
+pub(super) fn messenger_info(
     counters: &Arc<MessageCounters>,
 ) -> vk::DebugUtilsMessengerCreateInfoEXT<'static> {
     vk::DebugUtilsMessengerCreateInfoEXT::default()

@@ -129,6 +129,8 @@ pub struct BoundSet {
     pub(super) raw: vk::DescriptorSet,
     pub(super) name: String,
     pub(super) bindings: BTreeMap<u32, Bound>,
+    /// Its layout's bindings (a pipeline binds it only where its layout has the same).
+    pub(super) layout: Vec<(u32, vk::DescriptorType, vk::ShaderStageFlags)>,
     _samplers: Vec<Sampler>,
     _views: Vec<BufferView>,
 }
@@ -186,6 +188,7 @@ impl BoundSet {
             raw: vk::DescriptorSet::null(),
             name: name.to_string(),
             bindings: BTreeMap::new(),
+            layout: layout.bindings.clone(),
             _samplers: Vec::new(),
             _views: Vec::new(),
         };
@@ -287,6 +290,15 @@ fn expect_bind_usage(set: &str, binding: u32, bind: &Bind) {
     use vk::BufferUsageFlags as B;
     use vk::ImageUsageFlags as I;
     let what = format!("set {set} binding {binding}");
+    // Images are written by GPU work, which the host's order does not cover.
+    let image_host = matches!(
+        bind,
+        Bind::Sampled(_, _, Order::Host) | Bind::StorageImage(_, Order::Host)
+    );
+    assert!(
+        !image_host,
+        "{what}: an image cannot be ordered by the host"
+    );
     match bind {
         Bind::Uniform(b) => b.expect_usage(B::UNIFORM_BUFFER, &what),
         Bind::Storage(b, _) => b.expect_usage(B::STORAGE_BUFFER, &what),

@@ -152,6 +152,11 @@ impl EguiPainter {
         pixels_per_point: f32,
         primitives: &[ClippedPrimitive],
     ) -> GpuResult<()> {
+        // egui's renderer draws into the open scope (dynamic rendering, one colour attachment).
+        assert!(
+            rec.scope.borrow().is_some(),
+            "the overlay draws inside a rendering scope"
+        );
         self.destroy_released()?;
         self.renderer
             .cmd_draw(rec.raw(), extent, pixels_per_point, primitives)

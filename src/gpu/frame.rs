@@ -13,7 +13,7 @@ use std::sync::Arc;
 use ash::vk;
 
 use super::buffer::Buffer;
-use super::command::Recorder;
+use super::command::{Recorder, RequiredWaits};
 use super::context::Context;
 use super::error::{GpuError, GpuResult, VkResultExt};
 use super::garbage::Garbage;
@@ -24,7 +24,7 @@ pub const FRAMES_IN_FLIGHT: usize = 2;
 
 /// Creates a transient command pool on `family` with `N` primary command buffers, named after
 /// `label` (frame slots here, compute slots in `compute.rs`).
-pub(crate) fn command_slot<const N: usize>(
+pub(super) fn command_slot<const N: usize>(
     ctx: &Context,
     family: u32,
     label: &str,
@@ -95,6 +95,11 @@ pub struct Frame {
     value: u64,
     /// The scene submission went out (`Frames::submit_scene`).
     scene_submitted: bool,
+    /// Per command buffer: the semaphore waits its reads rely on (`Order::Wait`), checked
+    /// against the waits it is submitted with.
+    required_waits: [RequiredWaits; 2],
+    /// The device its command buffers belong to.
+    ctx: Arc<Context>,
 }
 
 impl Frame {
@@ -113,11 +118,17 @@ impl Frame {
     /// A recorder for one of this frame's command buffers. It borrows the frame, so it cannot
     /// outlive the recording state (`Frames::submit` consumes the frame).
     pub fn recorder<'a>(&'a self, ctx: &'a Context, submission: Submission) -> Recorder<'a> {
-        debug_assert!(
+        assert!(
             !(submission == Submission::Scene && self.scene_submitted),
             "the scene submission was already submitted"
         );
-        Recorder::new(ctx, self.cmds[submission as usize])
+        assert!(
+            std::ptr::eq(ctx, &*self.ctx),
+            "a frame's commands recorded with another device's context"
+        );
+        let mut rec = Recorder::new(ctx, self.cmds[submission as usize], ctx.graphics.family);
+        rec.required_waits = Some(&self.required_waits[submission as usize]);
+        rec
     }
 }
 
@@ -172,6 +183,8 @@ impl Frames {
             cmds: s.cmds,
             value,
             scene_submitted: false,
+            required_waits: Default::default(),
+            ctx: self.ctx.clone(),
         })
     }
 
@@ -179,6 +192,19 @@ impl Frames {
     /// signals (the ocean submission's signal covers it). Call once, before the compute
     /// submission, so a separate compute queue runs the simulation while this draws.
     pub fn submit_scene(&mut self, frame: &mut Frame) -> GpuResult<()> {
+        assert!(
+            !frame.scene_submitted,
+            "the scene submission was already submitted"
+        );
+        assert!(
+            Arc::ptr_eq(&frame.ctx, &self.ctx),
+            "a frame of another context"
+        );
+        self.check_waits(
+            &frame.required_waits[Submission::Scene as usize],
+            &[],
+            "graphics 1",
+        );
         let cmd = frame.cmds[Submission::Scene as usize];
         let queue = self.ctx.graphics.raw;
         // SAFETY: `cmd` is recording (begun in `begin`, not yet ended) graphics commands; only
@@ -200,6 +226,11 @@ impl Frames {
         if !frame.scene_submitted {
             self.submit_scene(&mut frame)?;
         }
+        self.check_waits(
+            &frame.required_waits[Submission::Ocean as usize],
+            waits,
+            "graphics 2",
+        );
         let cmd = frame.cmds[Submission::Ocean as usize];
         let mut all_signals = vec![vk::SemaphoreSubmitInfo::default()
             .semaphore(self.ctx.frame_timeline)
@@ -223,6 +254,22 @@ impl Frames {
         self.next = frame.index + 1;
         self.ctx.set_signaled_value(frame.value);
         Ok(())
+    }
+
+    /// Panics unless `waits` hold, for each (semaphore, stages) a read of the command buffer
+    /// relies on (`Order::Wait`), a wait for that semaphore covering those stages: a read the
+    /// submission does not wait for is a race with the other queue's writes.
+    fn check_waits(&self, required: &RequiredWaits, waits: &[SemaphoreOp], which: &str) {
+        for (by, stages) in required.borrow().iter() {
+            let covered = waits.iter().any(|w| {
+                self.ctx.semaphore_name(w.0.semaphore).as_deref() == Some(*by)
+                    && w.0.stage_mask.contains(*stages)
+            });
+            assert!(
+                covered,
+                "{which} reads what {by} orders at {stages:?}, but is not submitted with that wait"
+            );
+        }
     }
 
     /// A copy of the bytes of a host-visible buffer that submitted frames wrote (with a

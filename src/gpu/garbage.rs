@@ -31,7 +31,7 @@ pub(crate) enum Garbage {
 impl Garbage {
     /// Destroys the object (and frees its memory through `allocator`); returns how many
     /// Vulkan objects that was (an image counts its views).
-    pub(crate) fn destroy(self, d: &ash::Device, allocator: &mut Allocator) -> u64 {
+    pub(super) fn destroy(self, d: &ash::Device, allocator: &mut Allocator) -> u64 {
         let count = match &self {
             Garbage::Image { views, .. } => 1 + views.len() as u64,
             Garbage::Release(_) => 0,

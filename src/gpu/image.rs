@@ -101,6 +101,20 @@ impl Image {
     /// Creates a named image (optimal tiling, device-local) and its view.
     // Long: create, allocate, bind and make views, each failure freeing what came before.
     pub fn new(ctx: &Arc<Context>, desc: &ImageDesc) -> GpuResult<Image> {
+        let e = desc.extent;
+        if e.width == 0 || e.height == 0 || (desc.cube && e.width != e.height) {
+            return Err(GpuError::Unsupported(format!(
+                "image {}: {}x{} is empty{}",
+                desc.name,
+                e.width,
+                e.height,
+                if desc.cube {
+                    " or not square (a cube)"
+                } else {
+                    ""
+                }
+            )));
+        }
         let layers = if desc.cube { 6 } else { desc.layers.max(1) };
         let info = vk::ImageCreateInfo::default()
             .flags(if desc.cube {
@@ -363,6 +377,8 @@ impl Drop for SamplerCore {
     }
 }
 
+impl super::track::sealed::Sealed for Image {}
+
 impl Tracked for Image {
     fn handle(&self) -> Handle {
         Handle::image(self.raw, self.range())
@@ -406,6 +422,10 @@ impl<'a> Output<'a> {
             Output::Image(i) => i.raw,
             Output::External(e) => e.raw,
         }
+    }
+    /// Whether it is `image`.
+    pub(super) fn is(self, image: &Image) -> bool {
+        matches!(self, Output::Image(i) if i.same(image))
     }
     pub(super) fn view(self) -> vk::ImageView {
         match self {

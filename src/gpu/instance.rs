@@ -85,7 +85,7 @@ const VENDOR_SETTINGS: [&CStr; 4] = [
 ];
 
 /// Loads the Vulkan loader (or the library named by `VKOCEAN_VULKAN_LIBRARY`).
-pub(crate) fn load_entry() -> GpuResult<ash::Entry> {
+pub(super) fn load_entry() -> GpuResult<ash::Entry> {
     let library =
         std::env::var(LOADER_ENV).unwrap_or_else(|_| crate::platform::VULKAN_LOADER.to_string());
     // SAFETY: loading the Vulkan loader runs its initialisers; it is the library's documented use.
@@ -103,7 +103,7 @@ pub(crate) fn load_entry() -> GpuResult<ash::Entry> {
 }
 
 /// Creates an instance; returns it with the debug-utils availability.
-pub(crate) fn create_instance(
+pub(super) fn create_instance(
     entry: &ash::Entry,
     validation: bool,
     extras: ValidationExtras,

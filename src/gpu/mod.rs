@@ -27,6 +27,7 @@ pub mod submit;
 pub mod swapchain;
 pub mod timestamps;
 pub mod track;
+mod transfer;
 
 pub use ash::vk;
 pub use buffer::{Buffer, BufferView};

@@ -32,9 +32,13 @@ pub fn run_once_on<R>(
     ctx: &Arc<Context>,
     queue: Queue,
     name: &str,
-    waits: &[vk::SemaphoreSubmitInfo],
+    waits: &[super::SemaphoreOp],
     record: impl FnOnce(&Recorder) -> R,
 ) -> GpuResult<R> {
+    assert!(
+        queue.raw == ctx.graphics.raw || queue.raw == ctx.compute.raw,
+        "a one-shot on a queue of another context"
+    );
     let pool_info = vk::CommandPoolCreateInfo::default()
         .queue_family_index(queue.family)
         .flags(vk::CommandPoolCreateFlags::TRANSIENT);
@@ -54,7 +58,7 @@ pub fn run_once_on<R>(
         // SAFETY: a freshly allocated command buffer.
         unsafe { submit::begin_one_time(ctx, &[cmd])? };
         let value = {
-            let rec = Recorder::new(ctx, cmd);
+            let rec = Recorder::new(ctx, cmd, queue.family);
             rec.begin_label(name);
             let value = record(&rec);
             rec.end_label();
@@ -69,7 +73,8 @@ pub fn run_once_on<R>(
         ctx.count_created(1);
         // SAFETY: recording began above, on a pool of `queue`'s family; the fence is new and
         // unsignalled; the sample submits from one thread.
-        let submitted = unsafe { submit::end_and_submit(ctx, queue.raw, cmd, waits, &[], fence) };
+        let waits = submit::infos(waits);
+        let submitted = unsafe { submit::end_and_submit(ctx, queue.raw, cmd, &waits, &[], fence) };
         // SAFETY: the fence was submitted (or the submit failed and it stays unsignalled, in which
         // case we do not wait on it).
         let waited = submitted.and_then(|()| {
@@ -104,6 +109,15 @@ pub fn run_once_on<R>(
 /// Copies `bytes` into the start of a device buffer (through a staging buffer) and waits.
 pub fn upload(ctx: &Arc<Context>, dst: &Buffer, bytes: &[u8]) -> GpuResult<()> {
     upload_on(ctx, ctx.graphics, dst, bytes)
+}
+
+/// `upload` then a barrier that makes the bytes visible to `then` (e.g. `Use::IndexRead` for
+/// an index buffer, which no tracked pass declares).
+pub fn upload_then(ctx: &Arc<Context>, dst: &Buffer, bytes: &[u8], then: Use) -> GpuResult<()> {
+    upload(ctx, dst, bytes)?;
+    run_once(ctx, "upload: visible to its reader", |rec| {
+        rec.uses(&[(dst, then)])
+    })
 }
 
 /// `upload` on the queue that will use the buffer (`ctx.compute` for the simulation's inputs).

@@ -29,6 +29,8 @@ struct Layer<'a> {
     state: StateCell,
 }
 
+impl super::track::sealed::Sealed for Layer<'_> {}
+
 impl Tracked for Layer<'_> {
     fn handle(&self) -> Handle {
         let range = vk::ImageSubresourceRange {
@@ -53,6 +55,7 @@ pub struct Target<'a> {
     image: &'a dyn Tracked,
     view: vk::ImageView,
     extent: vk::Extent2D,
+    format: vk::Format,
     load: Load,
 }
 
@@ -63,17 +66,25 @@ impl<'a> Target<'a> {
             image,
             view: image.layer_views.first().copied().unwrap_or(image.view),
             extent: image.extent,
+            format: image.format,
             load,
         }
     }
 
-    /// Face or layer `layer` of a cube or layered image.
+    /// Face or layer `layer` of a cube or layered image. The image is tracked whole: only
+    /// layer 0 may discard (its barrier discards every layer), the others keep (`Load::Keep`).
     pub fn layer(image: &'a Image, layer: u32, load: Load) -> Target<'a> {
         expect_attachment(image);
+        assert!(
+            layer == 0 || matches!(load, Load::Keep),
+            "layer {layer} of {}: a later layer keeps what the earlier ones wrote (Load::Keep)",
+            image.name()
+        );
         Target {
             image,
             view: image.layer_views[layer as usize],
             extent: image.extent,
+            format: image.format,
             load,
         }
     }
@@ -85,6 +96,7 @@ impl<'a> Target<'a> {
             image: output.tracked(),
             view: output.view(),
             extent: output.extent(),
+            format: output.format(),
             load,
         }
     }
@@ -138,6 +150,28 @@ fn reads<'a>(pass: &str, b: &Bindings<'a>) -> Result<Vec<Read<'a>>, String> {
                 b.pipeline.name, used.stages
             ));
         };
+        let what = format!(
+            "pass {pass}: pipeline {} {} {} (set {set} binding {binding}) in {:?}",
+            b.pipeline.name,
+            if used.writes { "writes" } else { "reads" },
+            bound.name(),
+            used.stages
+        );
+        // What a shader writes must be tracked: a host or another queue's order says nothing
+        // of the writes this queue makes.
+        if used.writes && bound.order != Order::Tracked {
+            return Err(format!("{what}, but it is not tracked on this queue"));
+        }
+        // Graphics shaders here sample images and read uniforms: storage descriptors and
+        // tracked buffers would need uses this tracker does not derive for those stages.
+        let graphics = !used.stages.contains(vk::ShaderStageFlags::COMPUTE);
+        let image = matches!(bound.resource, Resource::Image(_));
+        let sampled = matches!(used.kind, Kind::CombinedImageSampler | Kind::SampledImage);
+        if graphics && bound.order == Order::Tracked && !(image && sampled) {
+            return Err(format!(
+                "{what}: graphics passes track sampled images only (uniforms are host-written)"
+            ));
+        }
         if let Order::Wait { by, stages } = bound.order {
             let reading = pipeline_stages(used.stages);
             if !stages.contains(reading) {
@@ -160,6 +194,36 @@ fn reads<'a>(pass: &str, b: &Bindings<'a>) -> Result<Vec<Read<'a>>, String> {
     Ok(out)
 }
 
+fn resource_name(resource: &Resource) -> &str {
+    match resource {
+        Resource::Image(i) => i.name(),
+        Resource::Buffer(b) => b.name(),
+    }
+}
+
+/// Panics unless a scope's attachments share one size (one render area) and every draw's
+/// pipeline renders to their formats (dynamic rendering: the pipeline's formats must be the
+/// scope's).
+fn check_scope(pass: &str, colour: &[Target], depth: Option<&Target>, draws: &[Bindings]) {
+    let extent = colour.first().or(depth).map(|t| t.extent);
+    assert!(
+        colour.iter().chain(depth).all(|t| Some(t.extent) == extent),
+        "pass {pass}: attachments of different sizes"
+    );
+    let formats = (
+        colour.iter().map(|t| t.format).collect::<Vec<_>>(),
+        depth.map(|t| t.format),
+    );
+    for b in draws {
+        assert!(
+            b.pipeline.formats.as_ref() == Some(&formats),
+            "pass {pass}: pipeline {} renders to {:?}, the scope's attachments are {formats:?}",
+            b.pipeline.name,
+            b.pipeline.formats
+        );
+    }
+}
+
 /// Checks a pass's bindings at creation (`GpuError::Interface`, one line naming the pass, the
 /// binding and the stage): what its pipelines' shaders read is bound, and what a semaphore
 /// wait orders is read only in the stages the wait covers.
@@ -170,8 +234,13 @@ pub fn check_bindings(pass: &str, bindings: &[Bindings]) -> super::GpuResult<()>
     Ok(())
 }
 
-/// The tracked uses a compute dispatch's shaders make of what its sets bind.
+/// The tracked use a compute dispatch's shader makes of what its set binds: a sampled image
+/// in SHADER_READ_ONLY_OPTIMAL (as its descriptor says), storage read, written or both in
+/// GENERAL (`readonly` / `writeonly` in the SPIR-V), texel and uniform reads.
 fn compute_use(read: &Read) -> Use {
+    if matches!(read.kind, Kind::CombinedImageSampler | Kind::SampledImage) {
+        return Use::Sampled(vk::PipelineStageFlags2::COMPUTE_SHADER);
+    }
     match (read.kind.is_storage(), read.reads, read.writes) {
         (true, true, true) => Use::ComputeReadWrite,
         (true, false, true) => Use::ComputeWrite,
@@ -272,6 +341,9 @@ impl Recorder<'_> {
         depth: Option<Target>,
         draws: &[Bindings],
     ) -> Rendering<'r> {
+        self.expect_outside_scope("a rendering scope");
+        self.expect_graphics("a rendering scope");
+        check_scope(pass, colour, depth.as_ref(), draws);
         self.ctx.journal_pass(pass);
         let keep = |load: &Load| matches!(load, Load::Keep);
         let mut uses: Vec<(&dyn Tracked, Use)> = Vec::new();
@@ -303,6 +375,9 @@ impl Recorder<'_> {
                         };
                         let layout = Some(sampled_layout(order));
                         let journal = (access, layout);
+                        if let Order::Wait { by, stages: _ } = order {
+                            self.require_wait(by, stages);
+                        }
                         self.ctx
                             .journal_use(image.name(), journal, false, None, Some(by));
                     }
@@ -354,6 +429,16 @@ impl Recorder<'_> {
     /// Binds `b`'s pipeline and sets. A draw inside a rendering scope must use bindings the
     /// scope declared (it panics otherwise: its reads would have no barrier).
     pub fn bind(&self, b: &Bindings) {
+        // Each set must be of the layout the pipeline's layout has there (compatible sets:
+        // Vulkan spec, "Pipeline Layout Compatibility").
+        for (i, set) in b.sets.iter().enumerate() {
+            assert!(
+                b.pipeline.layout.set(i) == Some(set.layout.as_slice()),
+                "set {} bound at {i} for pipeline {}, whose layout has another set there",
+                set.name,
+                b.pipeline.name
+            );
+        }
         *self.bound_key.borrow_mut() = Some(b.key());
         self.bind_pipeline(b.pipeline);
         let sets: Vec<vk::DescriptorSet> = b.sets.iter().map(|s| s.raw).collect();
@@ -368,10 +453,20 @@ impl Recorder<'_> {
     pub fn dispatch_with(&self, b: &Bindings, groups: [u32; 3]) {
         let mut uses: Vec<(&dyn Tracked, Use)> = Vec::new();
         for read in reads(b.pipeline.name(), b).unwrap_or_else(|e| panic!("{e}")) {
-            if read.order != Order::Tracked {
-                // Written by the host before the submission (tables, twiddles).
-                self.journal_host(read.resource, Access::COMPUTE_READ);
-                continue;
+            match read.order {
+                Order::Tracked => {}
+                // Written by the host before the submission (tables, twiddles); read only
+                // (`reads` refuses a write of what is not tracked).
+                Order::Host => {
+                    self.journal_host(read.resource, Access::COMPUTE_READ);
+                    continue;
+                }
+                Order::Wait { by, .. } => {
+                    let access = (Access::COMPUTE_READ, None);
+                    let name = resource_name(read.resource);
+                    self.ctx.journal_use(name, access, false, None, Some(by));
+                    continue;
+                }
             }
             let next = compute_use(&read);
             match read.resource {
@@ -386,11 +481,8 @@ impl Recorder<'_> {
 
     /// The frame graph: a read of what the host wrote before the submission.
     fn journal_host(&self, resource: &Resource, access: Access) {
-        let name = match resource {
-            Resource::Image(i) => i.name(),
-            Resource::Buffer(b) => b.name(),
-        };
         let by = Some(super::graph::HOST_WRITES);
+        let name = resource_name(resource);
         self.ctx.journal_use(name, (access, None), false, None, by);
     }
 
@@ -414,6 +506,7 @@ pub struct Rendering<'r> {
 impl Rendering<'_> {
     /// `vkCmdBeginRendering` over the attachments' extent, `body`, `vkCmdEndRendering`.
     pub fn record(self, body: impl FnOnce()) {
+        self.rec.expect_outside_scope("a rendering scope");
         self.rec
             .begin_rendering(self.extent, &self.colour, self.depth);
         *self.rec.scope.borrow_mut() = Some(self.draws);

@@ -68,7 +68,7 @@ impl std::fmt::Display for DeviceSummary {
     }
 }
 
-pub(crate) fn type_name(t: vk::PhysicalDeviceType) -> &'static str {
+pub(super) fn type_name(t: vk::PhysicalDeviceType) -> &'static str {
     match t {
         vk::PhysicalDeviceType::DISCRETE_GPU => "discrete",
         vk::PhysicalDeviceType::INTEGRATED_GPU => "integrated",
@@ -79,7 +79,7 @@ pub(crate) fn type_name(t: vk::PhysicalDeviceType) -> &'static str {
 }
 
 /// discrete > integrated > virtual > cpu > other.
-pub(crate) fn type_rank(t: vk::PhysicalDeviceType) -> u32 {
+pub(super) fn type_rank(t: vk::PhysicalDeviceType) -> u32 {
     match t {
         vk::PhysicalDeviceType::DISCRETE_GPU => 4,
         vk::PhysicalDeviceType::INTEGRATED_GPU => 3,
@@ -91,7 +91,7 @@ pub(crate) fn type_rank(t: vk::PhysicalDeviceType) -> u32 {
 
 /// The device vkocean picks when `--gpu` is not given: the first usable one (`Some(type)`) of
 /// the highest rank. One rule for `Context::new` and the `--quality` default.
-pub(crate) fn best_usable(types: &[Option<vk::PhysicalDeviceType>]) -> Option<usize> {
+pub(super) fn best_usable(types: &[Option<vk::PhysicalDeviceType>]) -> Option<usize> {
     let mut best: Option<(usize, u32)> = None;
     for (i, t) in types.iter().enumerate() {
         if let Some(t) = t {
@@ -129,7 +129,7 @@ pub(crate) struct Candidate {
     pub(crate) plan: QueuePlan,
 }
 
-pub(crate) fn driver_string(instance: &ash::Instance, physical: vk::PhysicalDevice) -> String {
+pub(super) fn driver_string(instance: &ash::Instance, physical: vk::PhysicalDevice) -> String {
     let mut driver = vk::PhysicalDeviceDriverProperties::default();
     let mut props2 = vk::PhysicalDeviceProperties2::default().push_next(&mut driver);
     // SAFETY: `physical` belongs to `instance`; the chain points to locals.
@@ -152,7 +152,7 @@ pub(crate) fn driver_string(instance: &ash::Instance, physical: vk::PhysicalDevi
 /// Inspects a device; `Err(reason)` when vkocean cannot run on it.
 // Long: every property, feature and queue vkocean needs of a device, read and judged in
 // one place so `--list-gpus` and device choice cannot disagree.
-pub(crate) fn inspect(
+pub(super) fn inspect(
     instance: &ash::Instance,
     physical: vk::PhysicalDevice,
     surface: Option<&(ash::khr::surface::Instance, vk::SurfaceKHR)>,

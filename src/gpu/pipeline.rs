@@ -66,6 +66,14 @@ impl PipelineLayout {
         self.0.push
     }
 
+    /// Set `index`'s bindings, if the layout has that set.
+    pub(super) fn set(
+        &self,
+        index: usize,
+    ) -> Option<&[(u32, vk::DescriptorType, vk::ShaderStageFlags)]> {
+        self.0.sets.get(index).map(Vec::as_slice)
+    }
+
     /// Checks that every descriptor the shaders use is declared by the layout, with a
     /// matching type and visible to the stages that use it.
     fn check(&self, pipeline: &str, interface: &Interface) -> GpuResult<()> {
@@ -104,6 +112,9 @@ fn kind_matches(kind: Kind, ty: vk::DescriptorType) -> bool {
     match kind {
         Kind::UniformBuffer => ty == T::UNIFORM_BUFFER,
         Kind::StorageBuffer => ty == T::STORAGE_BUFFER,
+        // OpTypeSampledImage: combined only; an OpTypeImage alone: either (Vulkan spec,
+        // "Shader Resource and Descriptor Type Correspondence").
+        Kind::CombinedImageSampler => ty == T::COMBINED_IMAGE_SAMPLER,
         Kind::SampledImage => ty == T::COMBINED_IMAGE_SAMPLER || ty == T::SAMPLED_IMAGE,
         Kind::StorageImage => ty == T::STORAGE_IMAGE,
         Kind::UniformTexelBuffer => ty == T::UNIFORM_TEXEL_BUFFER,
@@ -220,6 +231,8 @@ pub struct Pipeline {
     pub(super) layout: PipelineLayout,
     pub(super) name: String,
     pub(super) interface: Interface,
+    /// A graphics pipeline's colour and depth formats (`None` for compute).
+    pub(super) formats: Option<(Vec<vk::Format>, Option<vk::Format>)>,
 }
 
 /// The union of the interfaces of `stages`, checked against `layout`.
@@ -334,6 +347,7 @@ impl Pipeline {
             layout: layout.clone(),
             name: desc.name.to_string(),
             interface,
+            formats: Some((desc.colour_formats.to_vec(), desc.depth_format)),
         })
     }
 
@@ -377,6 +391,7 @@ impl Pipeline {
             layout: layout.clone(),
             name: name.to_string(),
             interface,
+            formats: None,
         })
     }
 

@@ -1,7 +1,7 @@
 //! What a shader reads and writes, from its SPIR-V: each descriptor (set, binding) its entry
 //! point statically uses, of which kind, read or written, in which stage. Pipelines keep the
 //! union over their stages ([`Interface`]); a pass's barriers are derived from it
-//! (`bindings.rs`), so a shader that starts sampling an image in another stage moves the
+//! (`pass.rs`), so a shader that starts sampling an image in another stage moves the
 //! barrier with it.
 //!
 //! A small reader of the SPIR-V 1.6 binary (Khronos, "SPIR-V Specification", 2.3 "Physical
@@ -33,6 +33,10 @@ const OP_IMAGE_TEXEL_POINTER: u16 = 60;
 const OP_LOAD: u16 = 61;
 const OP_STORE: u16 = 62;
 const OP_COPY_MEMORY: u16 = 63;
+const OP_COPY_MEMORY_SIZED: u16 = 64;
+const OP_COPY_OBJECT: u16 = 83;
+const OP_ATOMIC_FLAG_TEST_AND_SET: u16 = 318;
+const OP_ATOMIC_FLAG_CLEAR: u16 = 319;
 const OP_ACCESS_CHAIN: u16 = 65;
 const OP_IN_BOUNDS_ACCESS_CHAIN: u16 = 66;
 const OP_PTR_ACCESS_CHAIN: u16 = 67;
@@ -63,7 +67,9 @@ pub enum Kind {
     UniformBuffer,
     /// A storage block (`buffer`).
     StorageBuffer,
-    /// A sampled image, combined with its sampler or not (`sampler2D`, `texture2D`).
+    /// An image combined with its sampler (`sampler2D`: OpTypeSampledImage).
+    CombinedImageSampler,
+    /// A sampled image alone (`texture2D`).
     SampledImage,
     /// A storage image (`image2D`).
     StorageImage,
@@ -162,7 +168,7 @@ enum Type {
     Image { buffer_dim: bool, storage: bool },
     Sampler,
     SampledImage { image: u32 },
-    Array { element: u32 },
+    Array,
     Struct,
     Pointer { pointee: u32 },
 }
@@ -188,8 +194,11 @@ fn reflect(spirv: &[u8]) -> Result<Interface, String> {
     let mut non_writable: HashSet<u32> = HashSet::new();
     let mut non_readable: HashSet<u32> = HashSet::new();
     let mut buffer_block: HashSet<u32> = HashSet::new();
-    // Struct id -> (members, members decorated NonWritable).
+    // Struct id -> its members decorated NonWritable (`readonly`), NonReadable (`writeonly`).
     let mut readonly_members: HashMap<u32, HashSet<u32>> = HashMap::new();
+    let mut writeonly_members: HashMap<u32, HashSet<u32>> = HashMap::new();
+    // Arrays of descriptors (one descriptor per binding here).
+    let mut arrays: HashSet<u32> = HashSet::new();
     // Function id -> (callees, pointers its instructions use).
     let mut functions: HashMap<u32, (Vec<u32>, Vec<u32>)> = HashMap::new();
     let mut current: Option<u32> = None;
@@ -232,7 +241,8 @@ fn reflect(spirv: &[u8]) -> Result<Interface, String> {
                 types.insert(arg(1)?, Type::SampledImage { image: arg(2)? });
             }
             OP_TYPE_ARRAY | OP_TYPE_RUNTIME_ARRAY => {
-                types.insert(arg(1)?, Type::Array { element: arg(2)? });
+                types.insert(arg(1)?, Type::Array);
+                arrays.insert(arg(1)?);
             }
             OP_TYPE_STRUCT => {
                 types.insert(arg(1)?, Type::Struct);
@@ -269,6 +279,12 @@ fn reflect(spirv: &[u8]) -> Result<Interface, String> {
             OP_MEMBER_DECORATE if arg(3)? == DECORATION_NON_WRITABLE => {
                 readonly_members.entry(arg(1)?).or_default().insert(arg(2)?);
             }
+            OP_MEMBER_DECORATE if arg(3)? == DECORATION_NON_READABLE => {
+                writeonly_members
+                    .entry(arg(1)?)
+                    .or_default()
+                    .insert(arg(2)?);
+            }
             OP_FUNCTION => {
                 let id = arg(2)?;
                 current = Some(id);
@@ -284,8 +300,9 @@ fn reflect(spirv: &[u8]) -> Result<Interface, String> {
                         | OP_PTR_ACCESS_CHAIN
                         | OP_IMAGE_TEXEL_POINTER
                         | OP_ARRAY_LENGTH => vec![arg(3)?],
-                        OP_STORE | OP_ATOMIC_STORE => vec![arg(1)?],
-                        OP_COPY_MEMORY => vec![arg(1)?, arg(2)?],
+                        OP_STORE | OP_ATOMIC_STORE | OP_ATOMIC_FLAG_CLEAR => vec![arg(1)?],
+                        OP_COPY_MEMORY | OP_COPY_MEMORY_SIZED => vec![arg(1)?, arg(2)?],
+                        OP_COPY_OBJECT | OP_ATOMIC_FLAG_TEST_AND_SET => vec![arg(3)?],
                         OP_FUNCTION_CALL => w[4..].to_vec(),
                         _ if OP_ATOMICS.contains(&op) => vec![arg(3)?],
                         _ => Vec::new(),
@@ -329,11 +346,15 @@ fn reflect(spirv: &[u8]) -> Result<Interface, String> {
                 "variable {var}: its type {pointer} is not a pointer"
             ));
         };
-        // Arrays of descriptors: the element's kind.
-        let mut ty = pointee;
-        while let Some(Type::Array { element }) = types.get(&ty).copied() {
-            ty = element;
+        // Arrays of descriptors: refused (the layouts here have one descriptor a binding, and
+        // a count the layout does not match would be invalid usage). Arrays inside a block
+        // (runtime arrays of a storage buffer) are the block's business.
+        if arrays.contains(&pointee) {
+            return Err(format!(
+                "set {set} binding {binding}: an array of descriptors (one descriptor a binding here)"
+            ));
         }
+        let ty = pointee;
         let kind = match (class, types.get(&ty).copied()) {
             (STORAGE_UNIFORM, Some(Type::Struct)) if buffer_block.contains(&ty) => {
                 Kind::StorageBuffer
@@ -341,7 +362,9 @@ fn reflect(spirv: &[u8]) -> Result<Interface, String> {
             (STORAGE_UNIFORM, Some(Type::Struct)) => Kind::UniformBuffer,
             (STORAGE_STORAGE_BUFFER, Some(Type::Struct)) => Kind::StorageBuffer,
             (STORAGE_UNIFORM_CONSTANT, Some(Type::Sampler)) => Kind::Sampler,
-            (STORAGE_UNIFORM_CONSTANT, Some(Type::SampledImage { .. })) => Kind::SampledImage,
+            (STORAGE_UNIFORM_CONSTANT, Some(Type::SampledImage { .. })) => {
+                Kind::CombinedImageSampler
+            }
             (STORAGE_UNIFORM_CONSTANT, Some(Type::Image { buffer_dim, storage })) => {
                 match (buffer_dim, storage) {
                     (true, true) => Kind::StorageTexelBuffer,
@@ -358,22 +381,25 @@ fn reflect(spirv: &[u8]) -> Result<Interface, String> {
         };
         // Combined image samplers over a texel buffer are uniform texel buffers.
         let kind = match (kind, types.get(&ty).copied()) {
-            (Kind::SampledImage, Some(Type::SampledImage { image })) => {
+            (Kind::CombinedImageSampler, Some(Type::SampledImage { image })) => {
                 match types.get(&image).copied() {
                     Some(Type::Image {
                         buffer_dim: true, ..
                     }) => Kind::UniformTexelBuffer,
-                    _ => Kind::SampledImage,
+                    _ => Kind::CombinedImageSampler,
                 }
             }
             (k, _) => k,
         };
-        let readonly = non_writable.contains(&var)
-            || readonly_members
-                .get(&ty)
-                .is_some_and(|m| struct_members.get(&ty).is_some_and(|n| m.len() >= *n));
+        // A block is `readonly` (`writeonly`) when the variable or every member says so.
+        let all_members = |m: &HashMap<u32, HashSet<u32>>| {
+            m.get(&ty)
+                .is_some_and(|m| struct_members.get(&ty).is_some_and(|n| m.len() >= *n))
+        };
+        let readonly = non_writable.contains(&var) || all_members(&readonly_members);
+        let writeonly = non_readable.contains(&var) || all_members(&writeonly_members);
         let (reads, writes) = if kind.is_storage() {
-            (!non_readable.contains(&var), !readonly)
+            (!writeonly, !readonly)
         } else {
             (true, false)
         };
@@ -412,7 +438,7 @@ mod tests {
             water.merge(&of(name, spirv));
         }
         let sky_cube = water.bindings[&(0, 3)];
-        assert_eq!(sky_cube.kind, Kind::SampledImage);
+        assert_eq!(sky_cube.kind, Kind::CombinedImageSampler);
         assert!(sky_cube
             .stages
             .contains(S::TESSELLATION_EVALUATION | S::FRAGMENT));
@@ -446,8 +472,8 @@ mod tests {
             assert!(b.kind.is_storage() || b.kind == Kind::UniformTexelBuffer);
         }
         assert!(
-            evolve.bindings.values().any(|b| b.writes),
-            "evolve writes its output: {evolve:?}"
+            evolve.bindings.values().any(|b| b.writes && !b.reads),
+            "evolve writes its output (writeonly): {evolve:?}"
         );
         assert!(
             evolve.bindings.values().any(|b| b.reads && !b.writes),

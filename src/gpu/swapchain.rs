@@ -63,18 +63,20 @@ pub fn choose_surface_format(formats: &[vk::SurfaceFormatKHR]) -> Option<vk::Sur
     .copied()
 }
 
-/// An acquired swapchain image.
-#[derive(Clone, Copy, Debug)]
+/// An acquired swapchain image (not `Copy`: its acquire semaphore is waited for once).
+#[derive(Debug)]
 pub struct AcquiredImage {
     pub(super) index: u32,
     pub(super) image: vk::Image,
     /// Its colour view (the overlay draws into the image).
     pub(super) view: vk::ImageView,
     /// Signalled when the image may be written (wait on it where the frame first touches the
-    /// image: the output pass's copy or blit).
+    /// image: the output pass's copy, blit or draw).
     pub(super) acquired: vk::Semaphore,
     /// Signal this when rendering is done; presentation waits on it.
     pub(super) ready: vk::Semaphore,
+    /// `acquire_wait` was taken (a binary semaphore's signal is waited for once).
+    pub(super) waited: std::cell::Cell<bool>,
     /// The swapchain's image size, format and usage.
     pub(super) extent: vk::Extent2D,
     pub(super) format: vk::Format,
@@ -83,7 +85,13 @@ pub struct AcquiredImage {
 
 impl AcquiredImage {
     /// The wait for the acquire, at `stage` (where the frame first writes the image).
+    /// Panics the second time: the acquire's one signal can satisfy one wait.
     pub fn acquire_wait(&self, stage: vk::PipelineStageFlags2) -> super::SemaphoreOp {
+        assert!(
+            !self.waited.replace(true),
+            "swapchain image {}: its acquire was already waited for",
+            self.index
+        );
         super::SemaphoreOp(
             vk::SemaphoreSubmitInfo::default()
                 .semaphore(self.acquired)
@@ -371,6 +379,7 @@ impl Swapchain {
                     view: self.views[i],
                     acquired: semaphore,
                     ready: self.ready[i],
+                    waited: std::cell::Cell::new(false),
                     extent: self.extent,
                     format: self.format,
                     usage: self.usage,

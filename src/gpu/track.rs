@@ -77,6 +77,10 @@ impl Access {
         stage: vk::PipelineStageFlags2::ALL_TRANSFER,
         access: vk::AccessFlags2::TRANSFER_WRITE,
     };
+    pub const INDEX_READ: Access = Access {
+        stage: vk::PipelineStageFlags2::INDEX_INPUT,
+        access: vk::AccessFlags2::INDEX_READ,
+    };
     pub const HOST_READ: Access = Access {
         stage: vk::PipelineStageFlags2::HOST,
         access: vk::AccessFlags2::HOST_READ,
@@ -144,6 +148,8 @@ pub enum Use {
     TransferDst,
     /// Read by the host once the submission is done (buffers).
     HostRead,
+    /// Read as indices by indexed draws (buffers).
+    IndexRead,
     /// Handed to the presentation engine (the submission's semaphore signal orders it).
     Present,
 }
@@ -216,6 +222,7 @@ impl Use {
             Use::TransferSrc => (L::TRANSFER_SRC_OPTIMAL, Access::TRANSFER_READ, false, false),
             Use::TransferDst => (L::TRANSFER_DST_OPTIMAL, Access::TRANSFER_WRITE, true, true),
             Use::HostRead => (L::UNDEFINED, Access::HOST_READ, false, false),
+            Use::IndexRead => (L::UNDEFINED, Access::INDEX_READ, false, false),
             Use::Present => (L::PRESENT_SRC_KHR, Access::NONE, false, false),
         };
         UseInfo {
@@ -356,9 +363,16 @@ fn contains(have: Access, want: Access) -> bool {
     have.stage.contains(want.stage) && have.access.contains(want.access)
 }
 
+/// Implemented by the GPU layer's resources only (a sealed trait): no code above it can hand
+/// the tracker a handle it does not own.
+pub(super) mod sealed {
+    pub trait Sealed {}
+}
+
 /// A resource with a tracked state. Its handle and state are visible to the GPU layer only
-/// (`Recorder::uses` and the passes' derived reads change the state, nothing else).
-pub trait Tracked {
+/// (`Recorder::uses` and the passes' derived reads change the state, nothing else); only the
+/// GPU layer's resources implement it.
+pub trait Tracked: sealed::Sealed {
     /// The image and its subresources, or the buffer.
     #[doc(hidden)]
     fn handle(&self) -> Handle;
@@ -407,6 +421,8 @@ impl ExternalImage {
         self.format
     }
 }
+
+impl sealed::Sealed for ExternalImage {}
 
 impl Tracked for ExternalImage {
     fn handle(&self) -> Handle {

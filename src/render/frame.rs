@@ -60,9 +60,14 @@ const CLEAR_DEPTH: Load = Load::Clear(vk::ClearValue {
     },
 });
 
-/// The stage at which graphics 2 waits for a swapchain image's acquire: the output pass's copy
-/// is the first write to it (the image's state starts `available_after` this stage).
-pub const ACQUIRE_WAIT_STAGE: vk::PipelineStageFlags2 = vk::PipelineStageFlags2::ALL_TRANSFER;
+/// The stages at which graphics 2 waits for a swapchain image's acquire: the output pass's
+/// first write to it, a copy or blit (transfer) or, where the image takes no copies, a draw
+/// (colour attachment output). The image's state starts `available_after` these stages, so the
+/// first write's barrier chains with the wait.
+pub const ACQUIRE_WAIT_STAGE: vk::PipelineStageFlags2 = vk::PipelineStageFlags2::from_raw(
+    vk::PipelineStageFlags2::ALL_TRANSFER.as_raw()
+        | vk::PipelineStageFlags2::COLOR_ATTACHMENT_OUTPUT.as_raw(),
+);
 
 /// Where the frame's output goes after the output pass.
 #[derive(Default)]
@@ -72,7 +77,7 @@ pub struct Delivery<'a> {
     /// A swapchain image: present it after the frame.
     /// (Graphics 2 waits for its acquire before the output's first write, at
     /// `ACQUIRE_WAIT_STAGE`, and signals what the presentation waits for.)
-    pub present: Option<AcquiredImage>,
+    pub present: Option<&'a AcquiredImage>,
 }
 
 /// The overlay's part of a frame: egui's triangles, drawn last into the output image.

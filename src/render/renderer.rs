@@ -234,10 +234,11 @@ impl Renderer {
                 MemoryLocation::CpuToGpu,
             )?;
             // The ocean images are written on the compute queue and read through the
-            // compute timeline's wait; the sky cube is tracked on this queue (its readers wait
+            // compute timeline's wait (graphics 2's submission must carry it: `Frames::submit`
+            // checks); the sky cube is tracked on this queue (its readers wait
             // for its last rendering at the stages that sample it).
             let wait = Order::Wait {
-                by: "the compute timeline's wait",
+                by: "compute timeline",
                 stages: ocean.wait_stages,
             };
             let set = BoundSet::new(

@@ -9,9 +9,11 @@ use crate::gpu::{Context, GpuResult, Use};
 
 impl Simulation {
     /// Reads both images of `slot` as the last compute submission left them (tests, dumps):
-    /// (displacement, normals), each cascade after cascade, `[m][n]` RGBA f32. No graphics frame
-    /// may still be sampling the slot (wait for it first).
+    /// (displacement, normals), each cascade after cascade, `[m][n]` RGBA f32. Waits for the
+    /// device first: no frame may still be sampling the slot while its images change layout
+    /// for the copy.
     pub fn read_back(&self, ctx: &Arc<Context>, slot: usize) -> GpuResult<(Texels, Texels)> {
+        ctx.wait_idle()?;
         let images = [&self.displacement[slot], &self.normals[slot]];
         // On the compute queue, after the submission that wrote the images: a pipeline barrier's
         // first scope covers everything submitted earlier to the same queue, so the layout

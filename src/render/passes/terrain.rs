@@ -10,10 +10,10 @@ use std::sync::Arc;
 use ash::vk;
 
 use super::{bind_scene, scene_layout, scene_pipeline, Depth, PerTarget, SceneTarget};
-use crate::gpu::oneshot::upload;
+use crate::gpu::oneshot::upload_then;
 use crate::gpu::{
     Bindings, BoundSet, Buffer, Context, DescriptorSetLayout, GpuResult, GraphicsDesc,
-    MemoryLocation, Pipeline, Recorder,
+    MemoryLocation, Pipeline, Recorder, Use,
 };
 use crate::render::uniforms::ViewIndex;
 use crate::shaders;
@@ -127,7 +127,8 @@ impl Mesh {
             vk::BufferUsageFlags::INDEX_BUFFER | vk::BufferUsageFlags::TRANSFER_DST,
             MemoryLocation::GpuOnly,
         )?;
-        upload(ctx, &buffer, bytes)?;
+        // Then visible to the draws' index reads (no pass declares them).
+        upload_then(ctx, &buffer, bytes, Use::IndexRead)?;
         Ok(Mesh {
             buffer,
             count: indices.len() as u32,
