@@ -6,35 +6,15 @@
 
 mod common;
 
-use common::{assert_validation_clean, gpu_context};
+use common::{assert_validation_clean, gpu_context, test_image as image};
 use vkocean::gpu::oneshot::run_once;
 use vkocean::gpu::{
-    check_bindings, vk, Bind, Bindings, BoundSet, Context, DescriptorSetLayout, GraphicsDesc,
-    Image, ImageDesc, Load, Order, Pipeline, PipelineLayout, Sampler, Target,
+    check_bindings, vk, Bind, Bindings, BoundSet, Context, DescriptorSetLayout, GraphicsDesc, Load,
+    Order, Pipeline, PipelineLayout, Sampler, Target,
 };
 use vkocean::shaders;
 
 const FORMAT: vk::Format = vk::Format::R8G8B8A8_UNORM;
-
-fn image(ctx: &std::sync::Arc<Context>, name: &str, usage: vk::ImageUsageFlags) -> Image {
-    Image::new(
-        ctx,
-        &ImageDesc {
-            name,
-            extent: vk::Extent2D {
-                width: 16,
-                height: 16,
-            },
-            format: FORMAT,
-            usage,
-            layers: 1,
-            array_view: false,
-            shared: false,
-            cube: false,
-        },
-    )
-    .unwrap()
-}
 
 /// The test pipeline, its texture visible to `visible` in the set layout.
 fn pipeline(

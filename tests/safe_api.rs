@@ -4,29 +4,9 @@
 
 mod common;
 
-use common::{assert_validation_clean, gpu_context};
+use common::{assert_validation_clean, gpu_context, test_image};
 use vkocean::gpu::oneshot::run_once;
-use vkocean::gpu::{vk, Buffer, BufferView, Image, ImageDesc, Load, MemoryLocation, Target};
-
-fn image(ctx: &std::sync::Arc<vkocean::gpu::Context>, usage: vk::ImageUsageFlags) -> Image {
-    Image::new(
-        ctx,
-        &ImageDesc {
-            name: "sampled-only image",
-            extent: vk::Extent2D {
-                width: 8,
-                height: 8,
-            },
-            format: vk::Format::R8G8B8A8_UNORM,
-            usage,
-            layers: 1,
-            array_view: false,
-            shared: false,
-            cube: false,
-        },
-    )
-    .unwrap()
-}
+use vkocean::gpu::{vk, Buffer, BufferView, Load, MemoryLocation, Target};
 
 fn buffer(
     ctx: &std::sync::Arc<vkocean::gpu::Context>,
@@ -40,7 +20,7 @@ fn buffer(
 #[should_panic(expected = "lacks COLOR_ATTACHMENT usage")]
 fn an_image_without_attachment_usage_is_no_render_target() {
     let ctx = gpu_context();
-    let image = image(&ctx, vk::ImageUsageFlags::SAMPLED);
+    let image = test_image(&ctx, "sampled-only image", vk::ImageUsageFlags::SAMPLED);
     let _ = Target::new(&image, Load::DontCare);
 }
 

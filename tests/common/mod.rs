@@ -132,6 +132,32 @@ pub fn gpu_context() -> std::sync::Arc<vkocean::gpu::Context> {
     .expect("a Vulkan device (tools/setup installs lavapipe)")
 }
 
+/// A 16x16 RGBA8 (UNORM) image with `usage`, one layer (the GPU-layer tests' texture or target).
+pub fn test_image(
+    ctx: &std::sync::Arc<vkocean::gpu::Context>,
+    name: &str,
+    usage: vkocean::gpu::vk::ImageUsageFlags,
+) -> vkocean::gpu::Image {
+    use vkocean::gpu::vk;
+    vkocean::gpu::Image::new(
+        ctx,
+        &vkocean::gpu::ImageDesc {
+            name,
+            extent: vk::Extent2D {
+                width: 16,
+                height: 16,
+            },
+            format: vk::Format::R8G8B8A8_UNORM,
+            usage,
+            layers: 1,
+            array_view: false,
+            shared: false,
+            cube: false,
+        },
+    )
+    .expect("a 16x16 test image")
+}
+
 /// Destroys the context (so destruction is validated too) and asserts that validation reported
 /// nothing. Drop every object created from it first.
 pub fn assert_validation_clean(ctx: std::sync::Arc<vkocean::gpu::Context>) {
