@@ -150,17 +150,20 @@ fn reads<'a>(pass: &str, b: &Bindings<'a>) -> Result<Vec<Read<'a>>, String> {
                 b.pipeline.name, used.stages
             ));
         };
-        let what = format!(
-            "pass {pass}: pipeline {} {} {} (set {set} binding {binding}) in {:?}",
-            b.pipeline.name,
-            if used.writes { "writes" } else { "reads" },
-            bound.name(),
-            used.stages
-        );
+        // Only formatted for an error (this runs for every draw of every frame).
+        let what = || {
+            format!(
+                "pass {pass}: pipeline {} {} {} (set {set} binding {binding}) in {:?}",
+                b.pipeline.name,
+                if used.writes { "writes" } else { "reads" },
+                bound.name(),
+                used.stages
+            )
+        };
         // What a shader writes must be tracked: a host or another queue's order says nothing
         // of the writes this queue makes.
         if used.writes && bound.order != Order::Tracked {
-            return Err(format!("{what}, but it is not tracked on this queue"));
+            return Err(format!("{}, but it is not tracked on this queue", what()));
         }
         // Graphics shaders here sample images and read uniforms: storage descriptors and
         // tracked buffers would need uses this tracker does not derive for those stages.
@@ -169,7 +172,8 @@ fn reads<'a>(pass: &str, b: &Bindings<'a>) -> Result<Vec<Read<'a>>, String> {
         let sampled = matches!(used.kind, Kind::CombinedImageSampler | Kind::SampledImage);
         if graphics && bound.order == Order::Tracked && !(image && sampled) {
             return Err(format!(
-                "{what}: graphics passes track sampled images only (uniforms are host-written)"
+                "{}: graphics passes track sampled images only (uniforms are host-written)",
+                what()
             ));
         }
         if let Order::Wait { by, stages } = bound.order {
