@@ -379,9 +379,7 @@ impl Recorder<'_> {
                         };
                         let layout = Some(sampled_layout(order));
                         let journal = (access, layout);
-                        if let Order::Wait { by, stages: _ } = order {
-                            self.require_wait(by, stages);
-                        }
+                        self.require_wait(by, stages);
                         self.ctx
                             .journal_use(image.name(), journal, false, None, Some(by));
                     }
