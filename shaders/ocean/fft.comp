@@ -30,16 +30,24 @@ shared vec2 buf[2][N];
 
 // One pass with R = 2^LOG_R values per group. `in_slot`/`out_slot` pick the shared buffers;
 // the first pass reads src, the last writes dst (transposed). A macro keeps the register arrays
-// sized by a constant and every index constant after unrolling.
+// sized by a constant and every index constant after unrolling. The `first`/`last` branches
+// stand outside the unrolled loads and stores, never inside them: with a branch in each of the
+// R unrolled iterations SwiftShader's compiler grew to 16.9 GB creating this pipeline (issue
+// 32); hoisted, it takes 0.09 s and lavapipe's output is bit-identical.
 #define PASS(LOG_R)                                                                          \
     {                                                                                        \
         const uint R = 1u << LOG_R;                                                          \
         for (uint j = t; j < N / R; j += THREADS) {                                          \
             uint k = j & (ns - 1u);                                                          \
             vec2 v[R];                                                                       \
-            [[unroll]] for (uint q = 0u; q < R; ++q) {                                       \
-                uint i = j + q * (N / R);                                                    \
-                v[q] = first ? conj_if_forward(src[row_base + i]) : buf[in_slot][i];         \
+            if (first) {                                                                     \
+                [[unroll]] for (uint q = 0u; q < R; ++q) {                                   \
+                    v[q] = conj_if_forward(src[row_base + j + q * (N / R)]);                 \
+                }                                                                            \
+            } else {                                                                         \
+                [[unroll]] for (uint q = 0u; q < R; ++q) {                                   \
+                    v[q] = buf[in_slot][j + q * (N / R)];                                    \
+                }                                                                            \
             }                                                                                \
             if (ns > 1u) {                                                                   \
                 vec2 w1 = twiddle[k * (N / (ns * R))];                                       \
@@ -51,12 +59,13 @@ shared vec2 buf[2][N];
             }                                                                                \
             DFT_IN_REGISTERS(v, LOG_R)                                                       \
             uint o = (j - k) * R + k;                                                        \
-            [[unroll]] for (uint q = 0u; q < R; ++q) {                                       \
-                uint i = o + q * ns;                                                         \
-                if (last) {                                                                  \
-                    dst[out_base + i * N] = conj_if_forward(v[q]);                           \
-                } else {                                                                     \
-                    buf[out_slot][i] = v[q];                                                 \
+            if (last) {                                                                      \
+                [[unroll]] for (uint q = 0u; q < R; ++q) {                                   \
+                    dst[out_base + (o + q * ns) * N] = conj_if_forward(v[q]);                \
+                }                                                                            \
+            } else {                                                                         \
+                [[unroll]] for (uint q = 0u; q < R; ++q) {                                   \
+                    buf[out_slot][o + q * ns] = v[q];                                        \
                 }                                                                            \
             }                                                                                \
         }                                                                                    \

@@ -22,16 +22,20 @@
 //   runtime values and took about 25 % longer.
 //
 // A column of N values lives in the registers of T invocations (T = 1 up to N = 256, 2 for
-// N = 512), M = N/T values each. T = 2 is one step of a four-step FFT (Bailey 1990, "FFTs in
-// external or hierarchical memory"): lane t transforms x[t + 2i], i < M, in registers (Y_t),
-// and the pair finishes with one radix-2 butterfly over t through a subgroup shuffle:
-//   X[k1 + M k2] = Σ_t (-1)^{t k2} (w_N^{t k1} Y_t[k1]),  w_n = e^{2πi/n}.
+// N = 512, 4 for N = 1024), M = N/T values each. T > 1 is one step of a four-step FFT (Bailey
+// 1990, "FFTs in external or hierarchical memory"): lane t transforms x[t + T i], i < M, in
+// registers (Y_t), and the T lanes finish with a T-point DFT over t through subgroup shuffles:
+//   X[k1 + M k2] = Σ_t w_T^{t k2} (w_N^{t k1} Y_t[k1]),  w_n = e^{2πi/n}.
+// T = 4 runs it as two radix-2 stages (t = t0 + 2 t1, k2 = a0 + 2 a1: w_4^{t k2} =
+// (-1)^{t1 a0} w_4^{t0 a0} (-1)^{t0 a1}): a butterfly across lanes t ^ 2, the twiddle w_4 on
+// lane 3 (t0 = a0 = 1), a butterfly across lanes t ^ 1. Lane t then holds k2 = a0 + 2 a1 with
+// a0 = t >> 1, a1 = t & 1: the two bits of t reversed.
 //
 // Inputs: src4 = the source as RGBA32F texels (two neighbouring values of a row). Output: dst
 // (batch, N, N) complex values as (re, im) bit pairs in 64-bit words. Push constant: +1
 // inverse, -1 forward.
 layout(constant_id = 0) const uint LOG2_N = 8;
-// log2 of the invocations (subgroup lanes) per column: 0 or 1.
+// log2 of the invocations (subgroup lanes) per column: 0, 1 or 2.
 layout(constant_id = 1) const uint LOG2_T = 0;
 // Column pairs per workgroup.
 layout(constant_id = 2) const uint PAIRS = 8;
@@ -121,9 +125,27 @@ void main() {
                 vec2 partner = subgroupShuffleXor(z, 1u);
                 x[k1] = t == 0u ? z + partner : partner - z;
             }
+        } else if (T == 4u) {
+            // Lane t scales Y_t[k1] by w_N^{t k1} (one of three constants, picked by t), then
+            // the two radix-2 stages across lanes described at the top.
+            [[unroll]] for (uint k1 = 0u; k1 < M; ++k1) {
+                float a = float(k1) * (TAU / float(N));
+                vec2 w = t == 0u ? vec2(1.0, 0.0)
+                       : t == 1u ? vec2(cos(a), sin(a))
+                       : t == 2u ? vec2(cos(2.0 * a), sin(2.0 * a))
+                       : vec2(cos(3.0 * a), sin(3.0 * a));
+                vec2 z = cmul(x[k1], w);
+                vec2 partner = subgroupShuffleXor(z, 2u);
+                z = (t & 2u) == 0u ? z + partner : partner - z;
+                z = t == 3u ? vec2(-z.y, z.x) : z;
+                partner = subgroupShuffleXor(z, 1u);
+                x[k1] = (t & 1u) == 0u ? z + partner : partner - z;
+            }
         }
-        // Lane t holds X[t M + k], k < M: a contiguous run of the output row.
-        uint out_base = (batch * N + column + c) * N + t * M;
+        // Lane t holds X[k2 M + k], k < M: a contiguous run of the output row (k2 = t, or t's
+        // two bits reversed for T = 4).
+        uint k2 = T == 4u ? ((t >> 1u) | ((t & 1u) << 1u)) : t;
+        uint out_base = (batch * N + column + c) * N + k2 * M;
         [[unroll]] for (uint k = 0u; k < M; k += 4u) {
             store4(out_base + k, conj_if_forward(x[k]), conj_if_forward(x[k + 1u]),
                    conj_if_forward(x[k + 2u]), conj_if_forward(x[k + 3u]));

@@ -58,6 +58,8 @@ pub struct FftRow {
     pub rustfft_2d_ms: f64,
     /// The GPU kernel, e.g. "registers, 1 lane per 2 columns".
     pub kernel: String,
+    /// Time to create the kernel's pipeline (the driver's compile), ms.
+    pub pipeline_ms: f64,
     /// Measured runs behind the medians.
     pub runs: usize,
     /// Share of the machine's CPU time the hypervisor took during the runs (Linux only).
@@ -89,13 +91,15 @@ pub fn fft(s: &FftBenchSettings) -> anyhow::Result<Outcome> {
         s.batch,
     );
     crate::outln!(
-        "{:>6} {:>6} {:>10} {:>12} {:>8} {:>14} {:>6} {:>7}  kernel",
+        "{:>6} {:>6} {:>10} {:>12} {:>8} {:>14} {:>8} {:>11} {:>6} {:>7}  kernel",
         "N",
         "batch",
         "gpu_ms",
         "rustfft_ms",
         "ratio",
         "rustfft_2d_ms",
+        "ratio_2d",
+        "pipeline_ms",
         "runs",
         "steal%"
     );
@@ -104,13 +108,15 @@ pub fn fft(s: &FftBenchSettings) -> anyhow::Result<Outcome> {
         let input = test_signal(s.batch * n * n, n as u64);
         let row = measure(&ctx, n, s.batch, s.runs, &input)?;
         crate::outln!(
-            "{:>6} {:>6} {:>10.3} {:>12.3} {:>8.2} {:>14.3} {:>6} {:>7}  {}",
+            "{:>6} {:>6} {:>10.3} {:>12.3} {:>8.2} {:>14.3} {:>8.2} {:>11.1} {:>6} {:>7}  {}",
             n,
             s.batch,
             row.gpu_ms,
             row.rustfft_ms,
             row.gpu_ms / row.rustfft_ms,
             row.rustfft_2d_ms,
+            row.gpu_ms / row.rustfft_2d_ms,
+            row.pipeline_ms,
             row.runs,
             row.steal_pct.map_or("-".to_string(), |p| format!("{p:.1}")),
             row.kernel
@@ -124,6 +130,7 @@ pub fn fft(s: &FftBenchSettings) -> anyhow::Result<Outcome> {
             .map(|r| {
                 json!({"n": r.n, "batch": r.batch, "gpu_ms": r.gpu_ms, "rustfft_ms": r.rustfft_ms,
                        "ratio": r.gpu_ms / r.rustfft_ms, "rustfft_2d_ms": r.rustfft_2d_ms,
+                       "ratio_2d": r.gpu_ms / r.rustfft_2d_ms, "pipeline_ms": r.pipeline_ms,
                        "kernel": r.kernel, "runs": r.runs, "steal_pct": r.steal_pct})
             })
             .collect();
@@ -245,6 +252,7 @@ fn measure(
         rustfft_ms: cpu_median(&cpu_fft),
         rustfft_2d_ms: cpu_median(&cpu_2d),
         kernel: kernel_name(fft.kernel),
+        pipeline_ms: fft.pipeline_ms,
         runs: cpu_fft.len(),
         steal_pct,
     })

@@ -64,10 +64,11 @@ pub fn check_env() -> Result<(), String> {
 /// Column pairs per workgroup of the register kernel (one SIMD vector of lanes).
 const REGISTER_PAIRS: u32 = 8;
 /// Longest column the register kernel keeps in the registers of one invocation (which holds
-/// two); longer columns are split over 2 subgroup lanes. N = 1024 would need 2 lanes of 2 × 512
-/// values, which llvmpipe takes tens of seconds to compile, so it uses the shared-memory kernel.
+/// two); longer columns are split over 2 (N = 512) or 4 (N = 1024) subgroup lanes. 2 lanes of
+/// 2 × 512 values for N = 1024 took llvmpipe tens of seconds to compile; 4 lanes of 2 × 256
+/// compile as fast as N = 512.
 const REGISTER_MAX_M: usize = 256;
-const REGISTER_MAX_N: usize = 2 * REGISTER_MAX_M;
+const REGISTER_MAX_N: usize = 4 * REGISTER_MAX_M;
 
 /// Direction of a transform.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -108,8 +109,9 @@ impl Kernel {
         }
     }
 
-    /// The register kernel, if the device can run it for N and this batch: N ≤ 512, 64-bit
-    /// integers (its stores), RGBA32F uniform texel buffers (its loads), subgroup shuffles (two lanes per column above 256) and the batch
+    /// The register kernel, if the device can run it for N and this batch: N ≤ 1024, 64-bit
+    /// integers (its stores), RGBA32F uniform texel buffers (its loads), subgroup shuffles in
+    /// subgroups of at least N/256 lanes (the lanes of one column above N = 256) and the batch
     /// within maxTexelBufferElements.
     pub fn registers(ctx: &Context, n: usize, batch: usize) -> Option<Kernel> {
         let lanes = n.div_ceil(REGISTER_MAX_M).max(1);
@@ -191,6 +193,9 @@ pub struct GpuFft {
     pub n: usize,
     pub batch: usize,
     pub kernel: Kernel,
+    /// Wall time vkCreateComputePipelines took for the kernel (the driver's shader compile;
+    /// `bench fft` prints it).
+    pub pipeline_ms: f64,
     /// Input and output, (batch, N, N) complex f32 (vec2).
     pub data: Buffer,
     /// The intermediate (row-transformed, transposed) arrays (bound by `sets`).
@@ -272,6 +277,7 @@ impl GpuFft {
             &[&set_layout],
             Some((stage, std::mem::size_of::<FftParams>() as u32)),
         )?;
+        let compile = std::time::Instant::now();
         let pipeline = Pipeline::compute(
             ctx,
             &layout,
@@ -279,6 +285,7 @@ impl GpuFft {
             spirv,
             &constants,
         )?;
+        let pipeline_ms = compile.elapsed().as_secs_f64() * 1e3;
         let t = Order::Tracked;
         let names = ["fft rows: data -> scratch", "fft columns: scratch -> data"];
         let sets = match kernel {
@@ -338,6 +345,7 @@ impl GpuFft {
             n,
             batch,
             kernel,
+            pipeline_ms,
             data,
             _scratch: scratch,
             _twiddles: twiddles,
