@@ -137,6 +137,12 @@ impl ProfileReport<'_> {
                 "fragment_invocations": Stats::json(&column(|c| c.fragment_invocations)),
                 "samples": self.gpu.statistics.len(),
             });
+            if let Some((per_pixel, covered)) = self.water_coverage() {
+                report["water_coverage"] = json!({
+                    "invocations_per_pixel": Stats::json(&per_pixel),
+                    "covered_pixels": Stats::json(&covered),
+                });
+            }
         }
         report
     }
@@ -147,6 +153,23 @@ impl ProfileReport<'_> {
             .submission_of(name)
             .or_else(|| self.gpu.submission_of(name))
             .unwrap_or("?")
+    }
+
+    /// The water draw's fragment-shader invocations per covered pixel and its covered pixels
+    /// (samples that passed the depth test), frame by frame; `None` without precise occlusion
+    /// queries.
+    pub fn water_coverage(&self) -> Option<(Vec<f64>, Vec<f64>)> {
+        let frames: Option<Vec<(f64, f64)>> = self
+            .gpu
+            .statistics
+            .iter()
+            .map(|c| {
+                let covered = c.covered_samples? as f64;
+                Some((c.fragment_invocations as f64 / covered.max(1.0), covered))
+            })
+            .collect();
+        let frames = frames.filter(|f| !f.is_empty())?;
+        Some(frames.into_iter().unzip())
     }
 
     /// One counter of the water draw's statistics, frame by frame.
@@ -188,6 +211,14 @@ impl ProfileReport<'_> {
                 "  {:<16} median {p:.0} patches, {e:.0} tess-eval invocations, {t:.0} triangles, {f:.0} fragments\n",
                 "water draw"
             );
+        }
+        if let Some((per_pixel, covered)) = self.water_coverage() {
+            if let (Some(i), Some(c)) = (Stats::of(&per_pixel), Stats::of(&covered)) {
+                out += &format!(
+                    "  {:<16} median {:.2} fragment invocations per covered pixel (p95 {:.2}), {:.0} pixels covered\n",
+                    "water coverage", i.median, i.p95, c.median
+                );
+            }
         }
         if let Some(s) = Stats::of(&self.gpu.frames) {
             out += &format!(

@@ -1,7 +1,8 @@
 //! `--frame-graph`: the frame as recorded, the table a synchronization question is checked
-//! against (issue 31). The water pass lists the sky cube among its reads at the
-//! tessellation-evaluation stage (the hazard the review found: it was declared for fragment
-//! shaders only), and every image the pass's shaders sample appears with its stages.
+//! against (issue 31). The water pass lists the sky cube among its reads at the stage its
+//! vertex routine samples it in, tessellation evaluation for the tessellated water and vertex
+//! for the clipmap (the hazard the review found: it was declared for fragment shaders only),
+//! and every image the pass's shaders sample appears with its stages.
 
 mod common;
 
@@ -17,7 +18,11 @@ fn names(v: &Value) -> Vec<String> {
 }
 
 const TESE: &str = "VK_PIPELINE_STAGE_2_TESSELLATION_EVALUATION_SHADER_BIT";
+const VERTEX: &str = "VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT";
 const FRAGMENT: &str = "VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT";
+
+/// Each water geometry and the stage its vertices are displaced and lit in.
+const GEOMETRIES: [(&str, &str); 2] = [("tessellated", TESE), ("clipmap", VERTEX)];
 
 fn graph(args: &[&str], name: &str) -> Value {
     let dir = scratch(name);
@@ -51,9 +56,19 @@ fn read<'a>(pass: &'a Value, resource: &str) -> &'a Value {
 
 #[test]
 fn the_water_reads_the_sky_cube_where_its_shaders_sample_it() {
-    // One frame: the sky cube is rendered in graphics 1 and first sampled in the tessellation
-    // stage by the water in graphics 2.
-    let g = graph(&[], "frame-graph-first");
+    for (geometry, stage) in GEOMETRIES {
+        water_reads(geometry, stage);
+    }
+}
+
+/// One frame: the sky cube is rendered in graphics 1 and first sampled by the water in
+/// graphics 2, in `vertex_stage` (where `geometry` displaces and lights its vertices) and in
+/// the fragment shader.
+fn water_reads(geometry: &str, vertex_stage: &str) {
+    let g = graph(
+        &["--geometry", geometry],
+        &format!("frame-graph-first-{geometry}"),
+    );
     let submissions = g["submissions"].as_array().unwrap();
     let water = passes(&g, "water");
     assert_eq!(water.len(), 1, "one water pass");
@@ -61,17 +76,17 @@ fn the_water_reads_the_sky_cube_where_its_shaders_sample_it() {
     let cube = read(water, "sky cube");
     let stages = names(&cube["stages"]);
     assert!(
-        stages.iter().any(|s| s == TESE) && stages.iter().any(|s| s == FRAGMENT),
-        "sky cube read at {stages:?}"
+        stages.iter().any(|s| s == vertex_stage) && stages.iter().any(|s| s == FRAGMENT),
+        "{geometry}: sky cube read at {stages:?}"
     );
     // The reflection pass's sky moved it to SHADER_READ_ONLY_OPTIMAL for fragment shaders only
     // (a barrier after the cube's rendering, whose layout transition is its last write): the
     // water's barrier waits for that transition (and, chained through it, the rendering) at
-    // the tessellation stage too.
+    // the vertex routine's stage too.
     let before = names(&cube["barrier"]["before"]["stages"]);
     assert!(
-        before.iter().any(|s| s == TESE),
-        "barrier before {before:?}"
+        before.iter().any(|s| s == vertex_stage),
+        "{geometry}: barrier before {before:?}"
     );
     let after = names(&cube["barrier"]["after"]["stages"]);
     assert_eq!(after, [FRAGMENT], "the barrier waits for {after:?}");
@@ -84,13 +99,13 @@ fn the_water_reads_the_sky_cube_where_its_shaders_sample_it() {
         ("refraction colour", FRAGMENT),
         ("refraction depth", FRAGMENT),
         ("dudv map", FRAGMENT),
-        ("ocean displacement slot 0", TESE),
+        ("ocean displacement slot 0", vertex_stage),
         ("ocean normals+foam slot 0", FRAGMENT),
     ] {
         let r = read(water, resource);
         assert!(
             names(&r["stages"]).iter().any(|s| s == stage),
-            "{resource} read at {:?}",
+            "{geometry}: {resource} read at {:?}",
             r["stages"]
         );
         assert_eq!(r["access"][0], "VK_ACCESS_2_SHADER_SAMPLED_READ_BIT");
@@ -117,7 +132,7 @@ fn the_water_reads_the_sky_cube_where_its_shaders_sample_it() {
         .iter()
         .find(|w| w["semaphore"] == "compute timeline")
         .expect("a wait for the compute timeline");
-    assert!(names(&wait["stages"]).iter().any(|s| s == TESE));
+    assert!(names(&wait["stages"]).iter().any(|s| s == vertex_stage));
     let signalled = submissions.iter().any(|s| {
         s["signals"]
             .as_array()
@@ -137,7 +152,10 @@ fn the_water_reads_the_sky_cube_where_its_shaders_sample_it() {
 
 #[test]
 fn a_later_frame_needs_no_barrier_for_the_cube_and_the_dot_picture_draws_it() {
-    let g = graph(&["--frames", "2"], "frame-graph-second");
+    let g = graph(
+        &["--frames", "2", "--geometry", "tessellated"],
+        "frame-graph-second",
+    );
     let water = passes(&g, "water")[0];
     let cube = read(water, "sky cube");
     assert!(names(&cube["stages"]).iter().any(|s| s == TESE));
@@ -158,6 +176,8 @@ fn a_later_frame_needs_no_barrier_for_the_cube_and_the_dot_picture_draws_it() {
             "320x180",
             "--frames",
             "2",
+            "--geometry",
+            "tessellated",
             "--frame-graph",
             dot.to_str().unwrap(),
         ]),

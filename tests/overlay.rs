@@ -153,18 +153,21 @@ fn a_live_change_makes_the_same_sea_as_the_flag() {
 #[test]
 fn a_live_change_of_the_look_matches_the_flag_in_the_picture() {
     let size = (320, 180);
+    // The water geometry too: the live change makes a new water pass (the default here,
+    // clipmap, becomes the tessellated one).
     let flags = [
         "--frames",
         "3",
         "--sun=40,25",
         "--clouds=0.7",
         "--render-scale=0.75",
+        "--geometry=tessellated",
     ];
     let live = [
         "--frames",
         "3",
         "--live-set",
-        "sun-azimuth=40;sun-elevation=25;clouds=0.7;render-scale=0.75",
+        "sun-azimuth=40;sun-elevation=25;clouds=0.7;render-scale=0.75;geometry=tessellated",
     ];
     let a = shot("look-flag", size, &flags, &[]);
     let b = shot("look-live", size, &live, &[]);
@@ -208,6 +211,8 @@ fn saved_settings_read_back_to_the_same_tunables() {
         "0.5",
         "--waves",
         "gerstner",
+        "--geometry",
+        "tessellated",
     ])
     .unwrap();
     let mut tunables = cli.tunables();

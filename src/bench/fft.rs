@@ -27,7 +27,7 @@ use super::CpuTimes;
 use crate::frontend::Outcome;
 use crate::gpu::compute::ComputeQueue;
 use crate::gpu::oneshot::upload_on;
-use crate::gpu::{Buffer, Context, Frames, MemoryLocation, Profiler};
+use crate::gpu::{Buffer, Context, Frames, MemoryLocation, Needs, Profiler};
 use crate::ocean::fft::{Direction, GpuFft, Kernel};
 use crate::output::PendingFile;
 use crate::profile::{Stats, WARMUP_FRAMES};
@@ -75,7 +75,7 @@ const MAX_RUNS: usize = 2000;
 
 pub fn fft(s: &FftBenchSettings) -> anyhow::Result<Outcome> {
     let json_file = PendingFile::create_if("--json", s.json.as_deref())?;
-    let ctx = Context::headless(s.validation, s.validation_extras, s.gpu)?;
+    let ctx = Context::headless(s.validation, s.validation_extras, s.gpu, Needs::COMPUTE)?;
     let counters = ctx.counters();
     for &n in &s.sizes {
         crate::ocean::fft::check_plan(&ctx, n, s.batch).map_err(anyhow::Error::msg)?;

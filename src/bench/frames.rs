@@ -226,7 +226,8 @@ pub fn cost_settings(run: &RunSettings) -> Vec<(&'static str, Value)> {
 pub fn frames(s: &FramesBenchSettings) -> anyhow::Result<Outcome> {
     let json_file = PendingFile::create_if("--json", s.json.as_deref())?;
     let csv_file = PendingFile::create_if("--csv", s.csv.as_deref())?;
-    let ctx = Context::headless(s.run.validation, s.run.validation_extras, s.run.gpu)?;
+    let needs = s.run.scene.needs();
+    let ctx = Context::headless(s.run.validation, s.run.validation_extras, s.run.gpu, needs)?;
     let counters = ctx.counters();
     let settings = cost_settings(&s.run);
     let settings_line: Vec<String> = settings

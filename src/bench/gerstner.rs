@@ -72,7 +72,8 @@ fn row(waves: usize, grid: usize, m: &Measured) -> GerstnerRow {
 
 pub fn gerstner(s: &GerstnerBenchSettings) -> anyhow::Result<Outcome> {
     let json_file = PendingFile::create_if("--json", s.json.as_deref())?;
-    let ctx = Context::headless(s.run.validation, s.run.validation_extras, s.run.gpu)?;
+    let needs = s.run.scene.needs();
+    let ctx = Context::headless(s.run.validation, s.run.validation_extras, s.run.gpu, needs)?;
     let counters = ctx.counters();
     let max = ctx.info.limits.max_image_dimension2_d as usize;
     if let Some(&too_big) = s.grid_widths.iter().find(|&&w| w > max) {

@@ -30,7 +30,8 @@ use crate::profile::WARMUP_FRAMES;
 use crate::render::camera::LOWEST_M;
 use crate::render::uniforms::DEEP_FLOOR_M;
 use crate::render::{
-    default_sun_dir, AntiAliasing, Camera, FresnelModel, SceneLayout, SceneSettings, ViewMode,
+    default_sun_dir, AntiAliasing, Camera, FresnelModel, Geometry, SceneLayout, SceneSettings,
+    ViewMode,
 };
 use glam::Vec3;
 
@@ -277,6 +278,17 @@ pub struct Cli {
           value_parser = |s: &str| parse_in(s, 2.0, 256.0), help_heading = "Scene")]
     pub tess_edge: Option<f64>,
 
+    /// How the water's triangles are made. [default: by device: clipmap (the faster here, and
+    /// the only one without tessellation shaders; see --list-gpus)]
+    #[arg(
+        long,
+        global = true,
+        value_enum,
+        value_name = "KIND",
+        help_heading = "Scene"
+    )]
+    pub geometry: Option<Geometry>,
+
     /// Sun direction: azimuth (degrees from +x toward +z) and elevation (degrees above the
     /// horizon, -10 to 90: below 0 the dusk); default -70.7,11.7. The sky and the sun's colour
     /// follow it (sunlight scattered by the air).
@@ -407,6 +419,7 @@ impl Cli {
             render_scale: self.render_scale.unwrap_or(quality.render_scale) as f32,
             terrain_grid: self.terrain_grid.unwrap_or(quality.terrain_grid),
             tess_edge_px: self.tess_edge.unwrap_or(quality.tess_edge_px) as f32,
+            geometry: self.geometry,
             layout: SceneLayout {
                 buoy_xz: self.buoy,
                 sea_floor_m: self.sea_floor as f32,

@@ -43,6 +43,7 @@ impl Cli {
             render_scale: self.render_scale.unwrap_or(quality.render_scale),
             rtt_scale: self.rtt_scale.unwrap_or(quality.rtt_scale),
             tess_edge: self.tess_edge.unwrap_or(quality.tess_edge_px),
+            geometry: self.geometry,
             terrain_grid: self.terrain_grid.unwrap_or(quality.terrain_grid),
             camera: self.camera.zip(self.look_at),
         }
@@ -80,6 +81,7 @@ impl Cli {
         cli.render_scale = Some(t.render_scale);
         cli.rtt_scale = Some(t.rtt_scale);
         cli.tess_edge = Some(t.tess_edge);
+        cli.geometry = t.geometry;
         cli.terrain_grid = Some(t.terrain_grid);
         if let Some((eye, at)) = t.camera {
             cli.camera = Some(eye);

@@ -35,7 +35,7 @@ pub fn run(s: &RunSettings) -> anyhow::Result<Outcome> {
         .transpose()?;
     let frames = s.frames.unwrap_or(1);
 
-    let ctx = Context::headless(s.validation, s.validation_extras, s.gpu)?;
+    let ctx = Context::headless(s.validation, s.validation_extras, s.gpu, s.scene.needs())?;
     let counters = ctx.counters();
     let format = if s.unorm_output {
         UNORM_OUTPUT_FORMAT

@@ -14,7 +14,7 @@ use egui::{ComboBox, RawInput, Slider, TexturesDelta, Ui};
 use super::session::Session;
 use crate::gpu::egui::EguiPainter;
 use crate::gpu::{Context, GpuResult};
-use crate::render::OverlayDraw;
+use crate::render::{Geometry, OverlayDraw};
 use crate::tuning::presets::{PresetArg, QualityArg};
 use crate::tuning::Tunables;
 
@@ -41,6 +41,9 @@ pub struct Overlay {
     pub status: String,
     /// "device (driver), quality level".
     device: String,
+    /// The water geometries the device can draw (tessellated needs tessellation shaders), and
+    /// the one "by device" resolves to.
+    geometries: (Vec<Geometry>, Geometry),
     /// Wall time between frames (ms), smoothed, and when the last frame started.
     cpu_ms: f64,
     last_frame: Option<Instant>,
@@ -93,6 +96,14 @@ impl Overlay {
             paused: false,
             status: String::new(),
             device: format!("{} ({}), quality {quality}", ctx.info.name, ctx.info.driver),
+            geometries: (
+                Geometry::value_variants()
+                    .iter()
+                    .copied()
+                    .filter(|g| *g != Geometry::Tessellated || ctx.info.tessellation_shader)
+                    .collect(),
+                Geometry::resolve(None, &ctx.info),
+            ),
             cpu_ms: 0.0,
             last_frame: None,
             primitives: Vec::new(),
@@ -208,11 +219,12 @@ impl Overlay {
                     0.0
                 };
                 let (graphics, compute) = session.latest_timings();
-                let gpu: f64 = graphics
+                // A fold from 0.0: `sum` of no f64 is -0.0, which printed as "GPU -0.0 ms"
+                // before the first timings arrived.
+                let gpu = graphics
                     .into_iter()
                     .chain(compute)
-                    .map(|t| t.total_ms)
-                    .sum();
+                    .fold(0.0, |sum, t| sum + t.total_ms);
                 ui.label(format!(
                     "{fps:.1} FPS   CPU {:.1} ms/frame   GPU {gpu:.1} ms",
                     self.cpu_ms
@@ -299,8 +311,21 @@ impl Overlay {
                 });
                 ui.add(Slider::new(&mut t.render_scale, 0.25..=1.0).text("render scale"));
                 ui.add(Slider::new(&mut t.rtt_scale, 0.1..=1.0).text("RTT scale"));
+                let (geometries, by_device) = &self.geometries;
+                ComboBox::from_label("water geometry")
+                    .selected_text(t.geometry.map_or_else(
+                        || format!("by device ({})", by_device.name()),
+                        |g| g.name().to_string(),
+                    ))
+                    .show_ui(ui, |ui| {
+                        let by_device_text = format!("by device ({})", by_device.name());
+                        ui.selectable_value(&mut t.geometry, None, by_device_text);
+                        for g in geometries {
+                            ui.selectable_value(&mut t.geometry, Some(*g), g.name());
+                        }
+                    });
                 let edge = Slider::new(&mut t.tess_edge, 2.0..=128.0).logarithmic(true);
-                ui.add(edge.text("tess edge (px)"));
+                ui.add(edge.text("tess edge / cell (px)"));
             });
     }
 }

@@ -372,7 +372,7 @@ fn ocean_bindings(simulation: &Simulation) -> OceanBindings {
     OceanBindings {
         displacement: simulation.displacement.clone(),
         normals: simulation.normals.clone(),
-        wait_stages: crate::ocean::simulation::GRAPHICS_WAIT_STAGES,
+        wait_stages: simulation.wait_stages,
         patch_m: simulation.patch_sizes(),
         cascades: simulation.cascades.len() as u32,
         texels: simulation.settings.fft_size as u32,

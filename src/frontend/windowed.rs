@@ -206,6 +206,7 @@ impl App {
             validation: self.settings.validation,
             validation_extras: self.settings.validation_extras,
             gpu_index: self.settings.gpu,
+            needs: self.settings.scene.needs(),
             window: Some((display, handle)),
         })?;
         self.counters = Some(ctx.counters());

@@ -356,13 +356,19 @@ impl<'a> Recorder<'a> {
         };
     }
 
-    pub(super) fn begin_query(&self, pool: vk::QueryPool, query: u32) {
+    pub(super) fn begin_query(
+        &self,
+        pool: vk::QueryPool,
+        query: u32,
+        flags: vk::QueryControlFlags,
+    ) {
         // SAFETY: recording-state invariant; the query is unavailable when this executes: see
-        // `write_timestamp` (the statistics pool is reset beside the timestamp pool).
+        // `write_timestamp` (the statistics and occlusion pools are reset beside the timestamp
+        // pool); PRECISE only on occlusion pools of devices with occlusionQueryPrecise.
         unsafe {
             self.ctx
                 .device
-                .cmd_begin_query(self.cmd, pool, query, vk::QueryControlFlags::empty())
+                .cmd_begin_query(self.cmd, pool, query, flags)
         };
     }
 

@@ -22,13 +22,13 @@ use super::track::Access;
 
 /// How long a GPU wait may take before the device is declared hung (s).
 pub const WAIT_TIMEOUT_S: u64 = 60;
-use super::instance::{create_instance, load_entry, ValidationExtras};
-use super::physical::{best_usable, inspect, type_name, Candidate};
-pub use super::physical::{chosen_device_is_cpu, list_devices, DeviceInfo, DeviceSummary};
+use super::instance::{create_instance, load_entry, surface_handles, ValidationExtras};
+use super::physical::{best_usable, inspect, lacks, type_name, Candidate};
+pub use super::physical::{chosen_device_is_cpu, list_devices, DeviceInfo, DeviceSummary, Needs};
 use super::queues::{QueuePlan, QueueUsers, Sharing};
 
 /// What the caller wants from the context.
-#[derive(Clone, Copy, Debug, Default)]
+#[derive(Clone, Copy, Debug)]
 pub struct ContextDesc {
     /// Enable VK_LAYER_KHRONOS_validation with synchronization validation.
     pub validation: bool,
@@ -36,6 +36,8 @@ pub struct ContextDesc {
     pub validation_extras: ValidationExtras,
     /// `--gpu N`: index into the device list (`--list-gpus`); `None` picks the best device.
     pub gpu_index: Option<usize>,
+    /// What the run uses of the device: only devices that have it are candidates.
+    pub needs: Needs,
     /// Window to present to (windowed frontend); `None` for headless.
     pub window: Option<(RawDisplayHandle, RawWindowHandle)>,
 }
@@ -94,11 +96,13 @@ impl Context {
         validation: bool,
         validation_extras: ValidationExtras,
         gpu_index: Option<usize>,
+        needs: Needs,
     ) -> GpuResult<Arc<Context>> {
         Context::new(&ContextDesc {
             validation,
             validation_extras,
             gpu_index,
+            needs,
             window: None,
         })
     }
@@ -111,11 +115,15 @@ impl Context {
     pub fn new(desc: &ContextDesc) -> GpuResult<Arc<Context>> {
         let entry = load_entry()?;
         let counters = Arc::new(MessageCounters::new(desc.validation));
+        let window = desc
+            .window
+            .map(|handles| surface_handles(&entry, handles))
+            .transpose()?;
         let (instance, debug_utils) = create_instance(
             &entry,
             desc.validation,
             desc.validation_extras,
-            desc.window.map(|w| w.0),
+            window.map(|w| w.0),
             &counters,
         )?;
         // From here on, partial state is torn down by `Partial`'s Drop on early return.
@@ -134,7 +142,7 @@ impl Context {
                 .vk("vkCreateDebugUtilsMessengerEXT")?;
             partial.messenger = Some((fns, messenger));
         }
-        if let Some((display, window)) = desc.window {
+        if let Some((display, window)) = window {
             // SAFETY: the handles come from a live winit window that outlives the context
             // (the windowed frontend drops the context first).
             let surface =
@@ -151,7 +159,14 @@ impl Context {
         }
         let inspected: Vec<_> = physicals
             .iter()
-            .map(|&p| inspect(&instance, p, partial.surface.as_ref()))
+            .map(|&p| {
+                let (parts, usable) = inspect(&instance, p, partial.surface.as_ref());
+                let usable = usable.and_then(|c| match lacks(&c.info, desc.needs) {
+                    None => Ok(c),
+                    Some(why) => Err(why),
+                });
+                (parts, usable)
+            })
             .collect();
         let chosen = match desc.gpu_index {
             Some(index) => {
@@ -502,17 +517,20 @@ fn create_device(
                 .queue_priorities(priorities)
         })
         .collect();
+    // Optional features are enabled wherever the device has them (the tessellated water, the
+    // clip planes), so the stage masks that name them stay valid (`simulation::wait_stages`).
     let features = vk::PhysicalDeviceFeatures::default()
-        .tessellation_shader(true)
+        .tessellation_shader(chosen.info.tessellation_shader)
         .shader_int64(chosen.info.shader_int64)
-        .shader_clip_distance(true)
+        .shader_clip_distance(chosen.info.rendering)
         .fill_mode_non_solid(chosen.info.fill_mode_non_solid)
         .sampler_anisotropy(chosen.info.sampler_anisotropy)
-        .pipeline_statistics_query(chosen.info.pipeline_statistics_query);
+        .pipeline_statistics_query(chosen.info.pipeline_statistics_query)
+        .occlusion_query_precise(chosen.info.occlusion_query_precise);
     let mut f12 = vk::PhysicalDeviceVulkan12Features::default().timeline_semaphore(true);
     let mut f13 = vk::PhysicalDeviceVulkan13Features::default()
         .synchronization2(true)
-        .dynamic_rendering(true)
+        .dynamic_rendering(chosen.info.rendering)
         .maintenance4(true);
     let extensions: Vec<*const c_char> = if swapchain {
         vec![ash::khr::swapchain::NAME.as_ptr()]

@@ -6,7 +6,7 @@ use std::ffi::{c_char, CStr};
 use std::sync::Arc;
 
 use ash::vk;
-use raw_window_handle::RawDisplayHandle;
+use raw_window_handle::{RawDisplayHandle, RawWindowHandle};
 
 use super::debug::{self, MessageCounters};
 use super::error::{GpuError, GpuResult, VkResultExt};
@@ -100,6 +100,41 @@ pub(super) fn load_entry() -> GpuResult<ash::Entry> {
         library,
         reason: e.to_string(),
     })
+}
+
+/// The window handles to make the surface from: winit's, or on X11 the same window as XCB
+/// handles where the Vulkan implementation offers VK_KHR_xcb_surface but not
+/// VK_KHR_xlib_surface (SwiftShader). The instance is created with the extensions these need.
+pub(super) fn surface_handles(
+    entry: &ash::Entry,
+    (display, window): (RawDisplayHandle, RawWindowHandle),
+) -> GpuResult<(RawDisplayHandle, RawWindowHandle)> {
+    if !matches!(display, RawDisplayHandle::Xlib(_)) {
+        return Ok((display, window));
+    }
+    // SAFETY: enumerating properties only reads loader state.
+    let available =
+        unsafe { entry.enumerate_instance_extension_properties(None) }.map_err(|result| {
+            GpuError::Loader {
+                call: "vkEnumerateInstanceExtensionProperties",
+                result,
+            }
+        })?;
+    let has = |name: &CStr| {
+        available
+            .iter()
+            .any(|e| e.extension_name_as_c_str() == Ok(name))
+    };
+    if has(ash::khr::xlib_surface::NAME) || !has(ash::khr::xcb_surface::NAME) {
+        return Ok((display, window));
+    }
+    match crate::platform::xcb_handles(display, window) {
+        Some(handles) => {
+            log::info!("no VK_KHR_xlib_surface: the window's surface is made through XCB");
+            Ok(handles)
+        }
+        None => Ok((display, window)),
+    }
 }
 
 /// Creates an instance; returns it with the debug-utils availability.

@@ -32,7 +32,7 @@ mod transfer;
 pub use ash::vk;
 pub use buffer::{Buffer, BufferView};
 pub use command::{Access, Load, Recorder};
-pub use context::{Context, ContextDesc, DeviceInfo, DeviceSummary};
+pub use context::{Context, ContextDesc, DeviceInfo, DeviceSummary, Needs};
 pub use debug::MessageCounters;
 pub use descriptors::{Bind, BoundSet, DescriptorSetLayout, Order};
 pub use error::{GpuError, GpuResult};

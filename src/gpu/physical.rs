@@ -11,6 +11,29 @@ use super::error::{GpuResult, VkResultExt};
 use super::instance::{create_instance, load_entry};
 use super::queues::QueuePlan;
 
+/// What a run uses of the device; the device check asks for these and nothing more.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Needs {
+    /// It draws (dynamic rendering, clip distances for the reflection and refraction); `false`
+    /// for compute-only commands (`bench fft`).
+    pub rendering: bool,
+    /// It draws the tessellated water (`--geometry tessellated` named on the command line).
+    pub tessellation: bool,
+}
+
+impl Needs {
+    /// Everything but tessellation: a run that draws and picks its water geometry by device.
+    pub const RENDERING: Needs = Needs {
+        rendering: true,
+        tessellation: false,
+    };
+    /// Compute only.
+    pub const COMPUTE: Needs = Needs {
+        rendering: false,
+        tessellation: false,
+    };
+}
+
 /// Facts about the chosen device that the rest of the program reports or respects.
 #[derive(Clone, Debug)]
 pub struct DeviceInfo {
@@ -24,10 +47,16 @@ pub struct DeviceInfo {
     pub timestamp_valid_bits: u32,
     /// The same for the compute queue's family.
     pub compute_timestamp_valid_bits: u32,
+    /// Tessellation shaders (the tessellated water; enabled where the device has them).
+    pub tessellation_shader: bool,
+    /// Dynamic rendering and clip distances: everything vkocean draws needs them.
+    pub rendering: bool,
     pub fill_mode_non_solid: bool,
     pub sampler_anisotropy: bool,
     /// Pipeline-statistics queries (the water draw's counters in `--profile`).
     pub pipeline_statistics_query: bool,
+    /// Occlusion queries that count samples (the water's covered pixels in `--profile`).
+    pub occlusion_query_precise: bool,
     /// 64-bit integers in shaders (the CPU FFT kernel's 32-byte stores).
     pub shader_int64: bool,
     /// Invocations per subgroup (SIMD width on CPU drivers).
@@ -44,8 +73,10 @@ pub struct DeviceSummary {
     pub device_type: vk::PhysicalDeviceType,
     pub api_version: u32,
     pub driver: String,
-    /// `None` when usable, else why not.
+    /// `None` when usable for a run that draws (`Needs::RENDERING`), else why not.
     pub unusable: Option<String>,
+    /// Tessellation shaders: the tessellated water geometry runs here.
+    pub tessellation: bool,
 }
 
 impl std::fmt::Display for DeviceSummary {
@@ -62,7 +93,8 @@ impl std::fmt::Display for DeviceSummary {
             self.driver
         )?;
         match &self.unusable {
-            None => Ok(()),
+            None if self.tessellation => write!(f, " [water: tessellated, clipmap]"),
+            None => write!(f, " [water: clipmap (no tessellationShader)]"),
             Some(why) => write!(f, " [unusable: {why}]"),
         }
     }
@@ -103,6 +135,18 @@ pub(super) fn best_usable(types: &[Option<vk::PhysicalDeviceType>]) -> Option<us
     best.map(|(i, _)| i)
 }
 
+/// Why `info` cannot serve a run with `needs`, if it cannot: the features it lacks.
+pub(super) fn lacks(info: &DeviceInfo, needs: Needs) -> Option<String> {
+    let mut missing = Vec::new();
+    if needs.rendering && !info.rendering {
+        missing.push("dynamicRendering or shaderClipDistance");
+    }
+    if needs.tessellation && !info.tessellation_shader {
+        missing.push("tessellationShader (--geometry tessellated; --geometry clipmap needs none)");
+    }
+    (!missing.is_empty()).then(|| format!("missing Vulkan feature {}", missing.join(", ")))
+}
+
 /// Whether the device a run would use (`--gpu N`, or the best usable one) is a CPU
 /// implementation such as lavapipe; `None` when it cannot be told (no loader, no usable device,
 /// a bad index): the run's own device creation then reports why. Ignores presentation support,
@@ -129,11 +173,15 @@ pub(crate) struct Candidate {
     pub(crate) plan: QueuePlan,
 }
 
+/// "name: info" of the device's driver (e.g. "llvmpipe: Mesa 22.3.6 (LLVM 15.0.6)"); a driver
+/// that gives no info string is named with its version and Vulkan conformance instead
+/// ("SwiftShader driver 5.0.0, conformance 1.3.3.1").
 pub(super) fn driver_string(instance: &ash::Instance, physical: vk::PhysicalDevice) -> String {
     let mut driver = vk::PhysicalDeviceDriverProperties::default();
     let mut props2 = vk::PhysicalDeviceProperties2::default().push_next(&mut driver);
     // SAFETY: `physical` belongs to `instance`; the chain points to locals.
     unsafe { instance.get_physical_device_properties2(physical, &mut props2) };
+    let version = props2.properties.driver_version;
     let name = driver
         .driver_name_as_c_str()
         .map(|s| s.to_string_lossy().into_owned())
@@ -142,9 +190,19 @@ pub(super) fn driver_string(instance: &ash::Instance, physical: vk::PhysicalDevi
         .driver_info_as_c_str()
         .map(|s| s.to_string_lossy().into_owned())
         .unwrap_or_default();
+    let c = driver.conformance_version;
     match (name.is_empty(), detail.is_empty()) {
         (false, false) => format!("{name}: {detail}"),
-        (false, true) => name,
+        (false, true) => format!(
+            "{name} {}.{}.{}, conformance {}.{}.{}.{}",
+            vk::api_version_major(version),
+            vk::api_version_minor(version),
+            vk::api_version_patch(version),
+            c.major,
+            c.minor,
+            c.subminor,
+            c.patch
+        ),
         _ => "unknown driver".to_string(),
     }
 }
@@ -193,13 +251,12 @@ pub(super) fn inspect(
     // SAFETY: as above; the chain points to locals.
     unsafe { instance.get_physical_device_features2(physical, &mut f2) };
     let f = f2.features;
+    // What every run needs (the simulation's timelines and barriers); what drawing needs is
+    // judged per run (`lacks`).
     let required = [
         ("timelineSemaphore", f12.timeline_semaphore),
         ("synchronization2", f13.synchronization2),
-        ("dynamicRendering", f13.dynamic_rendering),
         ("maintenance4", f13.maintenance4),
-        ("tessellationShader", f.tessellation_shader),
-        ("shaderClipDistance", f.shader_clip_distance),
     ];
     let missing: Vec<&str> = required
         .iter()
@@ -243,9 +300,12 @@ pub(super) fn inspect(
         limits: props.limits,
         timestamp_valid_bits: families[graphics_family as usize].timestamp_valid_bits,
         compute_timestamp_valid_bits: families[compute_family as usize].timestamp_valid_bits,
+        tessellation_shader: f.tessellation_shader == vk::TRUE,
+        rendering: f13.dynamic_rendering == vk::TRUE && f.shader_clip_distance == vk::TRUE,
         fill_mode_non_solid: f.fill_mode_non_solid == vk::TRUE,
         sampler_anisotropy: f.sampler_anisotropy == vk::TRUE,
         pipeline_statistics_query: f.pipeline_statistics_query == vk::TRUE,
+        occlusion_query_precise: f.occlusion_query_precise == vk::TRUE,
         shader_int64: f.shader_int64 == vk::TRUE,
         subgroup_size,
         compute_subgroup_shuffle,
@@ -280,13 +340,19 @@ pub fn list_devices() -> GpuResult<Vec<DeviceSummary>> {
             .enumerate()
             .map(|(index, p)| {
                 let (parts, usable) = inspect(&instance, p, None);
+                let tessellation = usable.as_ref().is_ok_and(|c| c.info.tessellation_shader);
+                let unusable = match usable {
+                    Ok(c) => lacks(&c.info, Needs::RENDERING),
+                    Err(why) => Some(why),
+                };
                 DeviceSummary {
                     index,
                     name: parts.name,
                     device_type: parts.device_type,
                     api_version: parts.api_version,
                     driver: parts.driver,
-                    unusable: usable.err(),
+                    unusable,
+                    tessellation,
                 }
             })
             .collect()

@@ -13,14 +13,18 @@ use super::frame::{Frame, FRAMES_IN_FLIGHT};
 use super::garbage::Garbage;
 
 /// The counters `Profiler::statistics` reads; the results come in bit order: primitives out
-/// of clipping, fragment-shader invocations, tessellation-control patches,
+/// of clipping, fragment-shader invocations, and (where the device has tessellation shaders,
+/// which the tessellation counters need) tessellation-control patches and
 /// tessellation-evaluation invocations.
-const STATISTICS: vk::QueryPipelineStatisticFlags = vk::QueryPipelineStatisticFlags::from_raw(
-    vk::QueryPipelineStatisticFlags::CLIPPING_PRIMITIVES.as_raw()
-        | vk::QueryPipelineStatisticFlags::FRAGMENT_SHADER_INVOCATIONS.as_raw()
-        | vk::QueryPipelineStatisticFlags::TESSELLATION_CONTROL_SHADER_PATCHES.as_raw()
-        | vk::QueryPipelineStatisticFlags::TESSELLATION_EVALUATION_SHADER_INVOCATIONS.as_raw(),
-);
+fn statistics_flags(tessellation: bool) -> vk::QueryPipelineStatisticFlags {
+    let mut flags = vk::QueryPipelineStatisticFlags::CLIPPING_PRIMITIVES
+        | vk::QueryPipelineStatisticFlags::FRAGMENT_SHADER_INVOCATIONS;
+    if tessellation {
+        flags |= vk::QueryPipelineStatisticFlags::TESSELLATION_CONTROL_SHADER_PATCHES
+            | vk::QueryPipelineStatisticFlags::TESSELLATION_EVALUATION_SHADER_INVOCATIONS;
+    }
+    flags
+}
 
 /// One frame's counts in the scope of `Profiler::statistics` (the water draw).
 #[derive(Clone, Copy, Debug, Default)]
@@ -32,6 +36,9 @@ pub struct DrawStatistics {
     /// Fragment-shader invocations: covered pixels plus what the device shades besides
     /// (helper lanes, partly covered blocks; a measure of rasterization work, overdraw).
     pub fragment_invocations: u64,
+    /// Samples that passed the depth test (a precise occlusion query): the pixels the draw
+    /// covers in the picture; `None` where the device has no precise occlusion queries.
+    pub covered_samples: Option<u64>,
 }
 
 /// The compute queue's submission (the simulation).
@@ -101,6 +108,9 @@ pub struct Profiler {
     /// One pipeline-statistics query per frame slot (empty unless asked for and supported, and
     /// for compute).
     statistics_pools: Vec<vk::QueryPool>,
+    /// One precise occlusion query per frame slot beside each statistics query (where the
+    /// device has occlusionQueryPrecise).
+    occlusion_pools: Vec<vk::QueryPool>,
     records: Vec<SlotRecord>,
     /// Slot of the frame being recorded.
     current: usize,
@@ -137,17 +147,30 @@ impl Profiler {
         .and_then(|mut profiler| {
             profiler.submission = GRAPHICS_SCENE;
             if draw_statistics && ctx.info.pipeline_statistics_query {
+                let flags = statistics_flags(ctx.info.tessellation_shader);
                 for i in 0..FRAMES_IN_FLIGHT {
                     let info = vk::QueryPoolCreateInfo::default()
                         .query_type(vk::QueryType::PIPELINE_STATISTICS)
-                        .pipeline_statistics(STATISTICS)
+                        .pipeline_statistics(flags)
                         .query_count(1);
-                    // SAFETY: valid create info on a live device with pipelineStatisticsQuery.
+                    // SAFETY: valid create info on a live device with pipelineStatisticsQuery
+                    // (and tessellationShader for the tessellation counters).
                     let pool = unsafe { ctx.device.create_query_pool(&info, None) }
                         .vk("vkCreateQueryPool")?;
                     ctx.count_created(1);
                     ctx.name(pool, &format!("draw statistics slot {i}"));
                     profiler.statistics_pools.push(pool);
+                    if ctx.info.occlusion_query_precise {
+                        let info = vk::QueryPoolCreateInfo::default()
+                            .query_type(vk::QueryType::OCCLUSION)
+                            .query_count(1);
+                        // SAFETY: valid create info on a live device.
+                        let pool = unsafe { ctx.device.create_query_pool(&info, None) }
+                            .vk("vkCreateQueryPool")?;
+                        ctx.count_created(1);
+                        ctx.name(pool, &format!("draw coverage slot {i}"));
+                        profiler.occlusion_pools.push(pool);
+                    }
                 }
             }
             Ok(profiler)
@@ -176,6 +199,7 @@ impl Profiler {
             ctx: ctx.clone(),
             pools: Vec::new(),
             statistics_pools: Vec::new(),
+            occlusion_pools: Vec::new(),
             records: (0..FRAMES_IN_FLIGHT)
                 .map(|_| SlotRecord::default())
                 .collect(),
@@ -243,8 +267,10 @@ impl Profiler {
         record.used = 0;
         record.gap = None;
         record.statistics = false;
-        if let Some(&pool) = self.statistics_pools.get(frame.slot) {
-            rec.reset_queries(pool, 1);
+        for pools in [&self.statistics_pools, &self.occlusion_pools] {
+            if let Some(&pool) = pools.get(frame.slot) {
+                rec.reset_queries(pool, 1);
+            }
         }
         if let Some(&pool) = self.pools.get(frame.slot) {
             rec.reset_queries(pool, QUERIES_PER_FRAME);
@@ -323,12 +349,19 @@ impl Profiler {
     /// with pipeline-statistics queries.
     pub fn statistics<R>(&mut self, rec: &Recorder, body: impl FnOnce() -> R) -> R {
         let pool = self.statistics_pools.get(self.current).copied();
+        let occlusion = self.occlusion_pools.get(self.current).copied();
         let record = &mut self.records[self.current];
         match pool {
             Some(pool) if !record.statistics => {
                 record.statistics = true;
-                rec.begin_query(pool, 0);
+                rec.begin_query(pool, 0, vk::QueryControlFlags::empty());
+                if let Some(occlusion) = occlusion {
+                    rec.begin_query(occlusion, 0, vk::QueryControlFlags::PRECISE);
+                }
                 let result = body();
+                if let Some(occlusion) = occlusion {
+                    rec.end_query(occlusion, 0);
+                }
                 rec.end_query(pool, 0);
                 result
             }
@@ -361,7 +394,9 @@ impl Profiler {
             (measured, record.statistics, self.statistics_pools.get(slot))
         {
             let mut counts = [0u64; 4];
-            // SAFETY: as below; the query holds the four counters of STATISTICS, in bit order.
+            // SAFETY: as below; the query holds the counters of `statistics_flags` in bit order:
+            // four, or two without tessellation shaders (the rest of `counts` stays 0; its
+            // 32-byte stride covers either).
             unsafe {
                 self.ctx.device.get_query_pool_results(
                     stats_pool,
@@ -372,11 +407,29 @@ impl Profiler {
             }
             .vk("vkGetQueryPoolResults")?;
             let [primitives, fragment_invocations, patches, tess_eval_invocations] = counts;
+            let covered_samples = match self.occlusion_pools.get(slot) {
+                None => None,
+                Some(&pool) => {
+                    let mut samples = 0u64;
+                    // SAFETY: as below; one 64-bit result of the slot's occlusion query.
+                    unsafe {
+                        self.ctx.device.get_query_pool_results(
+                            pool,
+                            0,
+                            std::slice::from_mut(&mut samples),
+                            vk::QueryResultFlags::TYPE_64 | vk::QueryResultFlags::WAIT,
+                        )
+                    }
+                    .vk("vkGetQueryPoolResults")?;
+                    Some(samples)
+                }
+            };
             self.timings.statistics.push(DrawStatistics {
                 patches,
                 tess_eval_invocations,
                 primitives,
                 fragment_invocations,
+                covered_samples,
             });
         }
         let mut ticks = vec![0u64; record.used as usize];
@@ -438,7 +491,8 @@ impl Profiler {
 
 impl Drop for Profiler {
     fn drop(&mut self) {
-        for pool in self.pools.drain(..).chain(self.statistics_pools.drain(..)) {
+        let pools = self.pools.drain(..).chain(self.statistics_pools.drain(..));
+        for pool in pools.chain(self.occlusion_pools.drain(..)) {
             self.ctx.defer(Garbage::QueryPool(pool));
         }
     }

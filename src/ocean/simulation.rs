@@ -30,8 +30,9 @@ use super::params::{OceanSettings, Waves};
 use super::spectrum::Cascade;
 use crate::gpu::compute::ComputeQueue;
 use crate::gpu::{
-    Bind, BoundSet, Buffer, Context, DescriptorSetLayout, FormatUse, Frame, GpuResult, Image,
-    ImageDesc, Order, Pipeline, PipelineLayout, Profiler, Recorder, SemaphoreOp, FRAMES_IN_FLIGHT,
+    Bind, BoundSet, Buffer, Context, DescriptorSetLayout, DeviceInfo, FormatUse, Frame, GpuResult,
+    Image, ImageDesc, Order, Pipeline, PipelineLayout, Profiler, Recorder, SemaphoreOp,
+    FRAMES_IN_FLIGHT,
 };
 use crate::pass_names as names;
 
@@ -77,13 +78,19 @@ pub const MAX_CASCADES: usize = 4;
 pub const IMAGE_FORMAT: vk::Format = vk::Format::R32G32B32A32_SFLOAT;
 
 /// The stages at which graphics waits for the compute timeline before sampling the
-/// simulation images: every stage a water shader samples them in. The renderer checks each
-/// pipeline that reads them against it (`Order::Wait`, `gpu::check_bindings`).
-pub const GRAPHICS_WAIT_STAGES: vk::PipelineStageFlags2 = vk::PipelineStageFlags2::from_raw(
-    vk::PipelineStageFlags2::VERTEX_SHADER.as_raw()
-        | vk::PipelineStageFlags2::TESSELLATION_EVALUATION_SHADER.as_raw()
-        | vk::PipelineStageFlags2::FRAGMENT_SHADER.as_raw(),
-);
+/// simulation images: every stage a water shader samples them in (vertex: the clipmap water and
+/// the floating objects; tessellation evaluation: the tessellated water, named only where the
+/// device has tessellation shaders, as a stage mask may name only enabled stages; fragment).
+/// The renderer checks each pipeline that reads them against it (`Order::Wait`,
+/// `gpu::check_bindings`).
+pub fn graphics_wait_stages(device: &DeviceInfo) -> vk::PipelineStageFlags2 {
+    let mut stages =
+        vk::PipelineStageFlags2::VERTEX_SHADER | vk::PipelineStageFlags2::FRAGMENT_SHADER;
+    if device.tessellation_shader {
+        stages |= vk::PipelineStageFlags2::TESSELLATION_EVALUATION_SHADER;
+    }
+    stages
+}
 
 /// A compute pipeline with its set layout.
 struct Kernel {
@@ -239,6 +246,8 @@ pub struct Simulation {
     /// The Gerstner window's origin at the previous submission (foam follows it).
     previous_origin_m: Option<[f64; 2]>,
     queue: ComputeQueue,
+    /// Where graphics waits for the images ([`graphics_wait_stages`] of the device).
+    pub wait_stages: vk::PipelineStageFlags2,
     /// The images were initialized (the first submission does it).
     initialized: bool,
     /// Simulation time of the previous submission (s; f64: a long run keeps its frame steps).
@@ -337,6 +346,7 @@ impl Simulation {
             displacement,
             normals,
             queue: ComputeQueue::new(ctx)?,
+            wait_stages: graphics_wait_stages(&ctx.info),
             initialized: false,
             last_time_s: None,
         })
@@ -487,7 +497,7 @@ impl Simulation {
 
     /// The wait a graphics submission adds before sampling frame `value`'s images.
     pub fn graphics_wait(&self, value: u64) -> SemaphoreOp {
-        self.queue.graphics_wait(value, GRAPHICS_WAIT_STAGES)
+        self.queue.graphics_wait(value, self.wait_stages)
     }
 
     /// The Gerstner waves (Gerstner mode).

@@ -69,3 +69,26 @@ pub fn check_display() -> anyhow::Result<()> {
 pub fn watch_display() {
     super::x11::report_lost_connection();
 }
+
+/// The same window as XCB handles, for a Vulkan driver with an XCB surface but no Xlib one
+/// (SwiftShader): winit's X11 window is an Xlib display and window id, and the XCB connection
+/// comes from the display through libX11-xcb (the window id is the same XID). `None` for other
+/// handles, or without libX11-xcb.
+pub fn xcb_handles(
+    display: raw_window_handle::RawDisplayHandle,
+    window: raw_window_handle::RawWindowHandle,
+) -> Option<(
+    raw_window_handle::RawDisplayHandle,
+    raw_window_handle::RawWindowHandle,
+)> {
+    use raw_window_handle::{RawDisplayHandle, RawWindowHandle, XcbDisplayHandle, XcbWindowHandle};
+    let (RawDisplayHandle::Xlib(d), RawWindowHandle::Xlib(w)) = (display, window) else {
+        return None;
+    };
+    let connection = super::x11::xcb_connection(d.display?.as_ptr())?;
+    let id = std::num::NonZeroU32::new(u32::try_from(w.window).ok()?)?;
+    Some((
+        RawDisplayHandle::Xcb(XcbDisplayHandle::new(Some(connection), d.screen)),
+        RawWindowHandle::Xcb(XcbWindowHandle::new(id)),
+    ))
+}

@@ -113,6 +113,17 @@ pub fn check_display() -> anyhow::Result<()> {
 /// Nothing to watch: a window the system closes arrives as winit's `CloseRequested`.
 pub fn watch_display() {}
 
+/// No X11 on Windows: a Win32 window has one kind of surface.
+pub fn xcb_handles(
+    _display: raw_window_handle::RawDisplayHandle,
+    _window: raw_window_handle::RawWindowHandle,
+) -> Option<(
+    raw_window_handle::RawDisplayHandle,
+    raw_window_handle::RawWindowHandle,
+)> {
+    None
+}
+
 /// Whether this process runs under Wine: Wine's ntdll exports `wine_get_version`.
 fn under_wine() -> bool {
     // SAFETY: ntdll.dll is loaded in every Windows process; both calls take NUL-terminated

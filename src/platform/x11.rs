@@ -31,3 +31,23 @@ pub fn report_lost_connection() {
         unsafe { (xlib.XSetIOErrorHandler)(Some(lost_connection)) };
     }
 }
+
+/// libX11-xcb, loaded once: XGetXCBConnection for the XCB surface fallback.
+static XLIB_XCB: OnceLock<Option<x11_dl::xlib_xcb::Xlib_xcb>> = OnceLock::new();
+
+/// The XCB connection under an Xlib display (one socket, two client libraries), or `None` when
+/// libX11-xcb cannot be loaded or `display` is null.
+pub fn xcb_connection(
+    display: *mut std::ffi::c_void,
+) -> Option<std::ptr::NonNull<std::ffi::c_void>> {
+    let xcb = XLIB_XCB
+        .get_or_init(|| x11_dl::xlib_xcb::Xlib_xcb::open().ok())
+        .as_ref()?;
+    if display.is_null() {
+        return None;
+    }
+    // SAFETY: `display` is the live Xlib display of winit's window (the caller's handle);
+    // XGetXCBConnection only reads the connection it wraps.
+    let connection = unsafe { (xcb.XGetXCBConnection)(display.cast()) };
+    std::ptr::NonNull::new(connection.cast())
+}

@@ -213,8 +213,10 @@ pub fn record_frame(
         rec.begin_label(&format!("frame {} (graphics 2)", frame.index));
         profiler.resume(&rec, GRAPHICS_OCEAN);
         let set = [r.frame_set(frame.slot)];
-        // The water's sets: the frame set, its textures (reflection, refraction, DU/DV).
-        let water_sets = [set[0], &r.water.textures().set];
+        // The water's sets: the frame set, its textures (reflection, refraction, DU/DV) and
+        // the clipmap's tile list.
+        let water_sets = r.water.sets(set[0], frame.slot);
+        let texture_sets = [set[0], &r.water.textures().set];
         let t = &r.targets;
         let keep = |image| Target::new(image, Load::Keep);
         let main = [keep(&t.main.colour)];
@@ -229,7 +231,7 @@ pub fn record_frame(
             // Patches, tessellation-evaluation invocations, triangles and fragments.
             profiler.statistics(&rec, || {
                 r.water
-                    .record(&rec, &water_sets, r.settings.view, underwater)
+                    .record(&rec, &water_sets, r.settings.view, underwater, frame.slot)
             });
         });
         profiler.end_pass(&rec);
@@ -240,10 +242,10 @@ pub fn record_frame(
         });
         if TexturesViewPass::shows(r.settings.view) {
             let over = [Target::new(&t.main.colour, Load::DontCare)];
-            let draw = r.textures_view.draw(&water_sets);
+            let draw = r.textures_view.draw(&texture_sets);
             let scope = rec.rendering(names::TEXTURES_VIEW, &over, None, &[draw]);
             profiler.pass(&rec, names::TEXTURES_VIEW, || {
-                scope.record(|| r.textures_view.record(&rec, &water_sets))
+                scope.record(|| r.textures_view.record(&rec, &texture_sets))
             });
         }
         if let (Some(pass), Some(smooth)) = (&r.anti_aliasing, &t.anti_aliased) {

@@ -3,6 +3,7 @@
 
 pub mod atmosphere;
 pub mod camera;
+pub mod clipmap;
 pub mod frame;
 pub mod passes;
 pub mod renderer;
@@ -69,6 +70,37 @@ pub enum AntiAliasing {
     Off,
 }
 
+/// `--geometry`: how the water's triangles are made. (The variants' doc comments are `--help`'s
+/// descriptions of the values.)
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum Geometry {
+    /// Patches the GPU tessellates by their edges' size on screen (needs tessellation shaders).
+    Tessellated,
+    /// Camera-centred grid tiles, coarser by distance, morphed between levels (CDLOD).
+    Clipmap,
+}
+
+impl Geometry {
+    pub fn name(self) -> &'static str {
+        match self {
+            Geometry::Tessellated => "tessellated",
+            Geometry::Clipmap => "clipmap",
+        }
+    }
+
+    /// The geometry `requested` (`None`: by device) resolves to on `device`.
+    pub fn resolve(requested: Option<Geometry>, device: &crate::gpu::DeviceInfo) -> Geometry {
+        match requested {
+            Some(g) => g,
+            None if device.tessellation_shader => Geometry::DEVICE_DEFAULT,
+            None => Geometry::Clipmap,
+        }
+    }
+
+    /// The default where the device can draw both.
+    const DEVICE_DEFAULT: Geometry = Geometry::Clipmap;
+}
+
 /// How the scene looks: everything the renderer takes from the command line.
 #[derive(Clone, Debug)]
 pub struct SceneSettings {
@@ -83,8 +115,11 @@ pub struct SceneSettings {
     pub render_scale: f32,
     /// Island lattice quads per side.
     pub terrain_grid: u32,
-    /// Target length of a tessellated ocean edge in pixels of the main (scene) target.
+    /// Target length of a tessellated ocean edge in pixels of the main (scene) target; for the
+    /// clipmap, the width of its smallest cells on screen.
     pub tess_edge_px: f32,
+    /// `--geometry` (`None`: by device, [`Geometry::resolve`]).
+    pub geometry: Option<Geometry>,
     pub layout: SceneLayout,
     /// Unit vector toward the sun.
     pub sun_dir: Vec3,
@@ -104,6 +139,14 @@ impl SceneSettings {
         atmosphere::Sky {
             sun_dir: self.sun_dir,
             cloud_cover: self.cloud_cover,
+        }
+    }
+
+    /// What these settings use of the device (tessellation only for `--geometry tessellated`).
+    pub fn needs(&self) -> crate::gpu::Needs {
+        crate::gpu::Needs {
+            rendering: true,
+            tessellation: self.geometry == Some(Geometry::Tessellated),
         }
     }
 
@@ -130,6 +173,7 @@ impl Default for SceneSettings {
             render_scale: 1.0,
             terrain_grid: 160,
             tess_edge_px: 16.0,
+            geometry: None,
             layout: SceneLayout::default(),
             sun_dir: default_sun_dir(),
             cloud_cover: 0.0,

@@ -11,7 +11,7 @@ use ash::vk;
 use super::atmosphere::Sky;
 use super::camera::Camera;
 use super::passes::output::OutputPass;
-use super::passes::water::WaterSamplers;
+use super::passes::water::{TileView, WaterSamplers};
 use super::passes::{AntiAliasingPass, SkyCube, SkyPass, TerrainPass, TexturesViewPass, WaterPass};
 use super::scene::{dudv_size, generate_dudv, load_dudv, DUDV_SIDE};
 use super::targets::Targets;
@@ -19,7 +19,7 @@ use super::targets::{DEPTH_FORMAT, HDR_FORMAT};
 use super::uniforms::{
     sky_uniforms, FrameInputs, FrameParams, FrameUniforms, OceanBindings, ViewIndex,
 };
-use super::{SceneSettings, ViewMode};
+use super::{Geometry, SceneSettings, ViewMode};
 use crate::gpu::oneshot::upload_image_with;
 use crate::gpu::{
     check_bindings, Bind, Bindings, BoundSet, Buffer, Context, DescriptorSetLayout, FormatUse,
@@ -148,7 +148,7 @@ pub struct Renderer {
     pub(super) sky: SkyPass,
     /// The island and the objects, in each view.
     pub(super) terrain: TerrainPass,
-    /// The tessellated ocean and its textures set.
+    /// The ocean (tessellated or clipmap) and its textures set.
     pub(super) water: WaterPass,
     /// `--view reflection|refraction|dudv`.
     pub(super) textures_view: TexturesViewPass,
@@ -310,6 +310,8 @@ impl Renderer {
             settings.terrain_grid,
             targets.display_format(),
         )?;
+        let main = targets.main.extent();
+        let aspect = extent.width as f32 / extent.height.max(1) as f32;
         let water = WaterPass::new(
             ctx,
             &frame_set_layout,
@@ -318,6 +320,14 @@ impl Renderer {
             &samplers,
             ocean.cascades,
             !ocean_linear,
+            Geometry::resolve(settings.geometry, &ctx.info),
+            &TileView {
+                camera: &camera,
+                aspect,
+                focal_px: focal_px(&camera, aspect, main.height),
+                cell_px: settings.tess_edge_px,
+                reach_m: ocean.max_displacement_m,
+            },
         )?;
         let textures_view = TexturesViewPass::new(
             ctx,
@@ -369,7 +379,7 @@ impl Renderer {
     /// the compute timeline's wait covers. One line naming the pass, binding and stage.
     fn check_bindings(&self) -> GpuResult<()> {
         let frame = [&self.frame_uniforms[0].1];
-        let water = [frame[0], &self.water.textures().set];
+        let water = self.water.sets(frame[0], 0);
         for view in [ViewIndex::Main, ViewIndex::Reflection] {
             check_bindings(names::SKY, &[self.sky.draw(&frame, view)])?;
             check_bindings(names::SCENE, &self.terrain.draws(&frame, view))?;
@@ -383,7 +393,8 @@ impl Renderer {
             })
             .collect();
         check_bindings(names::WATER, &draws)?;
-        check_bindings(names::TEXTURES_VIEW, &[self.textures_view.draw(&water)])?;
+        let textures = [frame[0], &self.water.textures().set];
+        check_bindings(names::TEXTURES_VIEW, &[self.textures_view.draw(&textures)])?;
         if let Some(pass) = &self.anti_aliasing {
             let set = pass.set_ref();
             check_bindings(names::ANTI_ALIASING, &pass.draws(&set))?;
@@ -401,10 +412,13 @@ impl Renderer {
     }
 
     /// Whether `new` settings need a new renderer (`remade`): other target scales, terrain
-    /// lattice, anti-aliasing pass or textures; the rest are uniforms (`set_scene`).
+    /// lattice, anti-aliasing pass, textures or water geometry (or clipmap tile size); the rest
+    /// are uniforms (`set_scene`).
     pub fn needs_rebuild(&self, new: &SceneSettings) -> bool {
         let s = &self.settings;
-        s.render_scale != new.render_scale
+        let geometry = Geometry::resolve(new.geometry, &self.ctx.info);
+        self.water.needs_rebuild(geometry, new.tess_edge_px)
+            || s.render_scale != new.render_scale
             || s.rtt_scale != new.rtt_scale
             || s.terrain_grid != new.terrain_grid
             || s.anti_aliased() != new.anti_aliased()
@@ -500,10 +514,27 @@ impl Renderer {
         self.frame_uniforms[slot]
             .0
             .write(bytemuck::bytes_of(&uniforms));
+        let aspect = output.extent.width as f32 / output.extent.height.max(1) as f32;
+        self.water.prepare(
+            slot,
+            &TileView {
+                camera: &self.camera,
+                aspect,
+                focal_px: focal_px(&self.camera, aspect, extent.height),
+                cell_px: s.tess_edge_px,
+                reach_m: self.ocean.max_displacement_m,
+            },
+        );
     }
 
     /// Slot `slot`'s frame descriptor set (uniforms, ocean images, sky cube).
     pub(super) fn frame_set(&self, slot: usize) -> &BoundSet {
         &self.frame_uniforms[slot].1
     }
+}
+
+/// The focal length of `camera` in pixels of a target `height` pixels high (`FrameUniforms`'
+/// `lod.x`): |P[1][1]| = 1 / tan(fov/2) times half the height.
+fn focal_px(camera: &Camera, aspect: f32, height: u32) -> f32 {
+    camera.projection(aspect).y_axis.y.abs() * height.max(1) as f32 * 0.5
 }

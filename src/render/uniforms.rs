@@ -45,7 +45,7 @@ pub struct OceanBindings {
     pub displacement: Vec<crate::gpu::Image>,
     pub normals: Vec<crate::gpu::Image>,
     /// The stages at which a graphics submission waits for the compute timeline before
-    /// sampling them (`Simulation::GRAPHICS_WAIT_STAGES`): the frame set's `Order::Wait`.
+    /// sampling them (`simulation::graphics_wait_stages`): the frame set's `Order::Wait`.
     pub wait_stages: ash::vk::PipelineStageFlags2,
     /// Patch side of each cascade (m), padded to four.
     pub patch_m: [f32; 4],

@@ -12,7 +12,7 @@ use clap::ValueEnum;
 pub mod presets;
 
 use crate::ocean::SpectrumKind;
-use crate::render::{AntiAliasing, FresnelModel, ViewMode};
+use crate::render::{AntiAliasing, FresnelModel, Geometry, ViewMode};
 use presets::{quality_level, sea_preset, PresetArg, QualityArg};
 
 /// Largest `--time-scale`.
@@ -48,6 +48,8 @@ pub struct Tunables {
     pub render_scale: f64,
     pub rtt_scale: f64,
     pub tess_edge: f64,
+    /// `None`: by device.
+    pub geometry: Option<Geometry>,
     pub terrain_grid: u32,
     /// Camera position and a point it looks at (written by the frontend when saving).
     pub camera: Option<([f32; 3], [f32; 3])>,
@@ -128,6 +130,9 @@ impl Tunables {
         lines.push(format!("render-scale = {}", number(self.render_scale)));
         lines.push(format!("rtt-scale = {}", number(self.rtt_scale)));
         lines.push(format!("tess-edge = {}", number(self.tess_edge)));
+        if let Some(g) = self.geometry {
+            lines.push(format!("geometry = \"{}\"", g.name()));
+        }
         lines.push(format!("terrain-grid = {}", self.terrain_grid));
         if let Some((eye, at)) = self.camera {
             let v = |p: [f32; 3]| p.map(|c| number(c as f64)).join(", ");
@@ -191,6 +196,7 @@ impl Tunables {
             "render-scale" => self.render_scale = num(0.25, 1.0)?,
             "rtt-scale" => self.rtt_scale = num(0.1, 1.0)?,
             "tess-edge" => self.tess_edge = num(2.0, 256.0)?,
+            "geometry" => self.geometry = Some(pick(value).map_err(|e| bad(&e))?),
             _ => return Err(bad("not a setting the overlay changes")),
         }
         Ok(())

@@ -127,7 +127,10 @@ pub fn gpu_context() -> std::sync::Arc<vkocean::gpu::Context> {
         .try_init();
     vkocean::gpu::Context::new(&vkocean::gpu::ContextDesc {
         validation: true,
-        ..Default::default()
+        validation_extras: Default::default(),
+        gpu_index: None,
+        needs: vkocean::gpu::Needs::RENDERING,
+        window: None,
     })
     .expect("a Vulkan device (tools/setup installs lavapipe)")
 }

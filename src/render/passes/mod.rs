@@ -26,9 +26,10 @@ pub use terrain::TerrainPass;
 pub use textures_view::TexturesViewPass;
 pub use water::WaterPass;
 
+use crate::gpu::oneshot::upload_then;
 use crate::gpu::{
-    Bindings, Context, DescriptorSetLayout, GpuResult, GraphicsDesc, Pipeline, PipelineLayout,
-    Recorder,
+    Bindings, Buffer, Context, DescriptorSetLayout, GpuResult, GraphicsDesc, MemoryLocation,
+    Pipeline, PipelineLayout, Recorder, Use,
 };
 use crate::render::targets::{DEPTH_FORMAT, HDR_FORMAT};
 use crate::render::uniforms::ViewIndex;
@@ -188,4 +189,54 @@ pub fn scene_pipeline(
 pub fn bind_scene(rec: &Recorder, draw: &Bindings, view: ViewIndex) {
     rec.bind(draw);
     rec.push_constants(draw.pipeline, &ViewPush { view: view as u32 });
+}
+
+/// An index buffer and how many indices it holds.
+pub(super) struct Mesh {
+    pub buffer: Buffer,
+    pub count: u32,
+}
+
+impl Mesh {
+    pub fn new(ctx: &Arc<Context>, name: &str, indices: &[u32]) -> GpuResult<Mesh> {
+        let bytes: &[u8] = bytemuck::cast_slice(indices);
+        let buffer = Buffer::new(
+            ctx,
+            name,
+            bytes.len() as u64,
+            vk::BufferUsageFlags::INDEX_BUFFER | vk::BufferUsageFlags::TRANSFER_DST,
+            MemoryLocation::GpuOnly,
+        )?;
+        // Then visible to the draws' index reads (no pass declares them).
+        upload_then(ctx, &buffer, bytes, Use::IndexRead)?;
+        Ok(Mesh {
+            buffer,
+            count: indices.len() as u32,
+        })
+    }
+}
+
+/// Two triangles per cell of the (quads + 1)² lattice taken `step` points at a time (the last
+/// row and column of cells are narrower when `step` does not divide `quads`), row by row.
+pub(super) fn lattice_triangles(quads: u32, step: u32) -> Vec<u32> {
+    let lattice = |x: u32, z: u32| z * (quads + 1) + x;
+    let edges: Vec<(u32, u32)> = (0..quads)
+        .step_by(step as usize)
+        .map(|a| (a, (a + step).min(quads)))
+        .collect();
+    let mut list = Vec::with_capacity(edges.len() * edges.len() * 6);
+    for &(z0, z1) in &edges {
+        for &(x0, x1) in &edges {
+            // Corners (0,0) (1,1) (1,0), (0,0) (0,1) (1,1) of the cell.
+            list.extend([
+                lattice(x0, z0),
+                lattice(x1, z1),
+                lattice(x1, z0),
+                lattice(x0, z0),
+                lattice(x0, z1),
+                lattice(x1, z1),
+            ]);
+        }
+    }
+    list
 }

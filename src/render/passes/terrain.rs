@@ -9,11 +9,12 @@ use std::sync::Arc;
 
 use ash::vk;
 
-use super::{bind_scene, scene_layout, scene_pipeline, Depth, PerTarget, SceneTarget};
-use crate::gpu::oneshot::upload_then;
+use super::{
+    bind_scene, lattice_triangles, scene_layout, scene_pipeline, Depth, Mesh, PerTarget,
+    SceneTarget,
+};
 use crate::gpu::{
-    Bindings, BoundSet, Buffer, Context, DescriptorSetLayout, GpuResult, GraphicsDesc,
-    MemoryLocation, Pipeline, Recorder, Use,
+    Bindings, BoundSet, Context, DescriptorSetLayout, GpuResult, GraphicsDesc, Pipeline, Recorder,
 };
 use crate::render::uniforms::ViewIndex;
 use crate::shaders;
@@ -111,59 +112,9 @@ impl TerrainPass {
     }
 }
 
-/// An index buffer and how many indices it holds.
-struct Mesh {
-    buffer: Buffer,
-    count: u32,
-}
-
-impl Mesh {
-    fn new(ctx: &Arc<Context>, name: &str, indices: &[u32]) -> GpuResult<Mesh> {
-        let bytes: &[u8] = bytemuck::cast_slice(indices);
-        let buffer = Buffer::new(
-            ctx,
-            name,
-            bytes.len() as u64,
-            vk::BufferUsageFlags::INDEX_BUFFER | vk::BufferUsageFlags::TRANSFER_DST,
-            MemoryLocation::GpuOnly,
-        )?;
-        // Then visible to the draws' index reads (no pass declares them).
-        upload_then(ctx, &buffer, bytes, Use::IndexRead)?;
-        Ok(Mesh {
-            buffer,
-            count: indices.len() as u32,
-        })
-    }
-}
-
-/// Two triangles per cell of the (quads + 1)² lattice taken `step` points at a time (the last
-/// row and column of cells are narrower when `step` does not divide `quads`), row by row.
-fn lattice_triangles(quads: u32, step: u32) -> Vec<u32> {
-    let lattice = |x: u32, z: u32| z * (quads + 1) + x;
-    let edges: Vec<(u32, u32)> = (0..quads)
-        .step_by(step as usize)
-        .map(|a| (a, (a + step).min(quads)))
-        .collect();
-    let mut list = Vec::with_capacity(edges.len() * edges.len() * 6);
-    for &(z0, z1) in &edges {
-        for &(x0, x1) in &edges {
-            // Corners (0,0) (1,1) (1,0), (0,0) (0,1) (1,1) of the cell.
-            list.extend([
-                lattice(x0, z0),
-                lattice(x1, z1),
-                lattice(x1, z0),
-                lattice(x0, z0),
-                lattice(x0, z1),
-                lattice(x1, z1),
-            ]);
-        }
-    }
-    list
-}
-
 #[cfg(test)]
 mod tests {
-    use super::lattice_triangles;
+    use super::super::lattice_triangles;
 
     /// Area of the triangles in lattice units (both windings count as positive).
     fn area(quads: u32, indices: &[u32]) -> f64 {

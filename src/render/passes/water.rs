@@ -1,22 +1,34 @@
-//! Water pass: the ocean as tessellated patches (shaders/surface/water.vert/.tesc/.tese/.frag,
-//! layout in shaders/common/water.glsl). The control shader picks each edge's level from its
-//! screen size and culls patches outside the frustum; the evaluation shader displaces the
-//! vertices by the simulation's images; the fragment shader shades with the reflection and
-//! refraction textures (set 1, [`WaterTextures`], rewritten on resize), the DU/DV map and the
-//! sky cube. The same set feeds the texture debug views (`textures_view.rs`).
+//! Water pass: the ocean surface in one of two geometries ([`Geometry`], `--geometry`), shaded
+//! by one fragment shader (shaders/surface/water.frag) from one vertex routine
+//! (shaders/common/water_vertex.glsl):
+//! - tessellated: patches (shaders/surface/water.vert/.tesc/.tese, layout in
+//!   shaders/common/water.glsl) whose control shader picks each edge's level from its screen
+//!   size and culls patches outside the frustum; the evaluation shader displaces the vertices;
+//! - clipmap: world-fixed grid tiles chosen per frame on the CPU by distance and frustum
+//!   (`render::clipmap`, CDLOD), one index buffer drawn once per tile
+//!   (shaders/surface/water_clipmap.vert, which morphs and displaces the vertices); the tile
+//!   list is set 2, one host-written buffer per frame slot.
+//!
+//! The fragment shader shades with the reflection and refraction textures (set 1,
+//! [`WaterTextures`], rewritten on resize), the DU/DV map and the sky cube. The same set feeds
+//! the texture debug views (`textures_view.rs`).
 
 use std::sync::Arc;
 
 use ash::vk;
 
-use super::{bind_scene, scene_layout, scene_pipeline, Depth, SceneTarget};
-use crate::gpu::{
-    Bind, Bindings, BoundSet, Context, DescriptorSetLayout, GpuResult, GraphicsDesc, Image, Order,
-    Pipeline, Recorder, Sampler,
+use super::{
+    bind_scene, lattice_triangles, scene_layout, scene_pipeline, Depth, Mesh, SceneTarget,
 };
+use crate::gpu::{
+    Bind, Bindings, BoundSet, Buffer, Context, DescriptorSetLayout, GpuResult, GraphicsDesc, Image,
+    MemoryLocation, Order, Pipeline, Recorder, Sampler, FRAMES_IN_FLIGHT,
+};
+use crate::render::camera::Camera;
+use crate::render::clipmap;
 use crate::render::targets::Targets;
-use crate::render::uniforms::ViewIndex;
-use crate::render::ViewMode;
+use crate::render::uniforms::{ViewIndex, WaterFrame, WATER_LEVEL_M};
+use crate::render::{Geometry, ViewMode};
 use crate::shaders;
 
 /// Patches per side (shared with water.vert).
@@ -113,6 +125,8 @@ impl WaterTextures {
 }
 
 pub struct WaterPass {
+    /// The geometry the pipelines draw.
+    geometry: Geometry,
     fill: Pipeline,
     /// The surface seen from under the water (the camera below it): its own pipeline
     /// (specialization constant 2 of water.frag), because lavapipe pays for a branch it does
@@ -121,13 +135,128 @@ pub struct WaterPass {
     /// Line rendering (`--view wireframe`), when the device has fillModeNonSolid.
     wireframe: Option<Pipeline>,
     textures: WaterTextures,
+    /// The clipmap's mesh and tile lists (`Geometry::Clipmap`).
+    clipmap: Option<ClipmapTiles>,
+}
+
+/// What the clipmap geometry draws with: one tile's mesh and, per frame slot, the tile list.
+struct ClipmapTiles {
+    /// The tiles' cells per side (a specialization constant of water_clipmap.vert).
+    quarter: u32,
+    /// The focal length (px) `quarter` was chosen for.
+    focal_px: f32,
+    /// Two triangles per cell of the (quarter + 1)² lattice.
+    mesh: Mesh,
+    /// Per slot: the tile buffer (`TileBuffer`) and its set (set 2).
+    slots: Vec<(Buffer, BoundSet)>,
+    /// Tiles written into each slot's buffer for its frame.
+    counts: Vec<u32>,
+    _layout: DescriptorSetLayout,
+}
+
+/// The header of a slot's tile buffer (`Tiles` in water_clipmap.vert): the morph table; the
+/// tiles, a vec4 each, follow it.
+const TILE_HEADER_BYTES: usize = clipmap::MAX_LEVELS * 16;
+
+/// What one frame's clipmap tiles are chosen from.
+pub struct TileView<'a> {
+    pub camera: &'a Camera,
+    /// Width over height of the output.
+    pub aspect: f32,
+    /// The main target's focal length (px): cells are sized for it.
+    pub focal_px: f32,
+    /// The narrowest cell on screen (px): `--tess-edge`.
+    pub cell_px: f32,
+    /// How far the waves move a point (m): the culling margin.
+    pub reach_m: f32,
+}
+
+impl ClipmapTiles {
+    fn new(
+        ctx: &Arc<Context>,
+        layout: DescriptorSetLayout,
+        quarter: u32,
+        focal_px: f32,
+    ) -> GpuResult<ClipmapTiles> {
+        let mesh = Mesh::new(
+            ctx,
+            "water clipmap tile indices",
+            &lattice_triangles(quarter, 1),
+        )?;
+        let bytes = (TILE_HEADER_BYTES + clipmap::MAX_TILES * 16) as u64;
+        let mut slots = Vec::new();
+        for slot in 0..FRAMES_IN_FLIGHT {
+            let buffer = Buffer::new(
+                ctx,
+                &format!("water clipmap tiles slot {slot}"),
+                bytes,
+                vk::BufferUsageFlags::STORAGE_BUFFER,
+                MemoryLocation::CpuToGpu,
+            )?;
+            let set = BoundSet::new(
+                ctx,
+                &layout,
+                &format!("water clipmap tiles set slot {slot}"),
+                &[(0, Bind::Storage(&buffer, Order::Host))],
+            )?;
+            slots.push((buffer, set));
+        }
+        Ok(ClipmapTiles {
+            quarter,
+            focal_px,
+            mesh,
+            slots,
+            counts: vec![0; FRAMES_IN_FLIGHT],
+            _layout: layout,
+        })
+    }
+
+    /// Chooses this frame's tiles and writes them into `slot`'s buffer (its previous frame
+    /// has finished: `Frames::begin` waited for it).
+    fn write(&mut self, slot: usize, view: &TileView) {
+        let layout = clipmap::Layout::with_quarter(
+            self.quarter,
+            f64::from(view.cell_px),
+            f64::from(view.focal_px),
+        );
+        let camera = view.camera;
+        let position = camera.position.as_dvec3();
+        let centre = WaterFrame::around([position.x, position.z]).centre;
+        let tiles = clipmap::select(
+            &layout,
+            &clipmap::Viewer {
+                xz: [position.x, position.z],
+                height_m: position.y - f64::from(WATER_LEVEL_M),
+                view_proj: Some(camera.view_proj(view.aspect)),
+                reach_m: f64::from(view.reach_m),
+            },
+        );
+        let mut bytes: Vec<u8> = bytemuck::cast_slice(&layout.morph_table()).to_vec();
+        for t in &tiles {
+            let corner = [0, 1].map(|i| (t.corner_m[i] - centre[i]) as f32);
+            let row = [
+                corner[0],
+                corner[1],
+                layout.cell_m(t.level) as f32,
+                t.packed_level(&layout),
+            ];
+            bytes.extend_from_slice(bytemuck::cast_slice(&row));
+        }
+        self.slots[slot].0.write(&bytes);
+        self.counts[slot] = tiles.len() as u32;
+    }
 }
 
 impl WaterPass {
-    /// `cascades`: layers of the ocean images (a specialization constant: the loop bound of the
-    /// evaluation and fragment shaders); `manual_filter`: the ocean images are bound with a
-    /// nearest sampler and the shaders filter them bilinearly by hand (devices without linear
-    /// filtering of RGBA32F). Draws into the main target (`targets.display_format`).
+    /// `geometry`: how the triangles are made (tessellated needs the device's tessellation
+    /// shaders); `cascades`: layers of the ocean images (a specialization constant: the loop
+    /// bound of the vertex and fragment shaders); `manual_filter`: the ocean images are bound
+    /// with a nearest sampler and the shaders filter them bilinearly by hand (devices without
+    /// linear filtering of RGBA32F); `tiles`: the clipmap's first frame (its tile size follows
+    /// the focal length and cell size then). Draws into the main target
+    /// (`targets.display_format`).
+    // Long: both geometries' shader stages and set layouts, and the three pipelines of each.
+    #[allow(clippy::too_many_arguments)]
     pub fn new(
         ctx: &Arc<Context>,
         frame_layout: &DescriptorSetLayout,
@@ -136,33 +265,83 @@ impl WaterPass {
         samplers: &WaterSamplers,
         cascades: u32,
         manual_filter: bool,
-    ) -> GpuResult<WaterPass> {
+        geometry: Geometry,
+        tiles: &TileView,
+    ) -> anyhow::Result<WaterPass> {
+        if geometry == Geometry::Tessellated && !ctx.info.tessellation_shader {
+            anyhow::bail!(
+                "--geometry tessellated: {} has no tessellation shaders (tessellationShader); \
+                 --geometry clipmap draws the same sea without them",
+                ctx.info.name
+            );
+        }
         let target = SceneTarget::Display(targets.display_format());
         let textures = WaterTextures::new(ctx, targets, dudv, samplers)?;
-        let layout = scene_layout(ctx, "water layout", frame_layout, &[&textures.layout])?;
-        let stages = [
-            (vk::ShaderStageFlags::VERTEX, shaders::SURFACE_WATER_VERT),
-            (
-                vk::ShaderStageFlags::TESSELLATION_CONTROL,
-                shaders::SURFACE_WATER_TESC,
-            ),
-            (
-                vk::ShaderStageFlags::TESSELLATION_EVALUATION,
-                shaders::SURFACE_WATER_TESE,
-            ),
-            (vk::ShaderStageFlags::FRAGMENT, shaders::SURFACE_WATER_FRAG),
-        ];
-        let pipeline = |name, polygon_mode, underwater: bool| {
+        let (stages, clipmap, layout) = match geometry {
+            Geometry::Tessellated => {
+                let layout = scene_layout(ctx, "water layout", frame_layout, &[&textures.layout])?;
+                let stages = vec![
+                    (vk::ShaderStageFlags::VERTEX, shaders::SURFACE_WATER_VERT),
+                    (
+                        vk::ShaderStageFlags::TESSELLATION_CONTROL,
+                        shaders::SURFACE_WATER_TESC,
+                    ),
+                    (
+                        vk::ShaderStageFlags::TESSELLATION_EVALUATION,
+                        shaders::SURFACE_WATER_TESE,
+                    ),
+                    (vk::ShaderStageFlags::FRAGMENT, shaders::SURFACE_WATER_FRAG),
+                ];
+                (stages, None, layout)
+            }
+            Geometry::Clipmap => {
+                let tile_layout = DescriptorSetLayout::new(
+                    ctx,
+                    "water clipmap tiles layout",
+                    &[(
+                        0,
+                        vk::DescriptorType::STORAGE_BUFFER,
+                        vk::ShaderStageFlags::VERTEX,
+                    )],
+                )?;
+                let layout = scene_layout(
+                    ctx,
+                    "water clipmap layout",
+                    frame_layout,
+                    &[&textures.layout, &tile_layout],
+                )?;
+                let quarter = clipmap::Layout::for_screen(
+                    f64::from(tiles.cell_px),
+                    f64::from(tiles.focal_px),
+                )
+                .quarter;
+                let stages = vec![
+                    (
+                        vk::ShaderStageFlags::VERTEX,
+                        shaders::SURFACE_WATER_CLIPMAP_VERT,
+                    ),
+                    (vk::ShaderStageFlags::FRAGMENT, shaders::SURFACE_WATER_FRAG),
+                ];
+                let tiles = ClipmapTiles::new(ctx, tile_layout, quarter, tiles.focal_px)?;
+                (stages, Some(tiles), layout)
+            }
+        };
+        let quarter = clipmap.as_ref().map_or(0, |c| c.quarter);
+        let (topology, patch_control_points) = match geometry {
+            Geometry::Tessellated => (vk::PrimitiveTopology::PATCH_LIST, 4),
+            Geometry::Clipmap => (vk::PrimitiveTopology::TRIANGLE_LIST, 0),
+        };
+        let pipeline = |name: &str, polygon_mode, underwater: bool| {
             scene_pipeline(
                 ctx,
                 &layout,
                 GraphicsDesc {
-                    name,
+                    name: &format!("{name} ({})", geometry.name()),
                     stages: &stages,
-                    topology: vk::PrimitiveTopology::PATCH_LIST,
-                    patch_control_points: 4,
+                    topology,
+                    patch_control_points,
                     polygon_mode,
-                    constants: &[cascades, manual_filter as u32, underwater as u32],
+                    constants: &[cascades, manual_filter as u32, underwater as u32, quarter],
                     ..Default::default()
                 },
                 Depth::TestWrite,
@@ -177,16 +356,47 @@ impl WaterPass {
             None
         };
         Ok(WaterPass {
+            geometry,
             fill,
             from_below,
             wireframe,
             textures,
+            clipmap,
         })
+    }
+
+    /// Whether drawing `geometry` with cells about `cell_px` wide needs a new pass: another
+    /// geometry, or clipmap tiles of another size (the rest follows per frame).
+    pub fn needs_rebuild(&self, geometry: Geometry, cell_px: f32) -> bool {
+        match &self.clipmap {
+            _ if geometry != self.geometry => true,
+            Some(tiles) => {
+                let layout =
+                    clipmap::Layout::for_screen(f64::from(cell_px), f64::from(tiles.focal_px));
+                layout.quarter != tiles.quarter
+            }
+            None => false,
+        }
     }
 
     /// The reflection, refraction and DU/DV textures the water samples.
     pub fn textures(&self) -> &WaterTextures {
         &self.textures
+    }
+
+    /// The sets a frame in `slot` draws the water with: the frame set, the textures and, for
+    /// the clipmap, the slot's tile list.
+    pub fn sets<'a>(&'a self, frame: &'a BoundSet, slot: usize) -> Vec<&'a BoundSet> {
+        let mut sets = vec![frame, &self.textures.set];
+        sets.extend(self.clipmap.as_ref().map(|c| &c.slots[slot].1));
+        sets
+    }
+
+    /// Chooses the clipmap's tiles for the frame in `slot` (nothing to do when tessellated).
+    pub fn prepare(&mut self, slot: usize, view: &TileView) {
+        if let Some(tiles) = &mut self.clipmap {
+            tiles.write(slot, view);
+        }
     }
 
     /// Points the pass at new targets (a new textures set).
@@ -213,7 +423,7 @@ impl WaterPass {
 
     /// What `record` binds: the pipeline for `view` (lines for `ViewMode::Wireframe` where the
     /// device draws lines, from below when the camera is `underwater`, filled otherwise) with
-    /// `sets` (the frame set and [`WaterPass::textures`]' set).
+    /// `sets` ([`WaterPass::sets`]).
     pub fn draw<'a>(
         &'a self,
         sets: &'a [&'a BoundSet],
@@ -228,11 +438,24 @@ impl WaterPass {
         Bindings { pipeline, sets }
     }
 
-    /// Draws the ocean patches inside the main rendering scope, which declared
-    /// `draw(sets, view, underwater)`.
-    pub fn record(&self, rec: &Recorder, sets: &[&BoundSet], view: ViewMode, underwater: bool) {
+    /// Draws the ocean inside the main rendering scope, which declared
+    /// `draw(sets, view, underwater)`; `slot`: the frame's (the clipmap's tile list).
+    pub fn record(
+        &self,
+        rec: &Recorder,
+        sets: &[&BoundSet],
+        view: ViewMode,
+        underwater: bool,
+        slot: usize,
+    ) {
         bind_scene(rec, &self.draw(sets, view, underwater), ViewIndex::Main);
-        // One instance per row of patches (see water.vert).
-        rec.draw(PATCHES * 4, PATCHES);
+        match &self.clipmap {
+            // One instance per row of patches (see water.vert).
+            None => rec.draw(PATCHES * 4, PATCHES),
+            Some(tiles) => {
+                rec.bind_index_buffer(&tiles.mesh.buffer);
+                rec.draw_indexed(tiles.mesh.count, tiles.counts[slot]);
+            }
+        }
     }
 }

@@ -1,0 +1,42 @@
+// The water's vertex, the same for both geometries (surface/water.tese, tessellated patches;
+// surface/water_clipmap.vert, the clipmap's tiles): the point xz of the sea plane (relative to
+// the grid centre, common/water.glsl) displaced by every cascade's displacement image (repeat
+// sampler, textureLod 0), scaled by what the depth of the terrain under the point makes of the
+// waves (common/shore.glsl). Outputs: eye-relative position, undisplaced xz relative to the grid
+// centre (normal lookups), the displacement (debug view, surf), the depth and shoaling
+// coefficient (water.frag finishes the shore). Needs common/frame.glsl, water.glsl,
+// terrain.glsl and shore.glsl included before it.
+
+layout(location = 0) out vec3 out_rel_pos;
+layout(location = 1) out vec2 out_xz;
+layout(location = 2) out vec3 out_displacement;
+layout(location = 3) out vec2 out_shore; // the water's depth (m) and K_s here
+// The frame's light, the same at every vertex: the sun's through the air and clouds and the
+// sky's at the zenith (cube lookups here cost a fraction of what they cost per pixel).
+layout(location = 4) flat out vec3 out_sun_light;
+layout(location = 5) flat out vec3 out_sky_zenith;
+
+void emit_water_vertex(vec2 xz) {
+    vec3 eye = water_eye();
+    vec2 offset = xz - eye.xz;
+    // The camera's world xz plus the offset: the terrain is placed in world coordinates.
+    vec2 world_xz = frame.views[0].eye.xz + offset;
+    // Past the island's slope the floor is flat: its depth and K_s come with the frame.
+    float depth = frame.open_sea.x;
+    float ks = frame.open_sea.y;
+    if (near_island(world_xz)) {
+        depth = water_level() - terrain_height(world_xz);
+        ks = shore_shoaling(depth);
+    }
+    vec3 d = shore_waves_at(ks, depth).x * ocean_displacement_at(xz, length(offset));
+    vec3 rel = vec3(offset.x + d.x, water_level() + d.y - eye.y, offset.y + d.z);
+    out_rel_pos = rel;
+    out_xz = xz;
+    out_displacement = d;
+    // Interpolated to the pixels (the surf, water.frag): dry land counts as just dry, so
+    // the waterline between a vertex on a hill and one at sea lies near the shore's.
+    out_shore = vec2(max(depth, -1.0), ks);
+    out_sun_light = sun_light();
+    out_sky_zenith = sky_lookup(vec3(0.0, 1.0, 0.0));
+    gl_Position = frame.views[0].view_proj * vec4(rel, 1.0);
+}
