@@ -2,16 +2,21 @@
 # and tools/validate-newest (the newest layer): sourced, not run.
 #
 # sweep_runs FN: calls `FN ARGS...` once per run, ARGS being vkocean's arguments for it (FN adds
-# --validation and whatever else it checks): every --view, both --waves models and every
-# --quality headless at 160x90 for 3 frames, and bench fft at sizes 64 and 128.
+# --validation and whatever else it checks): every --view, both --waves models, each water
+# --geometry of SWEEP_GEOMETRIES (default: both; tools/swiftshader: clipmap, the device has no
+# tessellation) and every --quality headless at 160x90 for 3 frames, and bench fft at sizes 64
+# and 128.
 sweep_runs() {
-    local fn=$1 view waves quality
+    local fn=$1 view waves geometry quality
     local small=(--headless --size 160x90 --frames 3)
     for view in final reflection refraction displacement normals foam dudv wireframe; do
         "$fn" "${small[@]}" --view "$view"
     done
     for waves in fft gerstner; do
         "$fn" "${small[@]}" --waves "$waves"
+    done
+    for geometry in ${SWEEP_GEOMETRIES:-tessellated clipmap}; do
+        "$fn" "${small[@]}" --geometry "$geometry"
     done
     for quality in low medium high; do
         "$fn" "${small[@]}" --quality "$quality"
