@@ -106,7 +106,7 @@ fn run(user_args: Vec<std::ffi::OsString>) -> ExitCode {
         }
     }
     if cli.quality.is_none() && !fft_bench {
-        cli.cpu_device = context::chosen_device_is_cpu(cli.gpu);
+        cli.cpu_device = context::chosen_device_is_cpu(cli.gpu, cli.device_needs());
     }
 
     let outcome = match &cli.command {

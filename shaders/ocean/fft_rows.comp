@@ -126,8 +126,10 @@ void main() {
                 x[k1] = t == 0u ? z + partner : partner - z;
             }
         } else if (T == 4u) {
-            // Lane t scales Y_t[k1] by w_N^{t k1} (one of three constants, picked by t), then
-            // the two radix-2 stages across lanes described at the top.
+            // Lane t scales Y_t[k1] by w_N^{t k1} (one of three constants, picked by t: each
+            // folded from the f32 angle a, not through `rotate`'s exact axis cases; within the
+            // tests' tolerance like the rest), then the two radix-2 stages across lanes
+            // described at the top.
             [[unroll]] for (uint k1 = 0u; k1 < M; ++k1) {
                 float a = float(k1) * (TAU / float(N));
                 vec2 w = t == 0u ? vec2(1.0, 0.0)

@@ -1,7 +1,7 @@
 #version 460
 // Ocean vertices of the clipmap water (src/render/clipmap.rs, CDLOD after Strugar 2009): instance
-// i is tile i of this frame's list, a square of QUARTER² cells at its level's cell size; vertex v
-// is lattice point (v mod (QUARTER+1), v / (QUARTER+1)) of it (an index buffer makes the
+// i is tile i of this frame's list, a square of Q² cells at its level's cell size (Q =
+// tiles.grid.x); vertex v is lattice point (v mod (Q+1), v / (Q+1)) of it (an index buffer makes the
 // triangles). Each vertex morphs toward the next coarser level's lattice as its distance from
 // the camera goes from the level's morph start to its range: its odd world lattice
 // coordinates slide onto the even neighbour below, so at the far end of a level its mesh is the next level's and
@@ -13,10 +13,10 @@
 #include "common/shore.glsl"
 #include "common/water_vertex.glsl"
 
-// Cells per tile side (clipmap::Layout::quarter); specialized by WaterPass.
-layout(constant_id = 3) const uint QUARTER = 4;
-
 layout(set = 2, binding = 0, std430) readonly buffer Tiles {
+    // x: cells per tile side (clipmap::Layout::quarter, this frame's; the draw binds the index
+    // buffer of that size).
+    uvec4 grid;
     // Per level: x the morph's start (m), y 1 / (its end - start); clipmap::MAX_LEVELS levels.
     vec4 morph[24];
     // Per tile: xy its corner relative to the grid centre (m), z its cell side (m), w its level
@@ -28,7 +28,8 @@ layout(set = 2, binding = 0, std430) readonly buffer Tiles {
 void main() {
     vec4 t = tiles.tile[gl_InstanceIndex];
     uint v = uint(gl_VertexIndex);
-    uvec2 ij = uvec2(v % (QUARTER + 1u), v / (QUARTER + 1u));
+    uint side = tiles.grid.x + 1u;
+    uvec2 ij = uvec2(v % side, v / side);
     // Exact in f32: corners and cells are multiples of a power of two, a few km at most.
     vec2 xz = t.xy + vec2(ij) * t.z;
     vec3 eye = water_eye();

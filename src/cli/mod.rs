@@ -469,6 +469,15 @@ impl Cli {
         self.validation || self.validation_extra.is_some()
     }
 
+    /// What a run with these flags (a drawing one) uses of the device: tessellation only for
+    /// `--geometry tessellated` (`SceneSettings::needs`).
+    pub fn device_needs(&self) -> crate::gpu::Needs {
+        crate::gpu::Needs {
+            rendering: true,
+            tessellation: self.geometry == Some(Geometry::Tessellated),
+        }
+    }
+
     /// The quality level: `--quality`, else the device's default (`cpu_device`), else high.
     pub fn quality_in_force(&self) -> QualityArg {
         self.quality

@@ -128,7 +128,9 @@ pub(super) fn surface_handles(
     if has(ash::khr::xlib_surface::NAME) || !has(ash::khr::xcb_surface::NAME) {
         return Ok((display, window));
     }
-    match crate::platform::xcb_handles(display, window) {
+    // SAFETY: the handles are those of the live winit window the context is made for, which
+    // outlives the context and its surface (`ContextDesc::window`, the windowed frontend).
+    match unsafe { crate::platform::xcb_handles(display, window) } {
         Some(handles) => {
             log::info!("no VK_KHR_xlib_surface: the window's surface is made through XCB");
             Ok(handles)

@@ -149,13 +149,17 @@ pub(super) fn lacks(info: &DeviceInfo, needs: Needs) -> Option<String> {
 
 /// Whether the device a run would use (`--gpu N`, or the best usable one) is a CPU
 /// implementation such as lavapipe; `None` when it cannot be told (no loader, no usable device,
-/// a bad index): the run's own device creation then reports why. Ignores presentation support,
-/// which only a window's surface can answer.
-pub fn chosen_device_is_cpu(gpu_index: Option<usize>) -> Option<bool> {
+/// a bad index): the run's own device creation then reports why. Judges the devices by `needs`,
+/// as the run's device choice does; ignores presentation support, which only a window's
+/// surface can answer.
+pub fn chosen_device_is_cpu(gpu_index: Option<usize>, needs: Needs) -> Option<bool> {
     let devices = list_devices().ok()?;
     let types: Vec<_> = devices
         .iter()
-        .map(|d| d.unusable.is_none().then_some(d.device_type))
+        .map(|d| {
+            let usable = d.unusable.is_none() && (d.tessellation || !needs.tessellation);
+            usable.then_some(d.device_type)
+        })
         .collect();
     let index = match gpu_index {
         Some(i) => i,
@@ -175,7 +179,9 @@ pub(crate) struct Candidate {
 
 /// "name: info" of the device's driver (e.g. "llvmpipe: Mesa 22.3.6 (LLVM 15.0.6)"); a driver
 /// that gives no info string is named with its version and Vulkan conformance instead
-/// ("SwiftShader driver 5.0.0, conformance 1.3.3.1").
+/// ("SwiftShader driver 5.0.0, conformance 1.3.3.1"; the version decoded as Vulkan packs API
+/// versions, which is SwiftShader's packing; vendors that pack their own way give an info
+/// string).
 pub(super) fn driver_string(instance: &ash::Instance, physical: vk::PhysicalDevice) -> String {
     let mut driver = vk::PhysicalDeviceDriverProperties::default();
     let mut props2 = vk::PhysicalDeviceProperties2::default().push_next(&mut driver);

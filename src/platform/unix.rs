@@ -74,7 +74,11 @@ pub fn watch_display() {
 /// (SwiftShader): winit's X11 window is an Xlib display and window id, and the XCB connection
 /// comes from the display through libX11-xcb (the window id is the same XID). `None` for other
 /// handles, or without libX11-xcb.
-pub fn xcb_handles(
+///
+/// # Safety
+/// `display` and `window` are the handles of a live window (winit's), whose display stays
+/// open while the returned handles are used (the surface made from them, as for any surface).
+pub unsafe fn xcb_handles(
     display: raw_window_handle::RawDisplayHandle,
     window: raw_window_handle::RawWindowHandle,
 ) -> Option<(
@@ -85,7 +89,8 @@ pub fn xcb_handles(
     let (RawDisplayHandle::Xlib(d), RawWindowHandle::Xlib(w)) = (display, window) else {
         return None;
     };
-    let connection = super::x11::xcb_connection(d.display?.as_ptr())?;
+    // SAFETY: the display handle is live (this function's contract).
+    let connection = unsafe { super::x11::xcb_connection(d.display?.as_ptr()) }?;
     let id = std::num::NonZeroU32::new(u32::try_from(w.window).ok()?)?;
     Some((
         RawDisplayHandle::Xcb(XcbDisplayHandle::new(Some(connection), d.screen)),

@@ -114,7 +114,10 @@ pub fn check_display() -> anyhow::Result<()> {
 pub fn watch_display() {}
 
 /// No X11 on Windows: a Win32 window has one kind of surface.
-pub fn xcb_handles(
+///
+/// # Safety
+/// None here (Unix's takes live window handles); `unsafe` to match it.
+pub unsafe fn xcb_handles(
     _display: raw_window_handle::RawDisplayHandle,
     _window: raw_window_handle::RawWindowHandle,
 ) -> Option<(

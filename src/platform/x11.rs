@@ -37,7 +37,11 @@ static XLIB_XCB: OnceLock<Option<x11_dl::xlib_xcb::Xlib_xcb>> = OnceLock::new();
 
 /// The XCB connection under an Xlib display (one socket, two client libraries), or `None` when
 /// libX11-xcb cannot be loaded or `display` is null.
-pub fn xcb_connection(
+///
+/// # Safety
+/// `display` is null or a live Xlib `Display*`; the connection returned is valid only while
+/// that display stays open.
+pub unsafe fn xcb_connection(
     display: *mut std::ffi::c_void,
 ) -> Option<std::ptr::NonNull<std::ffi::c_void>> {
     let xcb = XLIB_XCB
@@ -46,7 +50,7 @@ pub fn xcb_connection(
     if display.is_null() {
         return None;
     }
-    // SAFETY: `display` is the live Xlib display of winit's window (the caller's handle);
+    // SAFETY: `display` is a live, non-null Xlib display (this function's contract);
     // XGetXCBConnection only reads the connection it wraps.
     let connection = unsafe { (xcb.XGetXCBConnection)(display.cast()) };
     std::ptr::NonNull::new(connection.cast())

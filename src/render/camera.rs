@@ -61,6 +61,12 @@ impl Camera {
         p
     }
 
+    /// The focal length in pixels of a target `height_px` high: |P[1][1]| = 1 / tan(fov/2),
+    /// times half the height (a length L at distance d spans L · focal / d pixels).
+    pub fn focal_px(&self, aspect: f32, height_px: f32) -> f32 {
+        self.projection(aspect).y_axis.y.abs() * height_px * 0.5
+    }
+
     /// Camera-relative position -> clip space.
     pub fn view_proj(&self, aspect: f32) -> Mat4 {
         self.projection(aspect) * self.view_rotation()

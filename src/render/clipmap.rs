@@ -37,10 +37,14 @@ use glam::{Mat4, Vec3, Vec4};
 
 /// Most levels (the morph table's size in water_clipmap.vert).
 pub const MAX_LEVELS: usize = 24;
-/// Most tiles a frame draws (the per-slot tile buffer's capacity).
-pub const MAX_TILES: usize = 8192;
+/// Most tiles a frame draws (the per-slot tile buffer's capacity): more than the largest range
+/// factor draws with no culling at all (`select` keeps the nearest if ever exceeded).
+pub const MAX_TILES: usize = 16384;
 /// Smallest range factor c (range(L) = c·node(L)); see the module's doc.
 pub const MIN_RANGE_FACTOR: f64 = 4.0;
+/// Largest range factor: the tile count grows with c², so cells finer than this allows (tiny
+/// `--tess-edge` on a large screen, with tiles already `MAX_QUARTER` wide) are drawn coarser.
+pub const MAX_RANGE_FACTOR: f64 = 8.0;
 /// Relative margin between the morph's bounds and the distances they must clear: the shader
 /// computes distances in f32 (relative error about 1e-7).
 const MORPH_MARGIN: f64 = 1e-3;
@@ -70,7 +74,7 @@ impl Layout {
     /// end; twice that at its near end) for a focal length of `focal_px` pixels.
     /// `cell_px` at distance d is `f·cell/d`; at d = range(L) that is `f / (c·2·quarter)`.
     pub fn for_screen(cell_px: f64, focal_px: f64) -> Layout {
-        let cells_per_range = (focal_px / cell_px.max(1.0)).max(1.0); // c · 2 · quarter
+        let cells_per_range = cells_per_range(cell_px, focal_px);
         let mut quarter = MIN_QUARTER;
         while quarter * 2 <= MAX_QUARTER
             && cells_per_range / (2.0 * (quarter * 2) as f64) >= MIN_RANGE_FACTOR
@@ -80,11 +84,12 @@ impl Layout {
         Layout::with_quarter(quarter, cell_px, focal_px)
     }
 
-    /// The layout with `quarter` cells per tile side (a pipeline's, fixed when it was made)
-    /// for this frame's screen: the range factor follows the focal length.
+    /// The layout with `quarter` cells per tile side (the mesh's, made when the screen size
+    /// was last set) for this frame: the range factor follows the focal length, within
+    /// `MIN_RANGE_FACTOR..=MAX_RANGE_FACTOR`.
     pub fn with_quarter(quarter: u32, cell_px: f64, focal_px: f64) -> Layout {
-        let cells_per_range = (focal_px / cell_px.max(1.0)).max(1.0);
-        let range_factor = (cells_per_range / (2.0 * quarter as f64)).max(MIN_RANGE_FACTOR);
+        let range_factor = (cells_per_range(cell_px, focal_px) / (2.0 * quarter as f64))
+            .clamp(MIN_RANGE_FACTOR, MAX_RANGE_FACTOR);
         let range0 = range_factor * 2.0 * quarter as f64 * FINEST_CELL_M;
         let levels = ((REACH_M / range0).log2().ceil().max(0.0) as u32 + 1).min(MAX_LEVELS as u32);
         Layout {
@@ -133,6 +138,12 @@ impl Layout {
     }
 }
 
+/// c · 2 · quarter, the cells from a level's camera to its range for cells `cell_px` wide there:
+/// a cell at distance d is `focal_px · cell / d` pixels wide.
+fn cells_per_range(cell_px: f64, focal_px: f64) -> f64 {
+    (focal_px / cell_px.max(1.0)).max(1.0)
+}
+
 /// One quarter tile to draw: its world corner (the lower x and z) and level.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Tile {
@@ -161,7 +172,7 @@ impl Tile {
 pub struct Viewer {
     /// World xz (m).
     pub xz: [f64; 2],
-    /// Height above the water level (m; its absolute value is used).
+    /// Height above the water level (m; negative under the water).
     pub height_m: f64,
     /// Camera-relative position → clip space (`Camera::view_proj`), for frustum culling;
     /// `None` draws every tile in range (tests).
@@ -182,12 +193,15 @@ impl Viewer {
         (dx * dx + dz * dz + self.height_m * self.height_m).sqrt()
     }
 
-    /// Whether a square, raised and lowered and widened by the waves' reach, may be on screen.
-    fn may_see(&self, corner: [f64; 2], side: f64) -> bool {
+    /// Whether a square of level `level`'s tiles may be on screen: its box raised, lowered and
+    /// widened by the waves' reach, and widened by one cell more, as far as the morph moves a
+    /// tile's vertices out of its square (a tile whose corner is odd on the level's lattice
+    /// slides its low edge onto the even neighbour's).
+    fn may_see(&self, corner: [f64; 2], side: f64, cell: f64) -> bool {
         let Some(vp) = self.view_proj else {
             return true;
         };
-        let m = self.reach_m;
+        let m = self.reach_m + cell;
         let lo = Vec3::new(
             (corner[0] - m - self.xz[0]) as f32,
             (-m - self.height_m) as f32,
@@ -198,7 +212,7 @@ impl Viewer {
             (2.0 * m) as f32,
             (side + 2.0 * m) as f32,
         );
-        let corners = (0..8).map(|i| {
+        let corners: [Vec4; 8] = std::array::from_fn(|i| {
             let pick = Vec3::new((i & 1) as f32, ((i >> 1) & 1) as f32, ((i >> 2) & 1) as f32);
             vp * (lo + pick * size).extend(1.0)
         });
@@ -211,13 +225,12 @@ impl Viewer {
             |c| c.y > c.w,
             |c| c.z > c.w,
         ];
-        let corners: Vec<Vec4> = corners.collect();
         !planes.iter().any(|out| corners.iter().all(|&c| out(c)))
     }
 }
 
-/// The quarter tiles to draw for `viewer` (at most `MAX_TILES`; farther ones are dropped if a
-/// frame would need more, which the layouts `for_screen` makes never happen).
+/// The quarter tiles to draw for `viewer`: at most `MAX_TILES`, the nearest kept if a frame
+/// ever needed more (the range factor's cap keeps it under: `the_tile_count_stays_bounded`).
 pub fn select(layout: &Layout, viewer: &Viewer) -> Vec<Tile> {
     let top = layout.levels - 1;
     let node = layout.node_m(top);
@@ -231,7 +244,16 @@ pub fn select(layout: &Layout, viewer: &Viewer) -> Vec<Tile> {
             select_node(layout, viewer, corner, top, &mut tiles);
         }
     }
-    tiles.truncate(MAX_TILES);
+    if tiles.len() > MAX_TILES {
+        let side = layout.node_m(0) / 2.0;
+        let distance = |t: &Tile| viewer.distance_to(t.corner_m, side * f64::from(1u32 << t.level));
+        tiles.sort_by(|a, b| distance(a).total_cmp(&distance(b)));
+        log::warn!(
+            "the clipmap needed {} tiles; drawing the nearest {MAX_TILES}",
+            tiles.len()
+        );
+        tiles.truncate(MAX_TILES);
+    }
     tiles
 }
 
@@ -246,21 +268,23 @@ fn select_node(
     tiles: &mut Vec<Tile>,
 ) -> bool {
     let side = layout.node_m(level);
-    if viewer.distance_to(corner, side) > layout.range(level) {
+    let cell = layout.cell_m(level);
+    let distance = viewer.distance_to(corner, side);
+    if distance > layout.range(level) {
         return false;
     }
-    if !viewer.may_see(corner, side) {
+    if !viewer.may_see(corner, side, cell) {
         return true;
     }
     let half = side / 2.0;
     let quarters = [[0.0, 0.0], [half, 0.0], [0.0, half], [half, half]]
         .map(|[dx, dz]| [corner[0] + dx, corner[1] + dz]);
-    if level == 0 || viewer.distance_to(corner, side) > layout.range(level - 1) {
+    if level == 0 || distance > layout.range(level - 1) {
         tiles.extend(quarters.map(|q| Tile { corner_m: q, level }));
         return true;
     }
     for q in quarters {
-        if !select_node(layout, viewer, q, level - 1, tiles) && viewer.may_see(q, half) {
+        if !select_node(layout, viewer, q, level - 1, tiles) && viewer.may_see(q, half, cell) {
             tiles.push(Tile { corner_m: q, level });
         }
     }
@@ -320,13 +344,17 @@ mod tests {
             assert!(l.range_factor >= MIN_RANGE_FACTOR, "{l:?}");
             assert!(l.range(l.levels - 1) >= REACH_M, "{l:?}");
             assert!(l.levels as usize <= MAX_LEVELS);
-            // Cells at a level's far end (d = range) are px wide unless the factor was raised.
+            // Cells at a level's far end (d = range) are px wide unless the factor was clamped:
+            // raised to the smallest (finer cells), or lowered to the largest (coarser).
             let narrowest = f * l.cell_m(3) / l.range(3);
-            if l.range_factor > MIN_RANGE_FACTOR {
-                assert!((narrowest - px).abs() < 1e-9 * px, "{l:?}: {narrowest} px");
-            } else {
+            if l.range_factor == MIN_RANGE_FACTOR {
                 assert!(narrowest <= px, "{l:?}");
+            } else if l.range_factor == MAX_RANGE_FACTOR {
+                assert!(narrowest >= px, "{l:?}");
+            } else {
+                assert!((narrowest - px).abs() < 1e-9 * px, "{l:?}: {narrowest} px");
             }
+            assert!(l.range_factor <= MAX_RANGE_FACTOR);
             for level in 1..l.levels {
                 let diag = std::f64::consts::SQRT_2 * l.node_m(level);
                 // Splitting keeps the mesh; a coarser neighbour is unmorphed at the seam.
@@ -451,21 +479,184 @@ mod tests {
         }
     }
 
-    /// A node's split into its children keeps the mesh: at the distance it splits, its own
-    /// vertices are unmorphed and its children's fully morphed.
+    /// The tiles `select` draws whose square lies inside the square at `corner` of side `side`.
+    fn tiles_inside(layout: &Layout, tiles: &[Tile], corner: [f64; 2], side: f64) -> Vec<Tile> {
+        tiles
+            .iter()
+            .filter(|t| {
+                let s = layout.cell_m(t.level) * layout.quarter as f64;
+                (0..2).all(|i| t.corner_m[i] >= corner[i] && t.corner_m[i] + s <= corner[i] + side)
+            })
+            .copied()
+            .collect()
+    }
+
+    /// Every lattice point of `t` as the shader places it.
+    fn drawn_points(layout: &Layout, v: &Viewer, t: &Tile) -> Vec<[f64; 2]> {
+        let q = layout.quarter;
+        (0..=q)
+            .flat_map(|i| (0..=q).map(move |j| (i, j)))
+            .map(|(i, j)| morphed(layout, v, t, i, j))
+            .collect()
+    }
+
+    /// A node's split into its children keeps the mesh: with the camera just outside the
+    /// distance at which a node of each level splits, `select` draws it at its level and its
+    /// vertices are unmorphed (its mesh is exactly that level's lattice); just inside, its
+    /// square is drawn by finer tiles whose vertices all land on the same lattice points (fully
+    /// morphed: the same mesh, no pop).
     #[test]
     fn splitting_a_node_does_not_pop() {
-        let layout = Layout::for_screen(16.0, 623.5);
-        for level in 1..layout.levels {
-            let node = layout.node_m(level);
-            let split = layout.range(level - 1);
-            // Farthest point of a node whose nearest point is at the split distance.
-            let far = split + std::f64::consts::SQRT_2 * node;
-            assert!(
-                far <= layout.morph_start(level) + 1e-9 * far,
-                "level {level}"
-            );
-            assert!(split >= layout.range(level - 1) - 1e-9, "level {level}");
+        for layout in [
+            Layout::for_screen(16.0, 623.5),
+            Layout::for_screen(48.0, 311.8),
+        ] {
+            let h = 1.0;
+            for level in 3..layout.levels - 1 {
+                let node = layout.node_m(level);
+                // The node with corner (0, 0); the camera on the line z = node / 2, h up, at
+                // ground distance `x` before the node's near edge.
+                let split = layout.range(level - 1);
+                let ground = (split * split - h * h).sqrt();
+                for (eps, before) in [(1e-6 * split, true), (-1e-6 * split, false)] {
+                    let v = viewer(-(ground + eps), node / 2.0, h);
+                    let tiles = select(&layout, &v);
+                    let inside = tiles_inside(&layout, &tiles, [0.0, 0.0], node);
+                    let area: f64 = inside
+                        .iter()
+                        .map(|t| (layout.cell_m(t.level) * layout.quarter as f64).powi(2))
+                        .sum();
+                    assert!(
+                        (area - node * node).abs() < 1e-9 * node * node,
+                        "level {level}"
+                    );
+                    let coarse = layout.cell_m(level);
+                    // Before: the node's four quarters. After: its near quarters by finer
+                    // tiles (the far ones may stay, as CDLOD draws a straddling node).
+                    if before {
+                        assert!(
+                            inside.iter().all(|t| t.level == level),
+                            "level {level}: {inside:?}"
+                        );
+                    } else {
+                        assert!(
+                            inside.iter().any(|t| t.level < level),
+                            "level {level} did not split"
+                        );
+                    }
+                    for t in &inside {
+                        for p in drawn_points(&layout, &v, t) {
+                            assert!(
+                                (p[0] / coarse).fract() == 0.0 && (p[1] / coarse).fract() == 0.0,
+                                "level {level} {}: a vertex of {t:?} at {p:?}, off the node's lattice",
+                                if before { "before its split" } else { "after" }
+                            );
+                        }
+                        if t.level == level {
+                            // Unmorphed: every vertex of the node's tiles at its own point.
+                            let q = layout.quarter;
+                            for i in 0..=q {
+                                for j in 0..=q {
+                                    let p = morphed(&layout, &v, t, i, j);
+                                    let c = [
+                                        t.corner_m[0] + i as f64 * coarse,
+                                        t.corner_m[1] + j as f64 * coarse,
+                                    ];
+                                    assert_eq!(
+                                        p, c,
+                                        "level {level}: {t:?} morphed before its split"
+                                    );
+                                }
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    /// With the largest range factor, at the largest and the smallest tiles, and no culling at
+    /// all, a camera at the water's surface needs fewer tiles than the buffer holds.
+    #[test]
+    fn the_tile_count_stays_bounded() {
+        for quarter in [MIN_QUARTER, MAX_QUARTER] {
+            let layout = Layout::with_quarter(quarter, 1.0, 1e6);
+            assert_eq!(layout.range_factor, MAX_RANGE_FACTOR);
+            let n = select(&layout, &viewer(0.5, 0.5, 0.01)).len();
+            assert!(n <= MAX_TILES, "quarter {quarter}: {n} tiles");
+        }
+    }
+
+    /// Every point of the sea the default camera sees (a grid of rays through the screen, down
+    /// to its 20 km reach), and the points a cell away from it, lie in drawn tiles: culling
+    /// leaves no hole, even where the morph moves a tile's edge into its neighbour.
+    #[test]
+    fn culling_leaves_no_hole_on_screen() {
+        let camera = crate::render::Camera::default();
+        let aspect = 16.0 / 9.0;
+        let inverse = camera.view_proj(aspect).inverse();
+        for layout in [
+            Layout::for_screen(16.0, 623.5),
+            Layout::for_screen(48.0, 311.8),
+        ] {
+            let p = camera.position.as_dvec3();
+            let v = Viewer {
+                xz: [p.x, p.z],
+                height_m: p.y,
+                view_proj: Some(camera.view_proj(aspect)),
+                reach_m: 0.5,
+            };
+            let tiles = select(&layout, &v);
+            let drawn = |x: f64, z: f64| {
+                tiles.iter().any(|t| {
+                    let s = layout.cell_m(t.level) * layout.quarter as f64;
+                    t.corner_m[0] <= x
+                        && x <= t.corner_m[0] + s
+                        && t.corner_m[1] <= z
+                        && z <= t.corner_m[1] + s
+                })
+            };
+            let mut checked = 0;
+            for sy in 0..48 {
+                for sx in 0..64 {
+                    let ndc = glam::Vec2::new(
+                        (sx as f32 + 0.5) / 32.0 - 1.0,
+                        (sy as f32 + 0.5) / 24.0 - 1.0,
+                    );
+                    let far = inverse * glam::Vec4::new(ndc.x, ndc.y, 0.5, 1.0);
+                    let dir = (far.truncate() / far.w).as_dvec3().normalize();
+                    if dir.y >= -1e-3 {
+                        continue; // at or above the horizon
+                    }
+                    let t = -p.y / dir.y;
+                    let (x, z) = (p.x + dir.x * t, p.z + dir.z * t);
+                    if ((x - p.x).powi(2) + (z - p.z).powi(2)).sqrt() > REACH_M {
+                        continue;
+                    }
+                    // The cell there: the level whose range holds the point's distance.
+                    let d = (t * dir.length()).max(p.y);
+                    let level = (0..layout.levels)
+                        .find(|&l| layout.range(l) >= d)
+                        .unwrap_or(layout.levels - 1);
+                    let cell = layout.cell_m(level);
+                    for (dx, dz) in [
+                        (0.0, 0.0),
+                        (cell, 0.0),
+                        (-cell, 0.0),
+                        (0.0, cell),
+                        (0.0, -cell),
+                    ] {
+                        assert!(
+                            drawn(x + dx, z + dz),
+                            "no tile at ({}, {}) (screen {sx}, {sy})",
+                            x + dx,
+                            z + dz
+                        );
+                    }
+                    checked += 1;
+                }
+            }
+            assert!(checked > 1000, "{checked} points checked");
         }
     }
 
@@ -498,6 +689,18 @@ mod tests {
                 let overlap_x = a.0 < b.0 + b.2 && b.0 < a.0 + a.2;
                 let overlap_z = a.1 < b.1 + b.2 && b.1 < a.1 + a.2;
                 assert!(!(overlap_x && overlap_z), "{a:?} overlaps {b:?}");
+            }
+        }
+        // And every point within the reach lies in a tile (polar samples to 20 km).
+        for r in (0..40).map(|i| REACH_M * (i as f64 / 40.0).powi(2)) {
+            for a in (0..64).map(|i| i as f64 * std::f64::consts::TAU / 64.0) {
+                let (x, z) = (v.xz[0] + r * a.cos(), v.xz[1] + r * a.sin());
+                assert!(
+                    rects
+                        .iter()
+                        .any(|(cx, cz, s)| *cx <= x && x <= cx + s && *cz <= z && z <= cz + s),
+                    "({x}, {z}) lies in no tile"
+                );
             }
         }
         // The camera's own spot is drawn at the finest level its height allows.

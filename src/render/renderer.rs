@@ -11,7 +11,7 @@ use ash::vk;
 use super::atmosphere::Sky;
 use super::camera::Camera;
 use super::passes::output::OutputPass;
-use super::passes::water::{TileView, WaterSamplers};
+use super::passes::water::{TileView, WaterKind, WaterSamplers};
 use super::passes::{AntiAliasingPass, SkyCube, SkyPass, TerrainPass, TexturesViewPass, WaterPass};
 use super::scene::{dudv_size, generate_dudv, load_dudv, DUDV_SIDE};
 use super::targets::Targets;
@@ -310,23 +310,16 @@ impl Renderer {
             settings.terrain_grid,
             targets.display_format(),
         )?;
-        let main = targets.main.extent();
-        let aspect = extent.width as f32 / extent.height.max(1) as f32;
         let water = WaterPass::new(
             ctx,
             &frame_set_layout,
             &targets,
             &dudv,
             &samplers,
-            ocean.cascades,
-            !ocean_linear,
-            Geometry::resolve(settings.geometry, &ctx.info),
-            &TileView {
-                camera: &camera,
-                aspect,
-                focal_px: focal_px(&camera, aspect, main.height),
-                cell_px: settings.tess_edge_px,
-                reach_m: ocean.max_displacement_m,
+            WaterKind {
+                geometry: Geometry::resolve(settings.geometry, &ctx.info),
+                cascades: ocean.cascades,
+                manual_filter: !ocean_linear,
             },
         )?;
         let textures_view = TexturesViewPass::new(
@@ -412,12 +405,11 @@ impl Renderer {
     }
 
     /// Whether `new` settings need a new renderer (`remade`): other target scales, terrain
-    /// lattice, anti-aliasing pass, textures or water geometry (or clipmap tile size); the rest
-    /// are uniforms (`set_scene`).
+    /// lattice, anti-aliasing pass, textures or water geometry; the rest are uniforms and the
+    /// clipmap's per-frame tiles (`set_scene`).
     pub fn needs_rebuild(&self, new: &SceneSettings) -> bool {
         let s = &self.settings;
-        let geometry = Geometry::resolve(new.geometry, &self.ctx.info);
-        self.water.needs_rebuild(geometry, new.tess_edge_px)
+        Geometry::resolve(new.geometry, &self.ctx.info) != self.water.geometry()
             || s.render_scale != new.render_scale
             || s.rtt_scale != new.rtt_scale
             || s.terrain_grid != new.terrain_grid
@@ -520,7 +512,7 @@ impl Renderer {
             &TileView {
                 camera: &self.camera,
                 aspect,
-                focal_px: focal_px(&self.camera, aspect, extent.height),
+                focal_px: self.camera.focal_px(aspect, extent.height as f32),
                 cell_px: s.tess_edge_px,
                 reach_m: self.ocean.max_displacement_m,
             },
@@ -531,10 +523,4 @@ impl Renderer {
     pub(super) fn frame_set(&self, slot: usize) -> &BoundSet {
         &self.frame_uniforms[slot].1
     }
-}
-
-/// The focal length of `camera` in pixels of a target `height` pixels high (`FrameUniforms`'
-/// `lod.x`): |P[1][1]| = 1 / tan(fov/2) times half the height.
-fn focal_px(camera: &Camera, aspect: f32, height: u32) -> f32 {
-    camera.projection(aspect).y_axis.y.abs() * height.max(1) as f32 * 0.5
 }

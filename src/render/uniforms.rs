@@ -349,9 +349,7 @@ impl FrameUniforms {
     pub fn new(camera: &Camera, p: &FrameParams) -> Self {
         let (w, h) = (p.size.0.max(1) as f32, p.size.1.max(1) as f32);
         let water = WaterFrame::around([camera.position.x as f64, camera.position.z as f64]);
-        let projection = camera.projection(p.aspect);
-        // |P[1][1]| = 1 / tan(fov/2): the focal length in pixels is that times half the height.
-        let focal_px = projection.y_axis.y.abs() * h * 0.5;
+        let focal_px = camera.focal_px(p.aspect, h);
         let (sun_light, sky_light) = p.sky_light;
         FrameUniforms {
             views: frame_views(

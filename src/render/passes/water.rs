@@ -139,24 +139,22 @@ pub struct WaterPass {
     clipmap: Option<ClipmapTiles>,
 }
 
-/// What the clipmap geometry draws with: one tile's mesh and, per frame slot, the tile list.
+/// What the clipmap geometry draws with: the tile meshes and, per frame slot, the tile list.
 struct ClipmapTiles {
-    /// The tiles' cells per side (a specialization constant of water_clipmap.vert).
-    quarter: u32,
-    /// The focal length (px) `quarter` was chosen for.
-    focal_px: f32,
-    /// Two triangles per cell of the (quarter + 1)² lattice.
-    mesh: Mesh,
-    /// Per slot: the tile buffer (`TileBuffer`) and its set (set 2).
+    /// For each tile size `quarter` = 1, 2, 4, 8, 16 cells (index log2 quarter): two triangles
+    /// per cell of the (quarter + 1)² lattice. Each frame picks the size its screen asks for
+    /// (`clipmap::Layout::for_screen`), so a resize or another `--tess-edge` needs no new pass.
+    meshes: Vec<Mesh>,
+    /// Per slot: the tile buffer (`Tiles` in water_clipmap.vert) and its set (set 2).
     slots: Vec<(Buffer, BoundSet)>,
-    /// Tiles written into each slot's buffer for its frame.
-    counts: Vec<u32>,
+    /// Per slot: the tiles written for its frame and their size (quarter).
+    counts: Vec<(u32, u32)>,
     _layout: DescriptorSetLayout,
 }
 
-/// The header of a slot's tile buffer (`Tiles` in water_clipmap.vert): the morph table; the
-/// tiles, a vec4 each, follow it.
-const TILE_HEADER_BYTES: usize = clipmap::MAX_LEVELS * 16;
+/// The header of a slot's tile buffer (`Tiles` in water_clipmap.vert): the tile size (a uvec4),
+/// the morph table; the tiles, a vec4 each, follow it.
+const TILE_HEADER_BYTES: usize = 16 + clipmap::MAX_LEVELS * 16;
 
 /// What one frame's clipmap tiles are chosen from.
 pub struct TileView<'a> {
@@ -172,17 +170,15 @@ pub struct TileView<'a> {
 }
 
 impl ClipmapTiles {
-    fn new(
-        ctx: &Arc<Context>,
-        layout: DescriptorSetLayout,
-        quarter: u32,
-        focal_px: f32,
-    ) -> GpuResult<ClipmapTiles> {
-        let mesh = Mesh::new(
-            ctx,
-            "water clipmap tile indices",
-            &lattice_triangles(quarter, 1),
-        )?;
+    fn new(ctx: &Arc<Context>, layout: DescriptorSetLayout) -> GpuResult<ClipmapTiles> {
+        let sizes = clipmap::MIN_QUARTER.ilog2()..=clipmap::MAX_QUARTER.ilog2();
+        let meshes = sizes
+            .map(|log2| {
+                let quarter = 1 << log2;
+                let name = format!("water clipmap tile indices ({quarter}x{quarter})");
+                Mesh::new(ctx, &name, &lattice_triangles(quarter, 1))
+            })
+            .collect::<GpuResult<Vec<_>>>()?;
         let bytes = (TILE_HEADER_BYTES + clipmap::MAX_TILES * 16) as u64;
         let mut slots = Vec::new();
         for slot in 0..FRAMES_IN_FLIGHT {
@@ -202,11 +198,9 @@ impl ClipmapTiles {
             slots.push((buffer, set));
         }
         Ok(ClipmapTiles {
-            quarter,
-            focal_px,
-            mesh,
+            meshes,
             slots,
-            counts: vec![0; FRAMES_IN_FLIGHT],
+            counts: vec![(0, 1); FRAMES_IN_FLIGHT],
             _layout: layout,
         })
     }
@@ -214,11 +208,7 @@ impl ClipmapTiles {
     /// Chooses this frame's tiles and writes them into `slot`'s buffer (its previous frame
     /// has finished: `Frames::begin` waited for it).
     fn write(&mut self, slot: usize, view: &TileView) {
-        let layout = clipmap::Layout::with_quarter(
-            self.quarter,
-            f64::from(view.cell_px),
-            f64::from(view.focal_px),
-        );
+        let layout = clipmap::Layout::for_screen(f64::from(view.cell_px), f64::from(view.focal_px));
         let camera = view.camera;
         let position = camera.position.as_dvec3();
         let centre = WaterFrame::around([position.x, position.z]).centre;
@@ -231,7 +221,8 @@ impl ClipmapTiles {
                 reach_m: f64::from(view.reach_m),
             },
         );
-        let mut bytes: Vec<u8> = bytemuck::cast_slice(&layout.morph_table()).to_vec();
+        let mut bytes: Vec<u8> = bytemuck::cast_slice(&[layout.quarter, 0, 0, 0]).to_vec();
+        bytes.extend_from_slice(bytemuck::cast_slice(&layout.morph_table()));
         for t in &tiles {
             let corner = [0, 1].map(|i| (t.corner_m[i] - centre[i]) as f32);
             let row = [
@@ -243,31 +234,39 @@ impl ClipmapTiles {
             bytes.extend_from_slice(bytemuck::cast_slice(&row));
         }
         self.slots[slot].0.write(&bytes);
-        self.counts[slot] = tiles.len() as u32;
+        self.counts[slot] = (tiles.len() as u32, layout.quarter);
     }
 }
 
+/// What the water's pipelines are made for.
+#[derive(Clone, Copy, Debug)]
+pub struct WaterKind {
+    /// How the triangles are made (tessellated needs the device's tessellation shaders).
+    pub geometry: Geometry,
+    /// Layers of the ocean images (a specialization constant: the loop bound of the vertex and
+    /// fragment shaders).
+    pub cascades: u32,
+    /// The ocean images are bound with a nearest sampler and the shaders filter them
+    /// bilinearly by hand (devices without linear filtering of RGBA32F).
+    pub manual_filter: bool,
+}
+
 impl WaterPass {
-    /// `geometry`: how the triangles are made (tessellated needs the device's tessellation
-    /// shaders); `cascades`: layers of the ocean images (a specialization constant: the loop
-    /// bound of the vertex and fragment shaders); `manual_filter`: the ocean images are bound
-    /// with a nearest sampler and the shaders filter them bilinearly by hand (devices without
-    /// linear filtering of RGBA32F); `tiles`: the clipmap's first frame (its tile size follows
-    /// the focal length and cell size then). Draws into the main target
-    /// (`targets.display_format`).
+    /// The pass for `kind`, drawing into the main target (`targets.display_format`).
     // Long: both geometries' shader stages and set layouts, and the three pipelines of each.
-    #[allow(clippy::too_many_arguments)]
     pub fn new(
         ctx: &Arc<Context>,
         frame_layout: &DescriptorSetLayout,
         targets: &Targets,
         dudv: &Image,
         samplers: &WaterSamplers,
-        cascades: u32,
-        manual_filter: bool,
-        geometry: Geometry,
-        tiles: &TileView,
+        kind: WaterKind,
     ) -> anyhow::Result<WaterPass> {
+        let WaterKind {
+            geometry,
+            cascades,
+            manual_filter,
+        } = kind;
         if geometry == Geometry::Tessellated && !ctx.info.tessellation_shader {
             anyhow::bail!(
                 "--geometry tessellated: {} has no tessellation shaders (tessellationShader); \
@@ -310,11 +309,6 @@ impl WaterPass {
                     frame_layout,
                     &[&textures.layout, &tile_layout],
                 )?;
-                let quarter = clipmap::Layout::for_screen(
-                    f64::from(tiles.cell_px),
-                    f64::from(tiles.focal_px),
-                )
-                .quarter;
                 let stages = vec![
                     (
                         vk::ShaderStageFlags::VERTEX,
@@ -322,11 +316,9 @@ impl WaterPass {
                     ),
                     (vk::ShaderStageFlags::FRAGMENT, shaders::SURFACE_WATER_FRAG),
                 ];
-                let tiles = ClipmapTiles::new(ctx, tile_layout, quarter, tiles.focal_px)?;
-                (stages, Some(tiles), layout)
+                (stages, Some(ClipmapTiles::new(ctx, tile_layout)?), layout)
             }
         };
-        let quarter = clipmap.as_ref().map_or(0, |c| c.quarter);
         let (topology, patch_control_points) = match geometry {
             Geometry::Tessellated => (vk::PrimitiveTopology::PATCH_LIST, 4),
             Geometry::Clipmap => (vk::PrimitiveTopology::TRIANGLE_LIST, 0),
@@ -341,7 +333,7 @@ impl WaterPass {
                     topology,
                     patch_control_points,
                     polygon_mode,
-                    constants: &[cascades, manual_filter as u32, underwater as u32, quarter],
+                    constants: &[cascades, manual_filter as u32, underwater as u32],
                     ..Default::default()
                 },
                 Depth::TestWrite,
@@ -365,18 +357,10 @@ impl WaterPass {
         })
     }
 
-    /// Whether drawing `geometry` with cells about `cell_px` wide needs a new pass: another
-    /// geometry, or clipmap tiles of another size (the rest follows per frame).
-    pub fn needs_rebuild(&self, geometry: Geometry, cell_px: f32) -> bool {
-        match &self.clipmap {
-            _ if geometry != self.geometry => true,
-            Some(tiles) => {
-                let layout =
-                    clipmap::Layout::for_screen(f64::from(cell_px), f64::from(tiles.focal_px));
-                layout.quarter != tiles.quarter
-            }
-            None => false,
-        }
+    /// The geometry it draws (another needs a new pass; the clipmap's cell size and the
+    /// screen's follow per frame).
+    pub fn geometry(&self) -> Geometry {
+        self.geometry
     }
 
     /// The reflection, refraction and DU/DV textures the water samples.
@@ -453,8 +437,10 @@ impl WaterPass {
             // One instance per row of patches (see water.vert).
             None => rec.draw(PATCHES * 4, PATCHES),
             Some(tiles) => {
-                rec.bind_index_buffer(&tiles.mesh.buffer);
-                rec.draw_indexed(tiles.mesh.count, tiles.counts[slot]);
+                let (count, quarter) = tiles.counts[slot];
+                let mesh = &tiles.meshes[quarter.ilog2() as usize];
+                rec.bind_index_buffer(&mesh.buffer);
+                rec.draw_indexed(mesh.count, count);
             }
         }
     }
