@@ -531,8 +531,12 @@ struct DrawCounts {
 #[test]
 fn the_clipmap_shades_fewer_fragments_per_covered_pixel_than_the_tessellation() {
     // At --quality high's cell size on a 1280x720 frame (the default camera: the water covers
-    // the lower half; measured on lavapipe: 2.61 invocations per covered pixel for the clipmap,
-    // 3.48 tessellated, over the same 0.525 M pixels).
+    // the lower half). Mesa 22.3's lavapipe counts 16 invocations for every 4x4 block a
+    // triangle touches (it runs the shader on whole blocks): measured 2.61 per covered pixel
+    // for the clipmap, 3.48 tessellated, over the same 0.525 M pixels. Mesa 25.0's counts the
+    // covered pixels only (1.00 for both, in tools/debian13's root): there the ratio says
+    // nothing of the blocks, and only "never more" is asked.
+    let counts_blocks = |c: &DrawCounts| c.per_pixel > 1.2;
     let clipmap = draw_counts("clipmap", "16", "1280x720");
     let tessellated = draw_counts("tessellated", "16", "1280x720");
     for (name, c) in [("clipmap", &clipmap), ("tessellated", &tessellated)] {
@@ -542,7 +546,7 @@ fn the_clipmap_shades_fewer_fragments_per_covered_pixel_than_the_tessellation() 
             "{name}: {} pixels covered",
             c.covered
         );
-        assert!(c.per_pixel >= 1.0, "{name}: {}", c.per_pixel);
+        assert!(c.per_pixel >= 0.999, "{name}: {}", c.per_pixel);
         // Medians of per-frame ratios against the ratio of medians: the frames barely differ.
         assert!((c.fragments / c.covered - c.per_pixel).abs() < 0.02 * c.per_pixel);
     }
@@ -553,19 +557,28 @@ fn the_clipmap_shades_fewer_fragments_per_covered_pixel_than_the_tessellation() 
         clipmap.covered,
         tessellated.covered
     );
+    let fewer = if counts_blocks(&tessellated) {
+        0.85
+    } else {
+        1.001
+    };
     assert!(
-        clipmap.per_pixel < 0.85 * tessellated.per_pixel
+        clipmap.per_pixel < fewer * tessellated.per_pixel
             && clipmap.triangles < tessellated.triangles,
-        "clipmap {:.2} per pixel, {} triangles; tessellated {:.2}, {}",
+        "clipmap {:.2} per pixel, {} triangles; tessellated {:.2}, {} (at most {fewer}x)",
         clipmap.per_pixel,
         clipmap.triangles,
         tessellated.per_pixel,
         tessellated.triangles
     );
-    // Larger cells: fewer triangles, fewer invocations per pixel.
+    // Larger cells: fewer triangles, and (where blocks are counted) fewer invocations per pixel.
     let coarse = draw_counts("clipmap", "32", "1280x720");
     assert!(coarse.triangles < 0.5 * clipmap.triangles);
-    assert!(coarse.per_pixel < clipmap.per_pixel);
+    if counts_blocks(&clipmap) {
+        assert!(coarse.per_pixel < clipmap.per_pixel);
+    } else {
+        assert!(coarse.per_pixel <= clipmap.per_pixel * 1.001);
+    }
 }
 
 /// Mean channel difference and the share of pixels off by more than 48 in a channel.
