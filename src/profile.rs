@@ -137,11 +137,8 @@ impl ProfileReport<'_> {
                 "fragment_invocations": Stats::json(&column(|c| c.fragment_invocations)),
                 "samples": self.gpu.statistics.len(),
             });
-            if let Some((per_pixel, covered)) = self.water_coverage() {
-                report["water_coverage"] = json!({
-                    "invocations_per_pixel": Stats::json(&per_pixel),
-                    "covered_pixels": Stats::json(&covered),
-                });
+            if let Some(coverage) = self.water_coverage_json() {
+                report["water_coverage"] = coverage;
             }
         }
         report
@@ -170,6 +167,25 @@ impl ProfileReport<'_> {
             .collect();
         let frames = frames.filter(|f| !f.is_empty())?;
         Some(frames.into_iter().unzip())
+    }
+
+    /// `water_coverage` of the profile JSON: statistics of both columns.
+    pub fn water_coverage_json(&self) -> Option<Value> {
+        let (per_pixel, covered) = self.water_coverage()?;
+        Some(json!({
+            "invocations_per_pixel": Stats::json(&per_pixel),
+            "covered_pixels": Stats::json(&covered),
+        }))
+    }
+
+    /// The summary's line of the water's coverage (medians).
+    pub fn water_coverage_line(&self) -> Option<String> {
+        let (per_pixel, covered) = self.water_coverage()?;
+        let (i, c) = (Stats::of(&per_pixel)?, Stats::of(&covered)?);
+        Some(format!(
+            "median {:.2} fragment invocations per covered pixel (p95 {:.2}), {:.0} pixels covered",
+            i.median, i.p95, c.median
+        ))
     }
 
     /// One counter of the water draw's statistics, frame by frame.
@@ -212,13 +228,8 @@ impl ProfileReport<'_> {
                 "water draw"
             );
         }
-        if let Some((per_pixel, covered)) = self.water_coverage() {
-            if let (Some(i), Some(c)) = (Stats::of(&per_pixel), Stats::of(&covered)) {
-                out += &format!(
-                    "  {:<16} median {:.2} fragment invocations per covered pixel (p95 {:.2}), {:.0} pixels covered\n",
-                    "water coverage", i.median, i.p95, c.median
-                );
-            }
+        if let Some(line) = self.water_coverage_line() {
+            out += &format!("  {:<16} {line}\n", "water coverage");
         }
         if let Some(s) = Stats::of(&self.gpu.frames) {
             out += &format!(

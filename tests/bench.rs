@@ -165,6 +165,23 @@ fn bench_frames_reports_passes_frames_and_settings() {
     assert!(warmup >= 1, "{report}");
     assert_eq!(report["frames"].as_u64().unwrap(), warmup + 4);
     assert!(report["fps"].as_f64().unwrap() > 0.0);
+    // The water's coverage, counted over frames of their own (lavapipe has pipeline statistics
+    // and precise occlusion queries): the water covers part of the 80x45 scene target (render
+    // scale 0.5), each covered pixel shaded at least once.
+    assert!(table.contains("water coverage: median"), "{table}");
+    let coverage = &report["water_coverage"];
+    let covered = coverage["covered_pixels"]["median"].as_f64().unwrap();
+    assert!(
+        (0.2..0.8).contains(&(covered / (80.0 * 45.0))),
+        "{coverage}"
+    );
+    assert!(
+        coverage["invocations_per_pixel"]["median"]
+            .as_f64()
+            .unwrap()
+            >= 0.999,
+        "{coverage}"
+    );
     let passes = report["passes"].as_array().unwrap();
     let names: Vec<&str> = passes.iter().map(|p| p["name"].as_str().unwrap()).collect();
     for name in vkocean::pass_names::FFT_FRAME {
