@@ -112,19 +112,7 @@ pub(super) fn surface_handles(
     if !matches!(display, RawDisplayHandle::Xlib(_)) {
         return Ok((display, window));
     }
-    // SAFETY: enumerating properties only reads loader state.
-    let available =
-        unsafe { entry.enumerate_instance_extension_properties(None) }.map_err(|result| {
-            GpuError::Loader {
-                call: "vkEnumerateInstanceExtensionProperties",
-                result,
-            }
-        })?;
-    let has = |name: &CStr| {
-        available
-            .iter()
-            .any(|e| e.extension_name_as_c_str() == Ok(name))
-    };
+    let has = instance_extensions(entry)?;
     if has(ash::khr::xlib_surface::NAME) || !has(ash::khr::xcb_surface::NAME) {
         return Ok((display, window));
     }
@@ -139,6 +127,23 @@ pub(super) fn surface_handles(
     }
 }
 
+/// Whether the loader offers an instance extension, by name (the list read once).
+fn instance_extensions(entry: &ash::Entry) -> GpuResult<impl Fn(&CStr) -> bool> {
+    // SAFETY: enumerating properties only reads loader state.
+    let available =
+        unsafe { entry.enumerate_instance_extension_properties(None) }.map_err(|result| {
+            GpuError::Loader {
+                call: "vkEnumerateInstanceExtensionProperties",
+                result,
+            }
+        })?;
+    Ok(move |name: &CStr| {
+        available
+            .iter()
+            .any(|e| e.extension_name_as_c_str() == Ok(name))
+    })
+}
+
 /// Creates an instance; returns it with the debug-utils availability.
 pub(super) fn create_instance(
     entry: &ash::Entry,
@@ -147,19 +152,7 @@ pub(super) fn create_instance(
     display: Option<RawDisplayHandle>,
     counters: &Arc<MessageCounters>,
 ) -> GpuResult<(ash::Instance, bool)> {
-    // SAFETY: enumerating properties only reads loader state.
-    let available_ext =
-        unsafe { entry.enumerate_instance_extension_properties(None) }.map_err(|result| {
-            GpuError::Loader {
-                call: "vkEnumerateInstanceExtensionProperties",
-                result,
-            }
-        })?;
-    let has_ext = |name: &CStr| {
-        available_ext
-            .iter()
-            .any(|e| e.extension_name_as_c_str() == Ok(name))
-    };
+    let has_ext = instance_extensions(entry)?;
 
     let mut layers: Vec<*const c_char> = Vec::new();
     let mut extensions: Vec<*const c_char> = Vec::new();
