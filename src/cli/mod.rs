@@ -278,8 +278,8 @@ pub struct Cli {
           value_parser = |s: &str| parse_in(s, 2.0, 256.0), help_heading = "Scene")]
     pub tess_edge: Option<f64>,
 
-    /// How the water's triangles are made. [default: by device: clipmap (the faster here, and
-    /// the only one without tessellation shaders; see --list-gpus)]
+    /// How the water's triangles are made. [default: clipmap (the faster on lavapipe, and the
+    /// only one without tessellation shaders; see --list-gpus)]
     #[arg(
         long,
         global = true,

@@ -42,7 +42,7 @@ pub struct Overlay {
     /// "device (driver), quality level".
     device: String,
     /// The water geometries the device can draw (tessellated needs tessellation shaders), and
-    /// the one "by device" resolves to.
+    /// the default one.
     geometries: (Vec<Geometry>, Geometry),
     /// Wall time between frames (ms), smoothed, and when the last frame started.
     cpu_ms: f64,
@@ -102,7 +102,7 @@ impl Overlay {
                     .copied()
                     .filter(|g| *g != Geometry::Tessellated || ctx.info.tessellation_shader)
                     .collect(),
-                Geometry::resolve(None, &ctx.info),
+                Geometry::resolve(None),
             ),
             cpu_ms: 0.0,
             last_frame: None,
@@ -311,15 +311,15 @@ impl Overlay {
                 });
                 ui.add(Slider::new(&mut t.render_scale, 0.25..=1.0).text("render scale"));
                 ui.add(Slider::new(&mut t.rtt_scale, 0.1..=1.0).text("RTT scale"));
-                let (geometries, by_device) = &self.geometries;
+                let (geometries, default) = &self.geometries;
                 ComboBox::from_label("water geometry")
                     .selected_text(t.geometry.map_or_else(
-                        || format!("by device ({})", by_device.name()),
+                        || format!("default ({})", default.name()),
                         |g| g.name().to_string(),
                     ))
                     .show_ui(ui, |ui| {
-                        let by_device_text = format!("by device ({})", by_device.name());
-                        ui.selectable_value(&mut t.geometry, None, by_device_text);
+                        let default_text = format!("default ({})", default.name());
+                        ui.selectable_value(&mut t.geometry, None, default_text);
                         for g in geometries {
                             ui.selectable_value(&mut t.geometry, Some(*g), g.name());
                         }

@@ -22,7 +22,7 @@ pub struct Needs {
 }
 
 impl Needs {
-    /// Everything but tessellation: a run that draws and picks its water geometry by device.
+    /// Everything but tessellation: a run that draws with the default water geometry (clipmap).
     pub const RENDERING: Needs = Needs {
         rendering: true,
         tessellation: false,

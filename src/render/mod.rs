@@ -88,17 +88,12 @@ impl Geometry {
         }
     }
 
-    /// The geometry `requested` (`None`: by device) resolves to on `device`.
-    pub fn resolve(requested: Option<Geometry>, device: &crate::gpu::DeviceInfo) -> Geometry {
-        match requested {
-            Some(g) => g,
-            None if device.tessellation_shader => Geometry::DEVICE_DEFAULT,
-            None => Geometry::Clipmap,
-        }
+    /// The geometry `requested` resolves to: the clipmap when none is asked for, on every
+    /// device (the only one without tessellation shaders, and the faster one where both run:
+    /// README, Water geometry).
+    pub fn resolve(requested: Option<Geometry>) -> Geometry {
+        requested.unwrap_or(Geometry::Clipmap)
     }
-
-    /// The default where the device can draw both.
-    const DEVICE_DEFAULT: Geometry = Geometry::Clipmap;
 }
 
 /// How the scene looks: everything the renderer takes from the command line.
@@ -118,7 +113,7 @@ pub struct SceneSettings {
     /// Target length of a tessellated ocean edge in pixels of the main (scene) target; for the
     /// clipmap, the width of its smallest cells on screen.
     pub tess_edge_px: f32,
-    /// `--geometry` (`None`: by device, [`Geometry::resolve`]).
+    /// `--geometry` (`None`: the default, [`Geometry::resolve`]).
     pub geometry: Option<Geometry>,
     pub layout: SceneLayout,
     /// Unit vector toward the sun.

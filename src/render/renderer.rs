@@ -317,7 +317,7 @@ impl Renderer {
             &dudv,
             &samplers,
             WaterKind {
-                geometry: Geometry::resolve(settings.geometry, &ctx.info),
+                geometry: Geometry::resolve(settings.geometry),
                 cascades: ocean.cascades,
                 manual_filter: !ocean_linear,
             },
@@ -409,7 +409,7 @@ impl Renderer {
     /// clipmap's per-frame tiles (`set_scene`).
     pub fn needs_rebuild(&self, new: &SceneSettings) -> bool {
         let s = &self.settings;
-        Geometry::resolve(new.geometry, &self.ctx.info) != self.water.geometry()
+        Geometry::resolve(new.geometry) != self.water.geometry()
             || s.render_scale != new.render_scale
             || s.rtt_scale != new.rtt_scale
             || s.terrain_grid != new.terrain_grid

@@ -48,7 +48,7 @@ pub struct Tunables {
     pub render_scale: f64,
     pub rtt_scale: f64,
     pub tess_edge: f64,
-    /// `None`: by device.
+    /// `None`: the default (clipmap).
     pub geometry: Option<Geometry>,
     pub terrain_grid: u32,
     /// Camera position and a point it looks at (written by the frontend when saving).

@@ -149,6 +149,8 @@ struct ClipmapTiles {
     slots: Vec<(Buffer, BoundSet)>,
     /// Per slot: the tiles written for its frame and their size (quarter).
     counts: Vec<(u32, u32)>,
+    /// The bytes written into a slot's buffer, kept between frames (no allocation per frame).
+    scratch: Vec<u8>,
     _layout: DescriptorSetLayout,
 }
 
@@ -201,6 +203,7 @@ impl ClipmapTiles {
             meshes,
             slots,
             counts: vec![(0, 1); FRAMES_IN_FLIGHT],
+            scratch: Vec::new(),
             _layout: layout,
         })
     }
@@ -221,7 +224,9 @@ impl ClipmapTiles {
                 reach_m: f64::from(view.reach_m),
             },
         );
-        let mut bytes: Vec<u8> = bytemuck::cast_slice(&[layout.quarter, 0, 0, 0]).to_vec();
+        let bytes = &mut self.scratch;
+        bytes.clear();
+        bytes.extend_from_slice(bytemuck::cast_slice(&[layout.quarter, 0, 0, 0]));
         bytes.extend_from_slice(bytemuck::cast_slice(&layout.morph_table()));
         for t in &tiles {
             let corner = [0, 1].map(|i| (t.corner_m[i] - centre[i]) as f32);
@@ -233,7 +238,7 @@ impl ClipmapTiles {
             ];
             bytes.extend_from_slice(bytemuck::cast_slice(&row));
         }
-        self.slots[slot].0.write(&bytes);
+        self.slots[slot].0.write(bytes);
         self.counts[slot] = (tiles.len() as u32, layout.quarter);
     }
 }
