@@ -292,4 +292,6 @@ fn select_node(
 }
 
 #[cfg(test)]
+mod block_model;
+#[cfg(test)]
 mod tests;
