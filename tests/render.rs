@@ -190,8 +190,8 @@ fn calm_water_seen_from_above_shows_the_terrain() {
 }
 
 /// Share of the water pixels of a `--view foam` picture (exactly grey; the terrain is not)
-/// whose foam field is at least 0.3 (where the foam texture starts to cover the water), and
-/// how many water pixels there are.
+/// whose foam whitens the water by 0.3 or more (its reflectance R), and how many water pixels
+/// there are.
 fn foam_share(p: &[u8]) -> (f64, usize) {
     let srgb_to_linear = |v: u8| {
         let v = v as f64 / 255.0;

@@ -30,3 +30,10 @@ vec4 target_colour(vec3 radiance) {
     vec3 display = aces_fit(max(radiance * frame.sky_light.w, vec3(0.0)));
     return vec4(DISPLAY_TARGET == 2 ? srgb_encode(display) : display, 1.0);
 }
+
+// A value shown as it is, without exposure or tone map (debug views whose numbers matter: the
+// foam's reflectance in --view foam reads back exactly, to 8-bit sRGB rounding).
+vec4 target_value(vec3 value) {
+    vec3 v = clamp(value, 0.0, 1.0);
+    return vec4(DISPLAY_TARGET == 2 ? srgb_encode(v) : v, 1.0);
+}

@@ -44,6 +44,11 @@ const float F0 = 0.02;               // ((n - 1) / (n + 1))^2
 const float DUDV_STRENGTH = 0.012;   // screen-space offset at full strength
 const float SLOPE_STRENGTH = 0.05;   // screen-space offset per unit slope
 const float PI = 3.14159265;
+// Foam's single-scattering albedo: bubbles of clear water in air absorb almost nothing in the
+// visible; 0.85 with the residue between them.
+const float FOAM_ALBEDO = 0.85;
+// Height of the foam's relief (m): bubbles and lace a few centimetres thick.
+const float FOAM_RELIEF_M = 0.15;
 
 // The summed normal, its slopes scaled as the shallows scale the waves (`scale`), and the
 // whitecap field (layer 0's foam: the whole surface's, see src/ocean/foam.rs), faded with the
@@ -130,28 +135,83 @@ float foam_octave(vec2 uv, float per_m, float seed) {
     return periodic_noise(uv * cells + seed, cells);
 }
 
-// How much of this pixel the foam covers, given the whitecap field `field` (0–1) at the rest
-// position whose largest-cascade image coordinates are `uv` (so the texture rides with the
-// water). A whitecap is where the field is ≥ 0.5 (`--stats`' whitecap fraction), so the share
-// the foam covers is `share`, a ramp from 0 at field 0.3 to 1 at 0.7: averaged over an area it
-// is the whitecap fraction, and the faint tail of fading foam draws nothing. A bubbly texture t
-// in [0, 1] (octaves from 2.5 m patches to 0.2 m bubbles) shows foam where t < share.
-// `pixel_m` is the pixel's footprint on the water (m): each octave fades to its mean before it
-// would alias, and where even the coarsest would, `share` itself is the coverage.
-float foam_cover(float field, vec2 uv, float pixel_m) {
-    float share = clamp((field - 0.5) * 2.5 + 0.5, 0.0, 1.0);
+// Distance from q to the nearest wall of a cellular (Worley) pattern, one jittered point per
+// lattice cell, repeating every `cells` cells: F2 − F1 of the distances to the two nearest points.
+float cell_walls(vec2 q, float cells) {
+    vec2 i = floor(q);
+    vec2 f = q - i;
+    float d1 = 8.0;
+    float d2 = 8.0;
+    for (int y = -1; y <= 1; ++y) {
+        for (int x = -1; x <= 1; ++x) {
+            vec2 c = vec2(x, y);
+            vec2 cell = mod(i + c, cells);
+            vec2 p = c + vec2(hash12(cell), hash12(cell + 57.0)) - f;
+            float d = dot(p, p);
+            d2 = min(d2, max(d, d1));
+            d1 = min(d1, d);
+        }
+    }
+    return sqrt(d2) - sqrt(d1);
+}
+
+// Whitecap foam, from the field F (src/ocean/foam.rs: 1 where a crest is breaking, e^(−age/τ)
+// after it passed) at the rest position whose largest-cascade image coordinates are `uv` (so
+// the texture rides with the water); `pixel_m` is the pixel's footprint on the water (m).
+// Returns the foam layer's reflectance R (how much of the water it whitens) and, in `lace`, its
+// texture (0–1), for the light.
+//
+// Two layers by age (Sea of Thieves' approach, SIGGRAPH 2018): the breaking layer, dense,
+// where the crest breaks now or broke within about half a second; the residual layer, a lace
+// (2.5 m rafts, a cellular network of bubble walls 0.5 m across, 0.2 m bubbles; whole periods
+// per patch) whose thin parts the age eats first, so a whitecap thins into strands and holes
+// and fades as F decays (nothing pops). Each scale fades to its mean before it would alias: far
+// foam is coverage, not specks (Dupuy & Bruneton 2012 filter foam the same way).
+float foam_layer(float field, vec2 uv, float pixel_m, out float lace) {
     float coarse = clamp(1.5 - pixel_m * 0.4, 0.0, 1.0);
-    float mid = clamp(1.5 - pixel_m * 1.6, 0.0, 1.0);
+    float mid = clamp(1.5 - pixel_m * 2.0, 0.0, 1.0);
     float fine = clamp(1.5 - pixel_m * 5.0, 0.0, 1.0);
-    // Ridged octaves (|n − ½| folded) draw the lace of bubbles and streaks inside the patches.
-    float t = 0.45 * coarse * (foam_octave(uv, 0.4, 0.0) - 0.5)
-            + 0.35 * mid * (0.25 - abs(foam_octave(uv, 1.6, 17.0) - 0.5)) * 2.0
-            + 0.2 * fine * (0.25 - abs(foam_octave(uv, 5.0, 31.0) - 0.5)) * 2.0;
-    // The sum of value noises bunches around its mean: stretch it back toward [0, 1].
-    // (Kept within the filter's half-width of 0 and 1: no foam at share 0, all of it at 1.)
-    t = clamp(t * 2.4 + 0.5, 0.04, 0.96);
-    float textured = smoothstep(t - 0.04, t + 0.04, share);
-    return mix(share, textured, coarse);
+    float rafts = mix(0.5, foam_octave(uv, 0.4, 0.0), coarse);
+    // The lace: the walls between bubbles about 0.5 m across (a cellular network, its lattice
+    // bent by the value noise so no row of cells lines up), thinning away from them; averaged
+    // about 0.15.
+    float cells = max(1.0, round(frame.patch_m.x * 2.0));
+    vec2 bend = vec2(foam_octave(uv, 0.8, 3.0), foam_octave(uv, 0.8, 11.0)) - 0.5;
+    float walls = 1.0 - smoothstep(0.0, 0.3, cell_walls(uv * cells + 1.5 * bend, cells));
+    // Broken here and there: lace, not a crackle glaze.
+    walls *= smoothstep(0.25, 0.65, foam_octave(uv, 1.2, 23.0));
+    float net = mix(0.15, walls, mid);
+    float bubbles = mix(0.5, foam_octave(uv, 5.0, 31.0), fine);
+    lace = smoothstep(0.15, 0.85, 0.45 * rafts + 0.3 * net + 0.25 * bubbles);
+    // The breaking layer: F from 0.6 (1.3 s after the crest passed) to 0.85 (0.4 s), its
+    // bubbles letting some water show through.
+    float breaking = smoothstep(0.6, 0.85, field) * (0.6 + 0.4 * lace);
+    // The residual layer: the age erodes the lace from its thin parts (the threshold rises as
+    // 1 − F^½: at F = 1 everything above 0 is foam, at F = 0.1 only the top of the strands;
+    // a soft edge of ±0.12), and what is left thins with F.
+    float keep = smoothstep(-0.12, 0.12, lace - (1.0 - sqrt(field)));
+    float residual = 0.6 * field * keep * (0.4 + 0.6 * lace);
+    return max(breaking, residual);
+}
+
+// Henyey–Greenstein phase function (per steradian) at the cosine `mu` of the scattering angle.
+float henyey_greenstein(float mu, float g) {
+    return (1.0 - g * g) / (4.0 * PI * pow(1.0 + g * g - 2.0 * g * mu, 1.5));
+}
+
+// The light foam sends toward the eye (v) at normal n, under the sun (direction l, light
+// `sunlight`) and the sky: a bright scattering medium, not a flat wall. A thick layer of bubbles
+// gives back nearly all the light that enters it, spread about as a Lambert surface (the sun by
+// its cosine, the sky over the hemisphere around n); its bubbles also stand out of the surface,
+// so they catch the light that grazes it, which a flat Lambert surface would not: half again of
+// the sun through a Henyey–Greenstein lobe (g = 0.5: bubbles scatter forward, so foam between
+// the eye and a low sun glows) and of the sky along the horizon behind it (`horizon`). White
+// under white light, and at sunset as warm and bright as the sky around it. `lace`: thicker
+// foam is whiter, its thin lace greyer.
+vec3 foam_light(vec3 n, vec3 v, vec3 l, vec3 sunlight, vec3 horizon, float lace) {
+    vec3 surface = sunlight * max(dot(n, l), 0.0) / PI + sky_ambient(n);
+    vec3 sides = sunlight * henyey_greenstein(dot(-l, v), 0.5) + horizon;
+    return FOAM_ALBEDO * (0.5 + 0.5 * lace) * (surface + 0.5 * sides);
 }
 
 // Fraction of light reflected at incidence cos θ (θ between normal and view).
@@ -207,10 +267,10 @@ void main() {
     float resolved;
     vec4 nf = ocean_normal_foam(in_xz, dist, pixel_m, shore.x, resolved);
     vec3 n = nf.xyz;
-    // Surf where the waves break on the shallows (shore.y, 0–1): foam on the crests and their
-    // fronts, thinner in the troughs between them.
+    // Surf where the waves break on the shallows (shore.y, 0–1): breaking foam on the crests
+    // and their fronts (a field of 1), the foam the last breaker left in the troughs (0.75).
     float crest = smoothstep(-0.2, 0.6, in_displacement.y / max(0.5 * shore.z, 0.01));
-    nf.w = max(nf.w, shore.y * mix(0.3, 0.85, crest));
+    nf.w = max(nf.w, shore.y * mix(0.75, 1.0, crest));
     uint view = debug_view();
     if (view == VIEW_DISPLACEMENT) {
         out_colour = target_colour(0.5 + 0.25 * in_displacement.xzy);
@@ -221,7 +281,10 @@ void main() {
         return;
     }
     if (view == VIEW_FOAM) {
-        out_colour = target_colour(vec3(nf.w));
+        // The foam as drawn: its layer's reflectance R (0 none, 1 opaque), grey.
+        float unused_weight, unused_lace;
+        vec2 uv = ocean_uv(in_xz, 0, dist, unused_weight).xy;
+        out_colour = target_value(vec3(foam_layer(nf.w, uv, pixel_m, unused_lace)));
         return;
     }
     if (view == VIEW_WIREFRAME) {
@@ -294,21 +357,28 @@ void main() {
     float f = fresnel(cos_theta);
     vec3 colour = mix(transmitted, c_reflect, f);
 
-    // Whitecaps: white, lit by the sun and sky, covering what the texture shows.
+    // Whitecaps: a layer of foam of reflectance R over the water (foam_layer), lit as a
+    // scattering medium (foam_light). The horizon's sky behind the pixel lights it and hazes it.
+    vec3 horizon = sky_lookup(normalize(vec3(-v.x, 0.0, -v.z) + vec3(0.0, 0.002, 0.0)));
     float unused_weight;
-    float cover = foam_cover(nf.w, ocean_uv(in_xz, 0, dist, unused_weight).xy, pixel_m);
-    // Fresh foam (field near 1) is dense and white, fading foam thinner.
-    float opacity = cover * mix(0.55, 0.95, nf.w);
-    // Lambertian foam (albedo 0.85) under the sun and the sky.
+    float lace;
+    float opacity = foam_layer(nf.w, ocean_uv(in_xz, 0, dist, unused_weight).xy, pixel_m, lace);
     vec3 sunlight = in_sun_light;
-    vec3 foam = 0.85 * (sunlight * max(sun.y, 0.0) / PI + in_sky_zenith);
-    colour = mix(colour, foam, opacity);
+    // The foam's own relief: the lace as a height field FOAM_RELIEF_M high (thick foam stands
+    // higher), its normal from the screen-space derivatives (Mikkelsen 2010's surface gradient).
+    vec3 dpx = dFdx(in_rel_pos);
+    vec3 dpy = dFdy(in_rel_pos);
+    vec3 r1 = cross(dpy, n);
+    vec3 r2 = cross(n, dpx);
+    float det = dot(dpx, r1);
+    vec3 grad = abs(det) > 1e-12 ? (dFdx(lace) * r1 + dFdy(lace) * r2) / det : vec3(0.0);
+    vec3 foam_n = normalize(n - FOAM_RELIEF_M * grad);
+    colour = mix(colour, foam_light(foam_n, v, sun, sunlight, horizon, lace), opacity);
     // c_h: the sun's glitter from the slopes the normal does not resolve (the sea's mean-square
     // slope, Cox & Munk 1954, less what the cascades drawn here carry), none on the foam.
     float glitter = sun_glitter(n, v, sun, unresolved) * (1.0 - opacity);
     colour += sunlight * glitter;
 
-    vec3 horizon = sky_lookup(normalize(vec3(-v.x, 0.0, -v.z) + vec3(0.0, 0.002, 0.0)));
     float haze = 1.0 - exp(-dist / 9000.0);
     out_colour = target_colour(mix(colour, horizon, haze));
 }

@@ -51,6 +51,10 @@ pub const WARMUP_STEPS: usize = 20;
 pub const WARMUP_STEP_S: f32 = 0.1;
 /// Coverage that counts as a whitecap in `--stats` (`surface.whitecap_fraction`).
 pub const WHITECAP_FOAM: f32 = 0.5;
+/// Highest J threshold: foam needs the surface squeezed by a tenth at least. Below about 1 m/s
+/// the resolved waves hardly fold (J's quantiles all sit near 1: 0.9992 at 0.5 m/s, N = 64), and
+/// the ramp above the quantile would put a field of about 0.5 on the whole sea.
+pub const MAX_THRESHOLD: f32 = 0.9;
 /// Most FFT size the threshold's CPU calibration runs at (larger grids use this one's quantile:
 /// a few more resolved short waves, a little more foam).
 const CALIBRATION_MAX_N: usize = 256;
@@ -58,15 +62,15 @@ const CALIBRATION_MAX_N: usize = 256;
 const CALIBRATION_SAMPLES: usize = 1 << 17;
 
 /// The J threshold for `settings`: for the FFT ocean, the J_s quantile at W(U10)/PERSISTENCE
-/// plus 0.5/GAIN (the source reaches 0.5 at the quantile); for Gerstner waves,
-/// `GERSTNER_THRESHOLD`.
+/// plus 0.5/GAIN (the source reaches 0.5 at the quantile), at most `MAX_THRESHOLD`; for Gerstner
+/// waves, `GERSTNER_THRESHOLD`.
 pub fn threshold(settings: &OceanSettings) -> f32 {
     if !matches!(settings.waves, Waves::Fft) {
         return GERSTNER_THRESHOLD;
     }
     let target = monahan_fraction(settings.sea.wind_speed_m_s) / PERSISTENCE;
     let quantile = surface_jacobian_quantile(settings, target);
-    (quantile + 0.5 / GAIN as f64) as f32
+    ((quantile + 0.5 / GAIN as f64) as f32).min(MAX_THRESHOLD)
 }
 
 /// The `p` quantile of the surface's Jacobian J_s (CPU reference, several times).
@@ -116,5 +120,28 @@ mod tests {
         };
         let (calm, storm) = (threshold(&sea(5.0)), threshold(&sea(25.0)));
         assert!(calm < storm && calm > 0.3 && storm < 1.0, "{calm} {storm}");
+    }
+
+    #[test]
+    fn a_sea_that_does_not_fold_does_not_foam() {
+        // The bulk of the surface (J's median, about 1) never reaches the source's ramp, however
+        // light the wind: at 0.5 m/s the quantile is 0.9992 and the ramp alone would put about
+        // 0.5 on every texel.
+        for u in [0.3, 0.5, 1.0, 2.5, 12.3, 26.5] {
+            let s = OceanSettings {
+                sea: SeaState {
+                    wind_speed_m_s: u,
+                    ..SeaState::default()
+                },
+                fft_size: 64,
+                ..OceanSettings::default()
+            };
+            let median = surface_jacobian_quantile(&s, 0.5) as f32;
+            let t = threshold(&s);
+            assert!(
+                t <= median - 0.09,
+                "U10 {u}: threshold {t}, median J {median}"
+            );
+        }
     }
 }

@@ -38,11 +38,11 @@ pub enum ViewMode {
     Displacement = shared::VIEW_DISPLACEMENT,
     /// The ocean coloured by its normal.
     Normals = shared::VIEW_NORMALS,
-    /// The ocean's foam coverage.
+    /// The foam as drawn: its layer's reflectance, 0 (none) to 1 (opaque), in grey.
     Foam = shared::VIEW_FOAM,
     /// The DU/DV map, tiled.
     Dudv = shared::VIEW_DUDV,
-    /// The tessellated ocean as lines over the scene.
+    /// The water's triangles as lines over the scene.
     Wireframe = shared::VIEW_WIREFRAME,
 }
 
