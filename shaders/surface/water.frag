@@ -167,7 +167,7 @@ float cell_walls(vec2 q, float cells) {
 // per patch) whose thin parts the age eats first, so a whitecap thins into strands and holes
 // and fades as F decays (nothing pops). Each scale fades to its mean before it would alias: far
 // foam is coverage, not specks (Dupuy & Bruneton 2012 filter foam the same way).
-float foam_layer(float field, vec2 uv, float pixel_m, out float lace) {
+float foam_lace(vec2 uv, float pixel_m) {
     float coarse = clamp(1.5 - pixel_m * 0.4, 0.0, 1.0);
     float mid = clamp(1.5 - pixel_m * 2.0, 0.0, 1.0);
     float fine = clamp(1.5 - pixel_m * 5.0, 0.0, 1.0);
@@ -182,10 +182,14 @@ float foam_layer(float field, vec2 uv, float pixel_m, out float lace) {
     walls *= smoothstep(0.25, 0.65, foam_octave(uv, 1.2, 23.0));
     float net = mix(0.15, walls, mid);
     float bubbles = mix(0.5, foam_octave(uv, 5.0, 31.0), fine);
-    lace = smoothstep(0.15, 0.85, 0.45 * rafts + 0.3 * net + 0.25 * bubbles);
+    return smoothstep(0.15, 0.85, 0.45 * rafts + 0.3 * net + 0.25 * bubbles);
+}
+
+// The foam layer's reflectance R for the field F and the lace there.
+float foam_layer(float field, float lace) {
     // The breaking layer: F from 0.6 (1.3 s after the crest passed) to 0.85 (0.4 s), its
     // bubbles letting some water show through.
-    float breaking = smoothstep(0.6, 0.85, field) * (0.6 + 0.4 * lace);
+    float breaking = smoothstep(0.6, 0.85, field) * (0.5 + 0.5 * lace);
     // The residual layer: the age erodes the lace from its thin parts (the threshold rises as
     // 1 − F^½: at F = 1 everything above 0 is foam, at F = 0.1 only the top of the strands;
     // a soft edge of ±0.12), and what is left thins with F.
@@ -211,7 +215,7 @@ float henyey_greenstein(float mu, float g) {
 vec3 foam_light(vec3 n, vec3 v, vec3 l, vec3 sunlight, vec3 horizon, float lace) {
     vec3 surface = sunlight * max(dot(n, l), 0.0) / PI + sky_ambient(n);
     vec3 sides = sunlight * henyey_greenstein(dot(-l, v), 0.5) + horizon;
-    return FOAM_ALBEDO * (0.5 + 0.5 * lace) * (surface + 0.5 * sides);
+    return FOAM_ALBEDO * (0.4 + 0.6 * lace) * (surface + 0.5 * sides);
 }
 
 // Fraction of light reflected at incidence cos θ (θ between normal and view).
@@ -282,9 +286,9 @@ void main() {
     }
     if (view == VIEW_FOAM) {
         // The foam as drawn: its layer's reflectance R (0 none, 1 opaque), grey.
-        float unused_weight, unused_lace;
+        float unused_weight;
         vec2 uv = ocean_uv(in_xz, 0, dist, unused_weight).xy;
-        out_colour = target_value(vec3(foam_layer(nf.w, uv, pixel_m, unused_lace)));
+        out_colour = target_value(vec3(foam_layer(nf.w, foam_lace(uv, pixel_m))));
         return;
     }
     if (view == VIEW_WIREFRAME) {
@@ -360,20 +364,23 @@ void main() {
     // Whitecaps: a layer of foam of reflectance R over the water (foam_layer), lit as a
     // scattering medium (foam_light). The horizon's sky behind the pixel lights it and hazes it.
     vec3 horizon = sky_lookup(normalize(vec3(-v.x, 0.0, -v.z) + vec3(0.0, 0.002, 0.0)));
-    float unused_weight;
-    float lace;
-    float opacity = foam_layer(nf.w, ocean_uv(in_xz, 0, dist, unused_weight).xy, pixel_m, lace);
+    // Only where there is foam: below F = 0.004 the layer whitens by less than 0.0025.
+    float opacity = 0.0;
+    if (nf.w > 0.004) {
+        float unused_weight;
+        vec2 uv = ocean_uv(in_xz, 0, dist, unused_weight).xy;
+        float lace = foam_lace(uv, pixel_m);
+        opacity = foam_layer(nf.w, lace);
+        // The foam's own relief: the lace as a height field FOAM_RELIEF_M high (thick foam
+        // stands higher), its slopes from differences a pixel's footprint (at least 5 cm) apart.
+        float step_m = max(pixel_m, 0.05);
+        float du = step_m / frame.patch_m.x;
+        vec2 slope = vec2(foam_lace(uv + vec2(du, 0.0), pixel_m) - lace,
+                          foam_lace(uv + vec2(0.0, du), pixel_m) - lace) / step_m;
+        vec3 foam_n = normalize(n - FOAM_RELIEF_M * vec3(slope.x, 0.0, slope.y));
+        colour = mix(colour, foam_light(foam_n, v, sun, in_sun_light, horizon, lace), opacity);
+    }
     vec3 sunlight = in_sun_light;
-    // The foam's own relief: the lace as a height field FOAM_RELIEF_M high (thick foam stands
-    // higher), its normal from the screen-space derivatives (Mikkelsen 2010's surface gradient).
-    vec3 dpx = dFdx(in_rel_pos);
-    vec3 dpy = dFdy(in_rel_pos);
-    vec3 r1 = cross(dpy, n);
-    vec3 r2 = cross(n, dpx);
-    float det = dot(dpx, r1);
-    vec3 grad = abs(det) > 1e-12 ? (dFdx(lace) * r1 + dFdy(lace) * r2) / det : vec3(0.0);
-    vec3 foam_n = normalize(n - FOAM_RELIEF_M * grad);
-    colour = mix(colour, foam_light(foam_n, v, sun, sunlight, horizon, lace), opacity);
     // c_h: the sun's glitter from the slopes the normal does not resolve (the sea's mean-square
     // slope, Cox & Munk 1954, less what the cascades drawn here carry), none on the foam.
     float glitter = sun_glitter(n, v, sun, unresolved) * (1.0 - opacity);
