@@ -178,8 +178,8 @@ fn foam_is_a_dense_core_over_thinning_lace() {
     // 0.05). The storm from 60 m, shrunk by 3 px; the moderate sea's whitecaps are a few metres
     // across: from 40 m, shrunk by 1 px, at three moments with whitecaps under the camera, the
     // median of their three values (a fresh whitecap's bright core, compressed by the tone map,
-    // varies least). Measured on lavapipe: storm 0.15 opaque, 0.41 thin, CoV 0.36; moderate
-    // CoV 0.17, 0.24, 0.27.
+    // varies least). Measured on lavapipe: storm 0.15 opaque, 0.39 thin, CoV 0.33; moderate
+    // CoV 0.14, 0.21, 0.21.
     let mut moderate = Vec::new();
     for (preset, height, time, shrink) in [
         ("storm", 60, "20", 3),
@@ -290,7 +290,7 @@ fn foam_is_brighter_than_the_water_around_it() {
     // medium (white under white light, the low sky around it at sunset), not as a Lambert wall
     // that a sunset turns darker than the sea (the issue measured 135,102,95 against
     // 160,150,120). Measured on lavapipe: the calm shore at noon 1.11 times brighter, the
-    // others 1.7–4.6.
+    // others 1.6–3.9.
     let open_sea = ["--camera=0,30,0", "--look-at=0,0,-40"];
     let shore = ["--camera=-180,20,-900", "--look-at=-160,0,-900"];
     // The breeze's whitecaps cover 0.25 %: seen from above, 150 m up.

@@ -169,7 +169,7 @@ float cell_walls(vec2 q, float cells) {
 // foam is coverage, not specks (Dupuy & Bruneton 2012 filter foam the same way).
 float foam_lace(vec2 uv, float pixel_m) {
     float coarse = clamp(1.5 - pixel_m * 0.4, 0.0, 1.0);
-    float mid = clamp(1.5 - pixel_m * 2.0, 0.0, 1.0);
+    float mid = clamp(1.5 - pixel_m * 4.0, 0.0, 1.0);
     float fine = clamp(1.5 - pixel_m * 5.0, 0.0, 1.0);
     float rafts = mix(0.5, foam_octave(uv, 0.4, 0.0), coarse);
     // The lace: the walls between bubbles about 0.5 m across (a cellular network, its lattice
@@ -177,8 +177,9 @@ float foam_lace(vec2 uv, float pixel_m) {
     // about 0.15.
     float cells = max(1.0, round(frame.patch_m.x * 2.0));
     vec2 bend = vec2(foam_octave(uv, 0.8, 3.0), foam_octave(uv, 0.8, 11.0)) - 0.5;
-    float walls = 1.0 - smoothstep(0.0, 0.3, cell_walls(uv * cells + 1.5 * bend, cells));
-    // Broken here and there: lace, not a crackle glaze.
+    // Walls of varying width, broken here and there: lace, not a crackle glaze.
+    float width = mix(0.08, 0.45, foam_octave(uv, 0.6, 41.0));
+    float walls = 1.0 - smoothstep(0.0, width, cell_walls(uv * cells + 1.5 * bend, cells));
     walls *= smoothstep(0.25, 0.65, foam_octave(uv, 1.2, 23.0));
     float net = mix(0.15, walls, mid);
     float bubbles = mix(0.5, foam_octave(uv, 5.0, 31.0), fine);
@@ -188,8 +189,8 @@ float foam_lace(vec2 uv, float pixel_m) {
 // The foam layer's reflectance R for the field F and the lace there.
 float foam_layer(float field, float lace) {
     // The breaking layer: F from 0.6 (1.3 s after the crest passed) to 0.85 (0.4 s), its
-    // bubbles letting some water show through.
-    float breaking = smoothstep(0.6, 0.85, field) * (0.5 + 0.5 * lace);
+    // bubbles letting some water show through, solid where the crest breaks now (F > 0.9).
+    float breaking = smoothstep(0.6, 0.85, field) * mix(0.5 + 0.5 * lace, 1.0, smoothstep(0.9, 1.0, field));
     // The residual layer: the age erodes the lace from its thin parts (the threshold rises as
     // 1 − F^½: at F = 1 everything above 0 is foam, at F = 0.1 only the top of the strands;
     // a soft edge of ±0.12), and what is left thins with F.
@@ -272,9 +273,9 @@ void main() {
     vec4 nf = ocean_normal_foam(in_xz, dist, pixel_m, shore.x, resolved);
     vec3 n = nf.xyz;
     // Surf where the waves break on the shallows (shore.y, 0–1): breaking foam on the crests
-    // and their fronts (a field of 1), the foam the last breaker left in the troughs (0.75).
+    // and their fronts (a field of 1), the foam the last breaker left in the troughs (0.85).
     float crest = smoothstep(-0.2, 0.6, in_displacement.y / max(0.5 * shore.z, 0.01));
-    nf.w = max(nf.w, shore.y * mix(0.75, 1.0, crest));
+    nf.w = max(nf.w, shore.y * mix(0.85, 1.0, crest));
     uint view = debug_view();
     if (view == VIEW_DISPLACEMENT) {
         out_colour = target_colour(0.5 + 0.25 * in_displacement.xzy);
