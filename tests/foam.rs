@@ -174,12 +174,12 @@ fn foam_is_a_dense_core_over_thinning_lace() {
     // Seen from above: opaque foam (R ≥ 0.5) is where crests break now or just did; the lace
     // that thins behind them (0.05 < R < 0.5) covers at least as much (the bound).
     // Inside the opaque foam (shrunk off its edges) the bubbles, the lace and its relief vary
-    // the luminance: coefficient of variation ≥ 0.15 (real rafts 0.2–0.4; one flat colour gave
-    // 0.05). The storm from 60 m, shrunk by 3 px; the moderate sea's whitecaps are a few metres
+    // the foam's own light (luminance over R): coefficient of variation ≥ 0.15 (real rafts
+    // 0.2–0.4; one flat colour gave 0.05). The storm from 60 m, shrunk by 3 px; the moderate sea's whitecaps are a few metres
     // across: from 40 m, shrunk by 1 px, at three moments with whitecaps under the camera, the
     // median of their three values (a fresh whitecap's bright core, compressed by the tone map,
-    // varies least). Measured on lavapipe: storm 0.15 opaque, 0.39 thin, CoV 0.33; moderate
-    // CoV 0.14, 0.21, 0.21.
+    // varies least). Measured on lavapipe: storm 0.15 opaque, 0.64 thin, CoV 0.22; moderate
+    // CoV 0.11, 0.18, 0.17.
     let mut moderate = Vec::new();
     for (preset, height, time, shrink) in [
         ("storm", 60, "20", 3),
@@ -210,8 +210,15 @@ fn foam_is_a_dense_core_over_thinning_lace() {
             "{preset} {time}: thin foam {thin} px, opaque {opaque_px}"
         );
         let core = morph(&opaque, shrink, false);
-        let (mean, n) = mean_of(&luminance, &core);
-        let var = luminance
+        // The foam's own light: luminance over R (from above the water under it is dark, so
+        // this takes out how much of the pixel the foam covers, which alone varies 0.5–1).
+        let own: Vec<f64> = luminance
+            .iter()
+            .zip(&r)
+            .map(|(l, a)| l / a.max(0.5))
+            .collect();
+        let (mean, n) = mean_of(&own, &core);
+        let var = own
             .iter()
             .zip(&core)
             .filter(|p| *p.1)
@@ -233,11 +240,14 @@ fn foam_is_a_dense_core_over_thinning_lace() {
 
 #[test]
 fn foam_fades_rather_than_pops() {
-    // One patch of the moderate sea followed for 0.4 s from above (frames 0.1 s apart at --dt
-    // 1/60): the foam's summed reflectance over where it was (grown by 4 px: the crest moves)
-    // keeps ≥ 70 % (the bound; the field itself keeps e^(−0.4/2.5) = 85 %) and falls in
-    // no step of more than 10 %. Measured on lavapipe: 95 %, steps of 3 % at most.
-    let sums: Vec<f64> = [1, 7, 13, 19, 25]
+    // The moderate sea from 40 m (the lace resolved: pixels of about 0.17 m) for 0.4 s, frames
+    // 0.1 s apart at --dt 1/60: over where the foam was (R > 0.2, grown by 4 px: the crests
+    // move), the summed R keeps ≥ 70 % (the bound; the field itself keeps
+    // e^(−0.4/2.5) = 85 %) and falls by no more than 15 % in a step (an even fade to 70 % loses
+    // 8.5 % a step); and no more than 5 % of
+    // those pixels lose over 0.3 of R in a step (a pop). Measured on lavapipe: 77 %, steps of
+    // 4–8 %, 0.1 % of the pixels popping.
+    let frames: Vec<Vec<f64>> = [1, 7, 13, 19, 25]
         .iter()
         .map(|frames| {
             let frames = frames.to_string();
@@ -247,8 +257,8 @@ fn foam_fades_rather_than_pops() {
                 "--preset",
                 "moderate",
                 "--time",
-                "20",
-                "--camera=0,150,0",
+                "15",
+                "--camera=0,40,0",
                 "--look-at=0,0,-1",
                 "--dt",
                 "0.016666667",
@@ -258,33 +268,44 @@ fn foam_fades_rather_than_pops() {
                 "foam",
             ];
             let view = common::shot("foam-fade", (FW as u32, FH as u32), &args, &[]);
-            view.chunks(4).map(|c| linear(c[0])).collect::<Vec<f64>>()
-        })
-        .scan(None::<Vec<bool>>, |region, r| {
-            let region = region.get_or_insert_with(|| {
-                morph(&r.iter().map(|&a| a > 0.2).collect::<Vec<_>>(), 4, true)
-            });
-            Some(
-                r.iter()
-                    .zip(region.iter())
-                    .filter(|p| *p.1)
-                    .map(|p| *p.0)
-                    .sum(),
-            )
+            view.chunks(4).map(|c| linear(c[0])).collect()
         })
         .collect();
-    eprintln!("summed foam over 0.4 s: {sums:?}");
-    assert!(sums[0] > 50.0, "too little foam to follow: {}", sums[0]);
+    let region = morph(
+        &frames[0].iter().map(|&a| a > 0.2).collect::<Vec<_>>(),
+        4,
+        true,
+    );
+    let pixels = region.iter().filter(|&&r| r).count();
+    let sums: Vec<f64> = frames
+        .iter()
+        .map(|r| mean_of(r, &region).0 * pixels as f64)
+        .collect();
+    let pops: Vec<f64> = frames
+        .windows(2)
+        .map(|pair| {
+            let popped = (0..pair[0].len())
+                .filter(|&i| region[i] && pair[0][i] - pair[1][i] > 0.3)
+                .count();
+            popped as f64 / pixels as f64
+        })
+        .collect();
+    eprintln!("{pixels} px followed; summed R every 0.1 s: {sums:.1?}; share popping: {pops:.4?}");
+    assert!(
+        pixels > 500 && sums[0] > 50.0,
+        "too little foam to follow: {sums:?}"
+    );
     assert!(sums[4] >= 0.7 * sums[0], "{sums:?}");
     for pair in sums.windows(2) {
-        assert!(pair[1] >= 0.9 * pair[0], "a step: {sums:?}");
+        assert!(pair[1] >= 0.85 * pair[0], "a step: {sums:?}");
     }
+    assert!(pops.iter().all(|&p| p <= 0.05), "pixels popping: {pops:?}");
 }
 
 #[test]
 fn foam_is_brighter_than_the_water_around_it() {
-    // Every preset at noon (sun 60° up) and at sunset (3°): the mean luminance of the opaque
-    // foam (R ≥ 0.3) over that of the water within 8 px of it with no foam (R < 0.02). The calm
+    // Every preset at noon (sun 60° up) and at sunset (3°): the mean luminance of the foam
+    // (R ≥ 0.3) over that of the water within 8 px of it with no foam (R < 0.02). The calm
     // sea's whitecaps cover 0.009 %: its foam is the island's surf, over shallows whose sand
     // shows through bright at noon. Foam is lit as a scattering
     // medium (white under white light, the low sky around it at sunset), not as a Lambert wall
@@ -293,8 +314,8 @@ fn foam_is_brighter_than_the_water_around_it() {
     // others 1.6–3.9.
     let open_sea = ["--camera=0,30,0", "--look-at=0,0,-40"];
     let shore = ["--camera=-180,20,-900", "--look-at=-160,0,-900"];
-    // The breeze's whitecaps cover 0.25 %: seen from above, 150 m up.
-    let above = ["--camera=0,150,0", "--look-at=0,0,-1"];
+    // The breeze's whitecaps cover 0.25 %: seen from above, 100 m up.
+    let above = ["--camera=0,100,0", "--look-at=0,0,-1"];
     for (preset, view) in [
         ("calm", shore),
         ("breeze", above),

@@ -44,8 +44,8 @@ const float F0 = 0.02;               // ((n - 1) / (n + 1))^2
 const float DUDV_STRENGTH = 0.012;   // screen-space offset at full strength
 const float SLOPE_STRENGTH = 0.05;   // screen-space offset per unit slope
 const float PI = 3.14159265;
-// Foam's single-scattering albedo: bubbles of clear water in air absorb almost nothing in the
-// visible; 0.85 with the residue between them.
+// The diffuse reflectance of a thick layer of clean foam (its bubbles absorb almost nothing in
+// the visible, so a thick layer is near white; 0.85, our choice), scaled by the lace's 0.4–1.
 const float FOAM_ALBEDO = 0.85;
 // Height of the foam's relief (m): bubbles and lace a few centimetres thick.
 const float FOAM_RELIEF_M = 0.15;
@@ -117,12 +117,16 @@ float hash12(vec2 p) {
     q += dot(q, q.yzx + 33.33);
     return fract((q.x + q.y) * q.z);
 }
+// A lattice index (a whole number) wrapped into [0, cells): half a cell off the boundaries, so a
+// division rounded either way gives the same whole number (mod() on floats may not).
+vec2 wrap_cell(vec2 i, float cells) { return i - cells * floor((i + 0.5) / cells); }
+
 float periodic_noise(vec2 q, float cells) {
     vec2 i = floor(q);
     vec2 f = q - i;
     vec2 u = f * f * (3.0 - 2.0 * f);
-    vec2 a = mod(i, cells);
-    vec2 b = mod(i + 1.0, cells);
+    vec2 a = wrap_cell(i, cells);
+    vec2 b = wrap_cell(i + 1.0, cells);
     return mix(mix(hash12(a), hash12(vec2(b.x, a.y)), u.x),
                mix(hash12(vec2(a.x, b.y)), hash12(b), u.x), u.y);
 }
@@ -145,7 +149,7 @@ float cell_walls(vec2 q, float cells) {
     for (int y = -1; y <= 1; ++y) {
         for (int x = -1; x <= 1; ++x) {
             vec2 c = vec2(x, y);
-            vec2 cell = mod(i + c, cells);
+            vec2 cell = wrap_cell(i + c, cells);
             vec2 p = c + vec2(hash12(cell), hash12(cell + 57.0)) - f;
             float d = dot(p, p);
             d2 = min(d2, max(d, d1));
@@ -167,7 +171,7 @@ float cell_walls(vec2 q, float cells) {
 // per patch) whose thin parts the age eats first, so a whitecap thins into strands and holes
 // and fades as F decays (nothing pops). Each scale fades to its mean before it would alias: far
 // foam is coverage, not specks (Dupuy & Bruneton 2012 filter foam the same way).
-float foam_lace(vec2 uv, float pixel_m) {
+float foam_lace(vec2 uv, float pixel_m, out float detail) {
     float coarse = clamp(1.5 - pixel_m * 0.4, 0.0, 1.0);
     float mid = clamp(1.5 - pixel_m * 4.0, 0.0, 1.0);
     float fine = clamp(1.5 - pixel_m * 5.0, 0.0, 1.0);
@@ -183,20 +187,28 @@ float foam_lace(vec2 uv, float pixel_m) {
     walls *= smoothstep(0.25, 0.65, foam_octave(uv, 1.2, 23.0));
     float net = mix(0.15, walls, mid);
     float bubbles = mix(0.5, foam_octave(uv, 5.0, 31.0), fine);
+    detail = mid;
     return smoothstep(0.15, 0.85, 0.45 * rafts + 0.3 * net + 0.25 * bubbles);
 }
 
-// The foam layer's reflectance R for the field F and the lace there.
-float foam_layer(float field, float lace) {
+// The foam layer's reflectance R for the field F and the lace there; `detail` (1 near, 0 far)
+// says how much of the lace's small scales the pixel resolves.
+float foam_layer(float field, float lace, float detail) {
     // The breaking layer: F from 0.6 (1.3 s after the crest passed) to 0.85 (0.4 s), its
     // bubbles letting some water show through, solid where the crest breaks now (F > 0.9).
-    float breaking = smoothstep(0.6, 0.85, field) * mix(0.5 + 0.5 * lace, 1.0, smoothstep(0.9, 1.0, field));
+    float solid = smoothstep(0.9, 1.0, field);
+    float breaking = smoothstep(0.6, 0.85, field) * mix(0.5 + 0.5 * lace, 1.0, solid);
     // The residual layer: the age erodes the lace from its thin parts (the threshold rises as
     // 1 − F^½: at F = 1 everything above 0 is foam, at F = 0.1 only the top of the strands;
     // a soft edge of ±0.12), and what is left thins with F.
     float keep = smoothstep(-0.12, 0.12, lace - (1.0 - sqrt(field)));
     float residual = 0.6 * field * keep * (0.4 + 0.6 * lace);
-    return max(breaking, residual);
+    // Where the pixel no longer resolves the lace (its scales faded to their mean), the same
+    // layer on average: for lace spread evenly over [0, 1], a share √F of it is kept, with a
+    // mean lace of 1 − √F/2 there. Far foam keeps its coverage instead of vanishing.
+    float kept = sqrt(field);
+    float average = 0.6 * field * kept * (0.4 + 0.6 * (1.0 - 0.5 * kept));
+    return max(breaking, mix(average, residual, detail));
 }
 
 // Henyey–Greenstein phase function (per steradian) at the cosine `mu` of the scattering angle.
@@ -273,7 +285,9 @@ void main() {
     vec4 nf = ocean_normal_foam(in_xz, dist, pixel_m, shore.x, resolved);
     vec3 n = nf.xyz;
     // Surf where the waves break on the shallows (shore.y, 0–1): breaking foam on the crests
-    // and their fronts (a field of 1), the foam the last breaker left in the troughs (0.85).
+    // and their fronts (a field of 1) and, between them, the white water the broken waves carry
+    // as bores across the surf zone (0.85: dense, some of the lace showing), not the thin
+    // residue an open-sea whitecap leaves a wave period later.
     float crest = smoothstep(-0.2, 0.6, in_displacement.y / max(0.5 * shore.z, 0.01));
     nf.w = max(nf.w, shore.y * mix(0.85, 1.0, crest));
     uint view = debug_view();
@@ -289,7 +303,9 @@ void main() {
         // The foam as drawn: its layer's reflectance R (0 none, 1 opaque), grey.
         float unused_weight;
         vec2 uv = ocean_uv(in_xz, 0, dist, unused_weight).xy;
-        out_colour = target_value(vec3(foam_layer(nf.w, foam_lace(uv, pixel_m))));
+        float detail;
+        float lace = foam_lace(uv, pixel_m, detail);
+        out_colour = target_value(vec3(foam_layer(nf.w, lace, detail)));
         return;
     }
     if (view == VIEW_WIREFRAME) {
@@ -370,16 +386,20 @@ void main() {
     if (nf.w > 0.004) {
         float unused_weight;
         vec2 uv = ocean_uv(in_xz, 0, dist, unused_weight).xy;
-        float lace = foam_lace(uv, pixel_m);
-        opacity = foam_layer(nf.w, lace);
+        float detail;
+        float lace = foam_lace(uv, pixel_m, detail);
+        opacity = foam_layer(nf.w, lace, detail);
         // The foam's own relief: the lace as a height field FOAM_RELIEF_M high (thick foam
         // stands higher), its slopes from differences a pixel's footprint (at least 5 cm) apart.
         float step_m = max(pixel_m, 0.05);
         float du = step_m / frame.patch_m.x;
-        vec2 slope = vec2(foam_lace(uv + vec2(du, 0.0), pixel_m) - lace,
-                          foam_lace(uv + vec2(0.0, du), pixel_m) - lace) / step_m;
+        float unused_detail;
+        vec2 slope = vec2(foam_lace(uv + vec2(du, 0.0), pixel_m, unused_detail) - lace,
+                          foam_lace(uv + vec2(0.0, du), pixel_m, unused_detail) - lace) / step_m;
         vec3 foam_n = normalize(n - FOAM_RELIEF_M * vec3(slope.x, 0.0, slope.y));
-        colour = mix(colour, foam_light(foam_n, v, sun, in_sun_light, horizon, lace), opacity);
+        // Looking straight down there is no horizon behind the foam: the sky around it.
+        vec3 behind = mix(sky_ambient(foam_n), horizon, clamp(2.0 * length(v.xz), 0.0, 1.0));
+        colour = mix(colour, foam_light(foam_n, v, sun, in_sun_light, behind, lace), opacity);
     }
     vec3 sunlight = in_sun_light;
     // c_h: the sun's glitter from the slopes the normal does not resolve (the sea's mean-square

@@ -138,10 +138,12 @@ mod tests {
             };
             let median = surface_jacobian_quantile(&s, 0.5) as f32;
             let t = threshold(&s);
-            assert!(
-                t <= median - 0.09,
-                "U10 {u}: threshold {t}, median J {median}"
-            );
+            assert!(t < median, "U10 {u}: threshold {t}, median J {median}");
+            // The cap binds only where the sea hardly folds: the presets (2.5 m/s and up)
+            // keep their calibrated threshold.
+            if u >= 2.5 {
+                assert!(t < MAX_THRESHOLD, "U10 {u}: threshold {t} capped");
+            }
         }
     }
 }
