@@ -178,8 +178,8 @@ fn foam_is_a_dense_core_over_thinning_lace() {
     // 0.2–0.4; one flat colour gave 0.05). The storm from 60 m, shrunk by 3 px; the moderate sea's whitecaps are a few metres
     // across: from 40 m, shrunk by 1 px, at three moments with whitecaps under the camera, the
     // median of their three values (a fresh whitecap's bright core, compressed by the tone map,
-    // varies least). Measured on lavapipe: storm 0.15 opaque, 0.64 thin, CoV 0.22; moderate
-    // CoV 0.11, 0.18, 0.17.
+    // varies least). Measured on lavapipe: storm 0.15 opaque, 0.64 thin, CoV 0.21; moderate
+    // CoV 0.10, 0.19, 0.20.
     let mut moderate = Vec::new();
     for (preset, height, time, shrink) in [
         ("storm", 60, "20", 3),
