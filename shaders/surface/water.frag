@@ -160,17 +160,18 @@ float cell_walls(vec2 q, float cells) {
 }
 
 // Whitecap foam, from the field F (src/ocean/foam.rs: 1 where a crest is breaking, e^(−age/τ)
-// after it passed) at the rest position whose largest-cascade image coordinates are `uv` (so
-// the texture rides with the water); `pixel_m` is the pixel's footprint on the water (m).
-// Returns the foam layer's reflectance R (how much of the water it whitens) and, in `lace`, its
-// texture (0–1), for the light.
+// after it passed). foam_lace is its texture (0–1) at the rest position whose largest-cascade
+// image coordinates are `uv` (so it rides with the water), `pixel_m` the pixel's footprint on
+// the water (m); foam_layer turns F and the lace into the layer's reflectance R (how much of the
+// water it whitens); foam_light is the light it sends back.
 //
-// Two layers by age (Sea of Thieves' approach, SIGGRAPH 2018): the breaking layer, dense,
-// where the crest breaks now or broke within about half a second; the residual layer, a lace
-// (2.5 m rafts, a cellular network of bubble walls 0.5 m across, 0.2 m bubbles; whole periods
-// per patch) whose thin parts the age eats first, so a whitecap thins into strands and holes
-// and fades as F decays (nothing pops). Each scale fades to its mean before it would alias: far
-// foam is coverage, not specks (Dupuy & Bruneton 2012 filter foam the same way).
+// Two layers by age (Sea of Thieves' approach, SIGGRAPH 2018): the breaking layer, where the
+// crest broke within about 1.3 s, dense after 0.4 s; the residual layer, a lace (2.5 m rafts, a
+// cellular network of bubble walls 0.5 m across, 0.2 m bubbles; whole periods per patch) whose
+// thin parts the age eats first, so a whitecap thins into strands and holes and fades as F
+// decays (nothing pops). Each scale fades to its mean before it would alias, and the layer then
+// takes its average over the lace: far foam is coverage, not specks (Dupuy & Bruneton 2012
+// filter foam the same way).
 float foam_lace(vec2 uv, float pixel_m, out float detail) {
     float coarse = clamp(1.5 - pixel_m * 0.4, 0.0, 1.0);
     float mid = clamp(1.5 - pixel_m * 4.0, 0.0, 1.0);
