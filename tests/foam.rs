@@ -218,14 +218,13 @@ fn foam_is_a_dense_core_over_thinning_lace() {
             .map(|(l, a)| l / a.max(0.5))
             .collect();
         let (mean, n) = mean_of(&own, &core);
-        let var = own
+        let picked: Vec<f64> = own
             .iter()
             .zip(&core)
             .filter(|p| *p.1)
-            .map(|(l, _)| (l - mean).powi(2))
-            .sum::<f64>()
-            / n as f64;
-        let cov = var.sqrt() / mean;
+            .map(|p| *p.0)
+            .collect();
+        let cov = common::std_dev(&picked) / mean;
         eprintln!("{preset} {time}: opaque {opaque_px} px, thin {thin}, core {n} px, CoV {cov:.3}");
         assert!(n >= 20, "{preset} {time}: a core of {n} px");
         if preset == "storm" {

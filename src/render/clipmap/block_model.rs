@@ -10,6 +10,7 @@
 //! Run with `cargo test --release --lib block_model -- --nocapture` to see the numbers by
 //! distance band.
 
+use super::tests::morphed;
 use super::*;
 use glam::Vec3;
 use std::f64::consts::TAU;
@@ -119,18 +120,8 @@ fn clipmap(cell_px: f64) -> Vec<[[f64; 2]; 3]> {
     let side = layout.quarter as usize + 1;
     let mut list = Vec::new();
     for tile in select(&layout, &viewer) {
-        let cell = layout.cell_m(tile.level);
-        let [px, pz] = tile.corner_parity(&layout).map(f64::from);
-        let (start, end) = (layout.morph_start(tile.level), layout.morph_end(tile.level));
         list.extend(cells(side, side, |i, j| {
-            let p = [
-                tile.corner_m[0] + i as f64 * cell,
-                tile.corner_m[1] + j as f64 * cell,
-            ];
-            let d = viewer.distance_to(p, 0.0);
-            let k = ((d - start) / (end - start)).clamp(0.0, 1.0);
-            let odd = [(i as f64 + px) % 2.0, (j as f64 + pz) % 2.0];
-            [p[0] - odd[0] * cell * k, p[1] - odd[1] * cell * k]
+            morphed(&layout, &viewer, &tile, i as u32, j as u32)
         }));
     }
     list

@@ -22,7 +22,7 @@ fn morph(layout: &Layout, v: &Viewer, level: u32, p: [f64; 2]) -> f64 {
 /// Where a level-`level` lattice point (i, j) of a tile at `corner` lands after the
 /// shader's morph (odd lattice points, by world index, slide toward their lower even
 /// neighbour).
-fn morphed(layout: &Layout, v: &Viewer, t: &Tile, i: u32, j: u32) -> [f64; 2] {
+pub(super) fn morphed(layout: &Layout, v: &Viewer, t: &Tile, i: u32, j: u32) -> [f64; 2] {
     let cell = layout.cell_m(t.level);
     let p = [
         t.corner_m[0] + i as f64 * cell,
