@@ -29,13 +29,16 @@ pub const OCEAN_EVOLVE: &str = "ocean evolve";
 pub const OCEAN_FFT: &str = "ocean fft";
 /// FFT model: the FFT output written into the displacement and normal images.
 pub const OCEAN_ASSEMBLE: &str = "ocean assemble";
+/// FFT model: the foam near the camera (whitecaps, drift, residual foam, windrows).
+pub const OCEAN_FOAM: &str = "ocean foam";
 /// Gerstner model: the wave sum written into the displacement and normal images.
 pub const OCEAN_GERSTNER: &str = "ocean gerstner";
 /// The first frame's foam warm-up steps (a debug label only, never timed).
 pub const OCEAN_WARMUP: &str = "ocean foam warm-up";
 
 /// The passes of an FFT frame with the final view and the default `--aa fxaa` (after the first
-/// frames, which also render the sky cube), in the order `--profile` reports them.
+/// frames, which also render the sky cube), in the order `--profile` reports them, at
+/// `--quality low`; at medium and high `OCEAN_FOAM` follows `OCEAN_ASSEMBLE`.
 pub const FFT_FRAME: [&str; 10] = [
     OCEAN_EVOLVE,
     OCEAN_FFT,

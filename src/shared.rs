@@ -122,6 +122,11 @@ shared_constants! {
     BUOY_RADIUS_M: f32 = 0.8;
     BUOY_DRAFT_M: f32 = 1.2;
     BUOY_FREEBOARD_M: f32 = 3.5;
+    /// The foam near the camera (src/ocean/foam.rs `FoamLevels`, shaders/ocean/foam.comp): most
+    /// clipmap levels, and the period of the windrows' pattern in mean spacings (their noise
+    /// repeats after it, so positions reduced by it on the CPU stay continuous).
+    FOAM_MAX_LEVELS: u32 = 4;
+    FOAM_WINDROW_PERIOD: u32 = 64;
     /// `--view` values the shaders react to (`ViewMode` in src/render/mod.rs).
     VIEW_FINAL: u32 = 0;
     VIEW_REFLECTION: u32 = 1;

@@ -8,6 +8,8 @@ struct View {
     vec4 clip_plane;     // world plane: dot(plane, vec4(world, 1)) < 0 is clipped (seed 001 eq. 2)
 };
 
+#include "shared.glsl"
+
 layout(set = 0, binding = 0, std140) uniform FrameUniforms {
     View views[3];       // 0: camera, 1: reflection (mirrored about the water), 2: refraction
     uvec4 modes;         // x: debug view (VIEW_*); y: Fresnel model (FRESNEL_*); z: 1 = bounded
@@ -45,6 +47,9 @@ layout(set = 0, binding = 0, std140) uniform FrameUniforms {
     vec4 sky_light;      // rgb: the irradiance on the sea over the default day's; w: the
                          // display's exposure (the eye's adaptation to the light)
     vec4 underwater;     // x: 1 when the camera is under the water; y: its depth there (m)
+    vec4 foam_levels[FOAM_MAX_LEVELS]; // the foam near the camera, level l: xy its image
+                         // coordinates of the water grid's centre, z per metre; w the number
+                         // of levels (0: the lattice's foam only)
 } frame;
 
 // Which view a draw renders (ViewIndex in src/render/uniforms.rs).
@@ -65,6 +70,9 @@ layout(set = 0, binding = 1) uniform sampler2DArray ocean_displacement;
 layout(set = 0, binding = 2) uniform sampler2DArray ocean_normals;
 // The sky cubemap (rendered when the sun changes, or loaded with --skybox).
 layout(set = 0, binding = 3) uniform samplerCube sky_cube;
+// The foam near the camera (src/ocean/simulation/foam_sim.rs), one layer per level: (whitecap
+// foam, residual foam, 0, 0) at rest positions.
+layout(set = 0, binding = 4) uniform sampler2DArray foam_field;
 
 // The ocean image coordinates of cascade c at a point `xz` metres from the water grid's
 // centre (repeating for the FFT cascades). `weight` fades a cascade out with distance before its

@@ -17,6 +17,7 @@
 layout(local_size_x = 8, local_size_y = 8) in;
 
 layout(std430, set = 0, binding = 0) readonly buffer Fields { vec2 fields[]; };
+#include "common/fields.glsl"
 layout(set = 0, binding = 1, rgba32f) uniform writeonly image2DArray displacement;
 layout(set = 0, binding = 2, rgba32f) uniform writeonly image2DArray normals;
 layout(set = 0, binding = 3, rgba32f) uniform readonly image2DArray previous_normals;
@@ -30,27 +31,6 @@ layout(push_constant) uniform Params {
     uint n;
     uint cascades;
 } params;
-
-// (∂Dx/∂x, ∂Dz/∂z, ∂Dx/∂z) of cascade c at texel `at` (sign-corrected).
-vec3 derivatives(uint c, uvec2 texel) {
-    uint n = params.n;
-    uint plane = n * n;
-    uint at = texel.y * n + texel.x;
-    float sign = ((texel.x + texel.y) & 1u) == 1u ? -1.0 : 1.0;
-    vec2 p2 = fields[(c * 4u + 2u) * plane + at];
-    vec2 p3 = fields[(c * 4u + 3u) * plane + at];
-    return sign * vec3(p2.y, p3.x, p3.y);
-}
-
-// The same at a fractional texel position p of cascade c (periodic bilinear).
-vec3 derivatives_at(uint c, vec2 p) {
-    uint n = params.n;
-    vec2 f = fract(p);
-    uvec2 a = uvec2(floor(p)) % n;
-    uvec2 b = (a + 1u) % n;
-    return mix(mix(derivatives(c, a), derivatives(c, uvec2(b.x, a.y)), f.x),
-               mix(derivatives(c, uvec2(a.x, b.y)), derivatives(c, b), f.x), f.y);
-}
 
 void main() {
     uint n = params.n;
@@ -74,10 +54,10 @@ void main() {
     if (c == 0u) {
         vec3 d = vec3(p2.y, p3.x, p3.y);
         for (uint o = 1u; o < params.cascades; ++o) {
-            d += derivatives_at(o, vec2(id.xy) * (params.patch_m.x / params.patch_m[o]));
+            d += field_derivatives_at(o, vec2(id.xy) * (params.patch_m.x / params.patch_m[o]), n);
         }
         d *= l;
-        float surface_j = (1.0 + d.x) * (1.0 + d.y) - d.z * d.z;
+        float surface_j = surface_jacobian(d);
         float source = clamp((params.foam_threshold - surface_j) * params.foam_gain, 0.0, 1.0);
         foam = max(imageLoad(previous_normals, texel).w * exp(-params.dt_s / params.foam_decay_s), source);
     }

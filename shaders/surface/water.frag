@@ -131,6 +131,27 @@ float periodic_noise(vec2 q, float cells) {
                mix(hash12(vec2(a.x, b.y)), hash12(b), u.x), u.y);
 }
 
+// The foam field F at the rest position xz (m from the water grid's centre): the lattice's
+// whitecap field `lattice` (layer 0 of the normal images), or the residual foam near the camera
+// where it is denser (src/ocean/simulation/foam_sim.rs: left by the whitecaps, drifting
+// downwind, gathered into windrows), from its finest level, each level fading into the next
+// over its outer tenth. (The simulation's own whitecap field, at 0.25 m, feeds the residual
+// foam but is not drawn yet: resolved so finely its whitecaps are thin crest lines, a third of
+// the lattice's opaque foam at the moderate sea, and the shading's thresholds are tuned to the
+// lattice's.)
+float foam_at(vec2 xz, float lattice) {
+    int count = int(frame.foam_levels[0].w);
+    float residual = 0.0;
+    for (int l = count - 1; l >= 0; --l) {
+        vec4 level = frame.foam_levels[l];
+        vec2 uv = level.xy + xz * level.z;
+        vec2 q = abs(uv - 0.5);
+        float inside = 1.0 - smoothstep(0.4, 0.49, max(q.x, q.y));
+        residual = mix(residual, textureLod(foam_field, vec3(uv, float(l)), 0.0).y, inside);
+    }
+    return max(lattice, residual);
+}
+
 // One octave of foam texture at about `per_m` cells per metre over the largest cascade's patch
 // (`uv` its image coordinates): a whole number of cells per patch, so the texture repeats with
 // the waves and stays put on the water however far the camera goes.
@@ -287,6 +308,7 @@ void main() {
     float pixel_m = dist / (frame.lod.x * sqrt(max(v.y, 0.01)));
     float resolved;
     vec4 nf = ocean_normal_foam(in_xz, dist, pixel_m, shore.x, resolved);
+    nf.w = foam_at(in_xz, nf.w);
     vec3 n = nf.xyz;
     // Surf where the waves break on the shallows (shore.y, 0–1): breaking foam on the crests
     // and their fronts (a field of 1) and, between them, the white water the broken waves carry

@@ -372,6 +372,7 @@ fn ocean_bindings(simulation: &Simulation) -> OceanBindings {
     OceanBindings {
         displacement: simulation.displacement.clone(),
         normals: simulation.normals.clone(),
+        foam: simulation.foam.clone(),
         wait_stages: simulation.wait_stages,
         patch_m: simulation.patch_sizes(),
         cascades: simulation.cascades.len() as u32,

@@ -49,6 +49,10 @@ pub const GERSTNER_THRESHOLD: f32 = 0.5;
 /// of the fading foam a running sea would show (`Simulation::submit`).
 pub const WARMUP_STEPS: usize = 20;
 pub const WARMUP_STEP_S: f32 = 0.1;
+/// Steps run before those for the residual foam near the camera (`RESIDUAL_DECAY_S`), and
+/// their time step (s): 24 s, two of its lifetimes.
+pub const RESIDUAL_WARMUP_STEPS: usize = 12;
+pub const RESIDUAL_WARMUP_STEP_S: f32 = 2.0;
 /// Coverage that counts as a whitecap in `--stats` (`surface.whitecap_fraction`).
 pub const WHITECAP_FOAM: f32 = 0.5;
 /// Highest J threshold: foam needs the surface squeezed by a tenth at least. Below about 1 m/s
@@ -94,10 +98,153 @@ pub fn surface_jacobian_quantile(settings: &OceanSettings, p: f64) -> f64 {
     *value
 }
 
+// ── The foam near the camera (shaders/ocean/foam.comp) ─────────────────────────────────────
+
+/// Side of the finest level's texel (m): ≤ 0.25 m within 50 m of the camera (issue 33).
+pub const FINEST_TEXEL_M: f64 = 0.25;
+/// Each level's texel over the next finer one's.
+pub const LEVEL_RATIO: f64 = 4.0;
+/// Surface drift of the water the foam floats on, over U10: Wu (1975, J. Fluid Mech. 68) found
+/// the total surface drift (wind drift and Stokes transport) tending to 3.5 % of the wind at
+/// long fetch; the AMS Glossary gives 2.5–3 %. 3 %.
+pub const DRIFT_SHARE: f64 = 0.03;
+/// Air and sea water densities (kg/m³) for the friction velocity in the water.
+const AIR_DENSITY: f64 = 1.22;
+const WATER_DENSITY: f64 = 1025.0;
+/// Langmuir circulation's characteristic velocity over the friction velocity in the water
+/// u*_w: about 8 (AMS Glossary, after Leibovich 1983, Annu. Rev. Fluid Mech. 15): the
+/// windrows' greatest lateral flow toward their lines.
+pub const LANGMUIR_VELOCITY_PER_U_STAR: f64 = 8.0;
+/// Mean spacing of the windrows (m): Weller et al. (1985) measured Langmuir cells 20 m apart
+/// at 14 m/s (each line gathers the foam of the two half-cells beside it).
+pub const WINDROW_SPACING_M: f64 = 8.0;
+/// e-folding time of the residual foam a whitecap leaves (s): thin lace that outlives the
+/// whitecap's stage-B foam (DECAY_S) several times over, long enough for the windrows to
+/// gather it into streaks. A choice, not a measured value.
+pub const RESIDUAL_DECAY_S: f32 = 12.0;
+/// Turbulent diffusivity of the foam across the wind (m²/s): it keeps a windrow about
+/// √(K/k) wide where Langmuir circulation gathers foam at the rate k (storm: k ≈ 0.27/s, a
+/// metre). A choice, of the order of the near-surface eddy diffusivity u*_w·z at z ≈ 5 m.
+pub const SPREAD_M2_S: f32 = 0.25;
+/// Share of a whitecap's foam it leaves as residual foam.
+pub const RESIDUAL_SHARE: f32 = 0.8;
+
+/// The 10 m drag coefficient C_D of Large & Pond (1981, J. Phys. Oceanogr. 11): 1.2·10⁻³ up
+/// to 11 m/s, (0.49 + 0.065·U10)·10⁻³ above.
+pub fn drag_coefficient(u10: f64) -> f64 {
+    if u10 < 11.0 {
+        1.2e-3
+    } else {
+        (0.49 + 0.065 * u10) * 1e-3
+    }
+}
+
+/// Langmuir circulation's lateral flow (m/s) at wind speed `u10`: 8·u*_w, with
+/// u*_w = √(ρ_a/ρ_w · C_D) · U10 (storm 26.5 m/s: 0.34 m/s; moderate 12.3 m/s: 0.12 m/s).
+/// None below 3 m/s: Langmuir (1938) saw no windrows under 3–5 m/s.
+pub fn windrow_velocity(u10: f64) -> f64 {
+    let u_star_water = (AIR_DENSITY / WATER_DENSITY * drag_coefficient(u10)).sqrt() * u10;
+    let onset = ((u10 - 3.0) / 2.0).clamp(0.0, 1.0);
+    LANGMUIR_VELOCITY_PER_U_STAR * u_star_water * onset
+}
+
+/// The clipmap of the foam near the camera: `count` levels of `size`² texels, level l's texels
+/// `finest_m·LEVEL_RATIO^l` on a side, each centred on the camera in whole texels (so a
+/// texel stays on one spot of the sea while the camera moves).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct FoamLevels {
+    pub count: usize,
+    pub size: u32,
+    /// Side of the finest level's texel (m).
+    pub finest_m: f64,
+    /// World xz of each level's texel (0, 0) corner (m).
+    pub origin_m: [[f64; 2]; MAX_LEVELS],
+}
+
+/// Most levels (`FOAM_MAX_LEVELS` of src/shared.rs).
+pub const MAX_LEVELS: usize = crate::shared::FOAM_MAX_LEVELS as usize;
+
+impl FoamLevels {
+    /// The levels for an FFT grid of `fft_size` around the origin: three levels of 512² texels
+    /// of 0.25, 1 and 4 m (64 m, 256 m and 1 km around the camera). None at N ≤ 64 (`--quality
+    /// low`): the lattice's foam only, as on lavapipe one level of 128² texels of 0.5 m cost
+    /// 1.1 ms of compute and 2 ms of water, 34.4 ms a frame against the 33 ms budget.
+    pub fn layout(fft_size: usize) -> FoamLevels {
+        if fft_size <= 64 {
+            return FoamLevels::none();
+        }
+        FoamLevels {
+            count: 3,
+            size: 512,
+            finest_m: FINEST_TEXEL_M,
+            ..FoamLevels::default()
+        }
+    }
+
+    /// No levels (Gerstner waves: the lattice's foam only).
+    pub fn none() -> FoamLevels {
+        FoamLevels {
+            size: 1,
+            ..FoamLevels::default()
+        }
+    }
+
+    /// Level `l`'s texel side (m).
+    pub fn texel_m(&self, l: usize) -> f64 {
+        self.finest_m * LEVEL_RATIO.powi(l as i32)
+    }
+
+    /// These levels moved around a camera at `camera_xz`.
+    pub fn around(&self, camera_xz: [f64; 2]) -> FoamLevels {
+        let mut origin_m = [[0.0; 2]; MAX_LEVELS];
+        for (l, o) in origin_m.iter_mut().enumerate().take(self.count) {
+            let h = self.texel_m(l);
+            *o = camera_xz.map(|c| (c / h).round() * h - h * (self.size / 2) as f64);
+        }
+        FoamLevels { origin_m, ..*self }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::ocean::SeaState;
+
+    #[test]
+    fn windrow_flow_after_leibovich() {
+        // 8·u*_w with Large & Pond's drag: the storm's 26.5 m/s gives C_D = 2.21·10⁻³,
+        // u*_a = 1.25 m/s, u*_w = 4.3 cm/s; the moderate sea's 12.3 m/s 1.29·10⁻³ and 1.5 cm/s.
+        for (u, v) in [(26.5, 0.344), (12.3, 0.122)] {
+            let got = windrow_velocity(u);
+            assert!(
+                (got / v - 1.0).abs() < 0.02,
+                "U10 {u}: {got} m/s, expected {v}"
+            );
+        }
+        assert_eq!(windrow_velocity(2.5), 0.0);
+    }
+
+    #[test]
+    fn foam_levels_are_centred_on_the_camera_in_whole_texels() {
+        let camera = [1234.567, -89.01];
+        let levels = FoamLevels::layout(256).around(camera);
+        assert_eq!(levels.count, 3);
+        for l in 0..levels.count {
+            let h = levels.texel_m(l);
+            let side = h * levels.size as f64;
+            for (&o, &c) in levels.origin_m[l].iter().zip(&camera) {
+                assert!(
+                    (o / h - (o / h).round()).abs() < 1e-9,
+                    "level {l}: origin {o}"
+                );
+                let centre = o + side / 2.0;
+                assert!((centre - c).abs() <= h / 2.0 + 1e-9, "level {l}: {centre}");
+            }
+        }
+        assert_eq!(levels.texel_m(0), FINEST_TEXEL_M);
+        // Within 50 m of the camera at 0.25 m a texel (the issue's bound) at high.
+        assert!(FINEST_TEXEL_M * levels.size as f64 / 2.0 >= 50.0);
+    }
 
     #[test]
     fn monahan_law_at_the_presets() {

@@ -17,13 +17,15 @@ use std::sync::Arc;
 use ash::vk;
 
 mod fft_model;
+mod foam_sim;
 mod gerstner_model;
 mod readback;
 
 use fft_model::FftModel;
+pub use foam_sim::FOAM_FORMAT;
 use gerstner_model::GerstnerModel;
 
-use super::foam;
+use super::foam::{self, FoamLevels};
 use super::gerstner::Wave;
 use super::moments::{cox_munk_mean_square_slope, SeaMoments};
 use super::params::{OceanSettings, Waves};
@@ -207,6 +209,9 @@ pub(super) struct ModelFrame {
     pub patch_m: [f32; 4],
     /// Side of the Gerstner window (m).
     pub window_m: f64,
+    /// The foam's levels this frame and the previous one (no levels: Gerstner waves).
+    pub foam: FoamLevels,
+    pub previous_foam: FoamLevels,
 }
 
 /// The compute-queue profiler and the frame it times, when timing.
@@ -241,6 +246,13 @@ pub struct Simulation {
     /// Per slot: (−n_x/n_y, −n_z/n_y, J, foam) of the choppy surface's exact normal, one layer
     /// per cascade; J is the cascade's own, the foam (layer 0 only) the whole surface's.
     pub normals: Vec<Image>,
+    /// Per slot: the foam near the camera (whitecap foam, residual foam, 0, 0), one layer per
+    /// level of `foam_levels` (`foam_sim.rs`; FFT only, a 1×1 image for Gerstner waves).
+    pub foam: Vec<Image>,
+    /// Where the foam's levels lie this frame (set by [`Simulation::place_window`]), and where
+    /// they lay at the previous submission.
+    pub foam_levels: FoamLevels,
+    previous_foam_levels: Option<FoamLevels>,
     /// J below which foam forms (`foam::threshold`, calibrated at startup).
     pub foam_threshold: f32,
     /// The Gerstner window's origin at the previous submission (foam follows it).
@@ -299,16 +311,31 @@ impl Simulation {
                 | vk::FormatFeatureFlags::TRANSFER_DST,
             what: "the ocean simulation images",
         }])?;
-        let image = |name: String| {
+        let fft = matches!(settings.waves, Waves::Fft);
+        let foam_levels = if fft {
+            FoamLevels::layout(n)
+        } else {
+            FoamLevels::none()
+        };
+        let (foam_size, foam_count) = (foam_levels.size, foam_levels.count);
+        ctx.require_formats(&[FormatUse {
+            format: FOAM_FORMAT,
+            features: vk::FormatFeatureFlags::STORAGE_IMAGE
+                | vk::FormatFeatureFlags::SAMPLED_IMAGE
+                | vk::FormatFeatureFlags::SAMPLED_IMAGE_FILTER_LINEAR
+                | vk::FormatFeatureFlags::TRANSFER_DST,
+            what: "the foam images",
+        }])?;
+        let image = |name: String, format: vk::Format, side: usize, layers: u32| {
             Image::new(
                 ctx,
                 &ImageDesc {
                     name: &name,
                     extent: vk::Extent2D {
-                        width: n as u32,
-                        height: n as u32,
+                        width: side as u32,
+                        height: side as u32,
                     },
-                    format: IMAGE_FORMAT,
+                    format,
                     usage: vk::ImageUsageFlags::STORAGE
                         | vk::ImageUsageFlags::SAMPLED
                         | vk::ImageUsageFlags::TRANSFER_SRC
@@ -322,16 +349,26 @@ impl Simulation {
         };
         let mut displacement = Vec::new();
         let mut normals = Vec::new();
+        let mut foam = Vec::new();
         for slot in 0..FRAMES_IN_FLIGHT {
-            displacement.push(image(format!("ocean displacement slot {slot}"))?);
-            normals.push(image(format!("ocean normals+foam slot {slot}"))?);
+            let (f, name) = (IMAGE_FORMAT, format!("ocean displacement slot {slot}"));
+            displacement.push(image(name, f, n, layers)?);
+            let name = format!("ocean normals+foam slot {slot}");
+            normals.push(image(name, f, n, layers)?);
+            let name = format!("foam levels slot {slot}");
+            foam.push(image(
+                name,
+                FOAM_FORMAT,
+                foam_size as usize,
+                foam_count.max(1) as u32,
+            )?);
         }
         let images = SlotImages {
             displacement: &displacement,
             normals: &normals,
         };
         let (model, max_displacement_m, sea_moments) = match &settings.waves {
-            Waves::Fft => boxed(FftModel::new(ctx, settings, &cascades, &images)?),
+            Waves::Fft => boxed(FftModel::new(ctx, settings, &cascades, &images, &foam)?),
             Waves::Gerstner(w) => boxed(GerstnerModel::new(ctx, w, &images)?),
         };
         Ok(Simulation {
@@ -345,6 +382,9 @@ impl Simulation {
             origin_m: [0.0, 0.0],
             displacement,
             normals,
+            foam,
+            foam_levels,
+            previous_foam_levels: None,
             queue: ComputeQueue::new(ctx)?,
             wait_stages: graphics_wait_stages(&ctx.info),
             initialized: false,
@@ -363,6 +403,7 @@ impl Simulation {
     /// a fixed world lattice (no swimming) and the camera sits at its centre. Called before the
     /// frame's uniforms are written, which carry the origin.
     pub fn place_window(&mut self, camera_xz: [f64; 2]) {
+        self.foam_levels = self.foam_levels.around(camera_xz);
         if self.is_window() {
             let window = self.settings.patch_size_m;
             let step = window / self.settings.fft_size as f64;
@@ -399,7 +440,11 @@ impl Simulation {
             .unwrap_or(0.0);
         self.last_time_s = Some(time_s);
         let window_shift = self.window_shift();
+        let previous_foam = self.previous_foam_levels.unwrap_or(self.foam_levels);
+        self.previous_foam_levels = Some(self.foam_levels);
         let frame = ModelFrame {
+            foam: self.foam_levels,
+            previous_foam,
             foam_threshold: self.foam_threshold,
             window_shift,
             slot,
@@ -414,7 +459,11 @@ impl Simulation {
         };
         let first = !self.initialized;
         let init: Vec<&Image> = if first {
-            self.displacement.iter().chain(&self.normals).collect()
+            self.displacement
+                .iter()
+                .chain(&self.normals)
+                .chain(&self.foam)
+                .collect()
         } else {
             Vec::new()
         };
@@ -474,22 +523,34 @@ impl Simulation {
         shift
     }
 
-    /// The steps run before the first FFT frame `frame`: foam::WARMUP_STEPS over the seconds
-    /// before it, alternating slots and ending in the other one, so its foam is already in
-    /// steady state (a single screenshot shows the whitecaps a running sea has). Both slots are
-    /// unused by graphics so far. Gerstner: none (its per-slot wave buffers are written by the
-    /// host for one time each).
+    /// The steps run before the first FFT frame `frame`: foam::RESIDUAL_WARMUP_STEPS long steps
+    /// (the residual foam's slow life) and then foam::WARMUP_STEPS short ones (the whitecaps')
+    /// over the seconds before it, alternating slots and ending in the other one, so its foam is
+    /// already in steady state (a single screenshot shows the foam a running sea has). Both
+    /// slots are unused by graphics so far. Gerstner: none (its per-slot wave buffers are
+    /// written by the host for one time each).
     fn warmup_steps(&self, frame: &ModelFrame) -> Vec<ModelFrame> {
         if self.model.h0().is_none() {
             return Vec::new();
         }
-        let step_s = foam::WARMUP_STEP_S;
-        (1..=foam::WARMUP_STEPS)
+        let short = foam::WARMUP_STEP_S as f64;
+        let long = foam::RESIDUAL_WARMUP_STEP_S as f64;
+        let short_span = foam::WARMUP_STEPS as f64 * short;
+        let times = (1..=foam::RESIDUAL_WARMUP_STEPS)
             .rev()
-            .map(|i| ModelFrame {
-                slot: (frame.slot + i) % FRAMES_IN_FLIGHT,
-                time_s: frame.time_s - i as f64 * step_s as f64,
-                dt_s: step_s,
+            .map(|i| (short_span + i as f64 * long, long))
+            .chain(
+                (1..=foam::WARMUP_STEPS)
+                    .rev()
+                    .map(|i| (i as f64 * short, short)),
+            );
+        let total = foam::RESIDUAL_WARMUP_STEPS + foam::WARMUP_STEPS;
+        times
+            .enumerate()
+            .map(|(k, (before_s, dt_s))| ModelFrame {
+                slot: (frame.slot + total - k) % FRAMES_IN_FLIGHT,
+                time_s: frame.time_s - before_s,
+                dt_s: dt_s as f32,
                 ..*frame
             })
             .collect()

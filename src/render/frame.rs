@@ -130,6 +130,7 @@ pub fn record_frame(
     let inputs = &FrameInputs {
         ocean_origin_m: simulation.origin_m(),
         ocean_window: simulation.is_window(),
+        foam_levels: simulation.foam_levels,
         ..*inputs
     };
 

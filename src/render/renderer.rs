@@ -192,12 +192,13 @@ impl Renderer {
         let sampled = vk::DescriptorType::COMBINED_IMAGE_SAMPLER;
         let frame_set_layout = DescriptorSetLayout::new(
             ctx,
-            "frame set layout (uniforms, ocean images, sky cube)",
+            "frame set layout (uniforms, ocean images, sky cube, foam)",
             &[
                 (0, vk::DescriptorType::UNIFORM_BUFFER, graphics),
                 (1, sampled, graphics),
                 (2, sampled, graphics),
                 (3, sampled, graphics),
+                (4, sampled, graphics),
             ],
         )?;
         let repeat = vk::SamplerAddressMode::REPEAT;
@@ -220,6 +221,7 @@ impl Renderer {
             )?
         };
         let sky_sampler = Sampler::linear(ctx, "sky cube sampler", clamp)?;
+        let foam_sampler = Sampler::linear(ctx, "foam sampler (clamp)", clamp)?;
         let sky_cube = match &settings.skybox {
             Some(dir) => SkyCube::load(ctx, dir)?,
             None => SkyCube::analytic(ctx)?,
@@ -256,6 +258,7 @@ impl Renderer {
                         3,
                         Bind::Sampled(&sky_cube.image, &sky_sampler, Order::Tracked),
                     ),
+                    (4, Bind::Sampled(&ocean.foam[slot], &foam_sampler, wait)),
                 ],
             )?;
             frame_uniforms.push((buffer, set));

@@ -8,6 +8,7 @@ use super::atmosphere::{reference_light, Sky, SUN_IRRADIANCE};
 use super::camera::Camera;
 use super::{FresnelModel, ViewMode};
 use crate::ocean::buoy::BuoyPose;
+use crate::ocean::foam::{FoamLevels, MAX_LEVELS};
 use crate::ocean::moments::SeaMoments;
 use crate::ocean::shore::{reference_group_speed, shoaling};
 use crate::shared::{BUOY_FREEBOARD_M, BUOY_RADIUS_M};
@@ -26,6 +27,8 @@ pub struct FrameInputs {
     /// Height of the surface above the camera's (x, z) at `time_s` (m; the session fills it
     /// in): below it the camera is under water.
     pub camera_surface_m: f64,
+    /// Where the foam's levels lie this frame (`Simulation::foam_levels`; none for Gerstner).
+    pub foam_levels: FoamLevels,
 }
 
 impl FrameInputs {
@@ -44,6 +47,8 @@ pub struct OceanBindings {
     /// compute queue).
     pub displacement: Vec<crate::gpu::Image>,
     pub normals: Vec<crate::gpu::Image>,
+    /// Per frame slot: the foam near the camera (`Simulation::foam`), one layer per level.
+    pub foam: Vec<crate::gpu::Image>,
     /// The stages at which a graphics submission waits for the compute timeline before
     /// sampling them (`simulation::graphics_wait_stages`): the frame set's `Order::Wait`.
     pub wait_stages: ash::vk::PipelineStageFlags2,
@@ -214,6 +219,10 @@ pub struct FrameUniforms {
     /// x: 1 when the camera is under the water (below `FrameInputs::camera_surface_m`), else 0;
     /// y: its depth below the surface there (m, ≥ 0); zw: unused.
     pub underwater: [f32; 4],
+    /// The foam's levels (`foam_levels`): xy the level's image coordinates of the water grid's
+    /// centre, z its image coordinates per metre (1 / its side), w the number of levels (0:
+    /// the lattice's foam only).
+    pub foam_levels: [[f32; 4]; MAX_LEVELS],
 }
 
 /// Side of a DU/DV tile on the water (m).
@@ -432,6 +441,7 @@ impl FrameUniforms {
                 [f32::from(depth > 0.0), depth.max(0.0) as f32, 0.0, 0.0]
             },
             sky_light,
+            foam_levels: foam_levels(&p.inputs.foam_levels, &water),
             slope_variance: p.ocean.sea_moments.slope_variance.map(|v| v as f32),
             open_sea: {
                 let floor = p.scene.deep_floor_m;
@@ -444,6 +454,19 @@ impl FrameUniforms {
             },
         }
     }
+}
+
+/// `FrameUniforms::foam_levels`: each level's image coordinates of the water grid's centre,
+/// reduced in f64.
+fn foam_levels(levels: &FoamLevels, water: &WaterFrame) -> [[f32; 4]; MAX_LEVELS] {
+    std::array::from_fn(|l| {
+        if l >= levels.count {
+            return [0.0, 0.0, 0.0, levels.count as f32];
+        }
+        let side = levels.texel_m(l) * levels.size as f64;
+        let uv = |i: usize| ((water.centre[i] - levels.origin_m[l][i]) / side) as f32;
+        [uv(0), uv(1), (1.0 / side) as f32, levels.count as f32]
+    })
 }
 
 #[cfg(test)]

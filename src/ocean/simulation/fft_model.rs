@@ -6,14 +6,19 @@ use std::sync::Arc;
 
 use ash::vk;
 
+use super::foam_sim::{FoamSim, Wind};
 use super::{scope, Kernel, ModelFrame, SlotImages, Timer, WaveModel};
 use crate::gpu::oneshot::upload_on;
-use crate::gpu::{Bind, Bindings, BoundSet, Buffer, Context, MemoryLocation, Order, Recorder};
+use crate::gpu::{
+    Bind, Bindings, BoundSet, Buffer, Context, Image, MemoryLocation, Order, Recorder,
+};
 use crate::ocean::fft::{Direction, GpuFft};
 use crate::ocean::foam;
 use crate::ocean::moments::{Component, SeaMoments};
 use crate::ocean::params::OceanSettings;
-use crate::ocean::spectrum::{dispersion, h0, omega_steps_grid, time_ticks, wave_vector, Cascade};
+use crate::ocean::spectrum::{
+    dispersion, h0, omega_steps_grid, time_ticks, wave_vector, wind_vector, Cascade,
+};
 use crate::pass_names as names;
 use crate::shaders;
 
@@ -51,16 +56,20 @@ pub(super) struct FftModel {
     evolve_set: BoundSet,
     /// Per slot: writes that slot's images, reads the other slot's normals (foam).
     assemble_sets: Vec<BoundSet>,
+    /// The foam near the camera, after assemble from the same FFT output.
+    foam: FoamSim,
 }
 
 impl FftModel {
     /// The model's buffers, kernels and sets; `images` are bound at bindings 1–3 of the
-    /// assemble sets. Also returns a bound on the displacement (m) and the sea's height.
+    /// assemble sets, `foam` (per slot) is the foam simulation's. Also returns a bound on the
+    /// displacement (m) and the sea's height.
     pub(super) fn new(
         ctx: &Arc<Context>,
         settings: &OceanSettings,
         cascades: &[Cascade],
         images: &SlotImages,
+        foam: &[Image],
     ) -> anyhow::Result<(FftModel, f64, SeaMoments)> {
         let fft = GpuFft::new(ctx, settings.fft_size, 4 * cascades.len())?;
         let (h0_buffer, steps_buffer, max_displacement_m, sea) =
@@ -96,7 +105,13 @@ impl FftModel {
             |_| Bind::Storage(&fft.data, t),
             images,
         )?;
+        let wind = Wind {
+            dir: wind_vector(&settings.sea),
+            u10: settings.sea.wind_speed_m_s,
+        };
+        let foam = FoamSim::new(ctx, &fft.data, foam, wind)?;
         let model = FftModel {
+            foam,
             h0: h0_buffer,
             _omega_steps: steps_buffer,
             fft,
@@ -178,6 +193,10 @@ fn upload_spectrum(
 }
 
 impl WaveModel for FftModel {
+    fn prepare(&mut self, f: &ModelFrame) {
+        self.foam.prepare(f);
+    }
+
     fn record(&self, rec: &Recorder, timer: &mut Timer, f: &ModelFrame) {
         let groups = f.n.div_ceil(8);
         let evolve_params = EvolveParams {
@@ -216,6 +235,7 @@ impl WaveModel for FftModel {
             };
             rec.dispatch_with(&b, [groups, groups, f.layers]);
         });
+        self.foam.record(rec, timer, f);
     }
 
     fn h0(&self) -> Option<&Buffer> {
