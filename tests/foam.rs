@@ -385,8 +385,8 @@ fn storm_foam_lies_in_streaks_along_the_wind() {
     // (R ≥ 0.5 in --view foam) is correlated further along the wind than across it. The residual foam the
     // whitecaps leave drifts downwind and Langmuir circulation gathers it into windrows
     // (src/ocean/foam.rs); the lattice's foam alone measured 1.0, the whitecaps being crest
-    // segments across the wind. Measured on lavapipe: 11 px along, 6 across (1.83). The issue
-    // asks for 2: not reached yet.
+    // segments across the wind. The issue's bound: twice. Measured on lavapipe: 10 px along,
+    // 4 across (2.5).
     let args = [
         "--quality",
         "high",
@@ -406,5 +406,5 @@ fn storm_foam_lies_in_streaks_along_the_wind() {
     let ratio = along as f64 / across as f64;
     eprintln!("storm: foam on {cover:.2}, half-widths {along} px along the wind, {across} across ({ratio:.2})");
     assert!(cover > 0.1, "storm: foam on {cover:.2} of the picture");
-    assert!(ratio >= 1.5, "storm: {along} px along, {across} across");
+    assert!(ratio >= 2.0, "storm: {along} px along, {across} across");
 }

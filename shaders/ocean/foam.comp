@@ -94,15 +94,15 @@ vec3 noise(vec2 p, uvec2 period) {
 
 // The windrows' lateral flow v_c (m/s, across the wind) at (along, across) = (s, c) and its
 // divergence ∂v_c/∂c (1/s): v_c = −V·g·sin 2πφ with φ = c/λ + ψ(s, c), so the flow converges
-// on the lines φ ∈ ℤ, about λ apart. ψ (up to ±0.6 of a spacing, in cells 4λ long and 2λ
-// wide) lets the lines wander and join; g = ½ + ψ's own noise (0.5–1.5) makes some strong and
+// on the lines φ ∈ ℤ, about λ apart. ψ (up to ±0.75 of a spacing, in cells 4λ long and λ
+// wide) lets the lines wander, join and break; g = ½ + ψ's own noise (0.5–1.5) makes some strong and
 // others faint along their length.
 vec2 windrow_flow(vec2 sc) {
     float l = params.windrow_m;
-    vec3 psi = noise(sc / vec2(4.0 * l, 2.0 * l), uvec2(FOAM_WINDROW_PERIOD / 4u,
-                                                         FOAM_WINDROW_PERIOD / 2u));
-    float phi = sc.y / l + 0.6 * (psi.x - 0.5);
-    float dphi_dc = 1.0 / l + 0.6 * psi.z / (2.0 * l);
+    vec3 psi = noise(sc / vec2(4.0 * l, 1.0 * l), uvec2(FOAM_WINDROW_PERIOD / 4u,
+                                                         FOAM_WINDROW_PERIOD));
+    float phi = sc.y / l + 1.5 * (psi.x - 0.5);
+    float dphi_dc = 1.0 / l + 1.5 * psi.z / l;
     float v = params.converge_m_s * (0.5 + psi.x);
     return vec2(-v * sin(2.0 * PI * phi), -v * 2.0 * PI * cos(2.0 * PI * phi) * dphi_dc);
 }
@@ -136,8 +136,10 @@ void main() {
     vec2 back = i - u * params.dt_s / h; // in this level's texels
     // Turbulent spreading across the wind (diffusivity K): the mean of the two points a random
     // walk of variance 2K·dt reaches, which keeps the windrows a metre or so wide where the
-    // flow gathers them (width √(K/k) for a convergence rate k).
-    vec2 spread = across * sqrt(2.0 * params.spread_m2_s * params.dt_s) / h;
+    // flow gathers them (width √(K/k) for a convergence rate k). At most a texel either way:
+    // two taps further apart would leave two copies rather than a blur (the warm-up's 2 s
+    // steps spread less than K asks).
+    vec2 spread = across * min(sqrt(2.0 * params.spread_m2_s * params.dt_s) / h, 1.0);
     float inside, inside2;
     vec2 here = 0.5 * (previous_at(l, level.previous.xy + back + spread, inside)
                        + previous_at(l, level.previous.xy + back - spread, inside2));

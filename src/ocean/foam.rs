@@ -115,9 +115,11 @@ const WATER_DENSITY: f64 = 1025.0;
 /// u*_w: about 8 (AMS Glossary, after Leibovich 1983, Annu. Rev. Fluid Mech. 15): the
 /// windrows' greatest lateral flow toward their lines.
 pub const LANGMUIR_VELOCITY_PER_U_STAR: f64 = 8.0;
-/// Mean spacing of the windrows (m): Weller et al. (1985) measured Langmuir cells 20 m apart
-/// at 14 m/s (each line gathers the foam of the two half-cells beside it).
-pub const WINDROW_SPACING_M: f64 = 8.0;
+/// Mean spacing of the windrows (m). Langmuir circulation comes in a hierarchy of scales
+/// (Leibovich 1983): the smallest rows, a few metres apart, form first and sit between the
+/// larger ones (Weller et al. 1985 measured cells 20 m apart at 14 m/s, Smith 1992 16 m
+/// growing with time). The foam near the camera draws the smallest: 5 m.
+pub const WINDROW_SPACING_M: f64 = 5.0;
 /// e-folding time of the residual foam a whitecap leaves (s): thin lace that outlives the
 /// whitecap's stage-B foam (DECAY_S) several times over, long enough for the windrows to
 /// gather it into streaks. A choice, not a measured value.
