@@ -127,6 +127,11 @@ shared_constants! {
     /// repeats after it, so positions reduced by it on the CPU stay continuous).
     FOAM_MAX_LEVELS: u32 = 4;
     FOAM_WINDROW_PERIOD: u32 = 64;
+    /// Foam where the waves wash against an object standing in the water
+    /// (shaders/ocean/foam.comp): a band this wide around it (m), full strength from this
+    /// significant wave height (m) up, weaker below. Choices, not measurements.
+    FOAM_CONTACT_M: f32 = 1.5;
+    FOAM_CONTACT_HS_M: f32 = 1.0;
     /// `--view` values the shaders react to (`ViewMode` in src/render/mod.rs).
     VIEW_FINAL: u32 = 0;
     VIEW_REFLECTION: u32 = 1;

@@ -5,6 +5,7 @@
 mod common;
 
 use vkocean::ocean::buoy::Buoy;
+use vkocean::ocean::foam::FoamScene;
 use vkocean::ocean::gerstner::default_waves;
 use vkocean::ocean::simulation::{Simulation, Texels};
 use vkocean::ocean::surface::{Lattice, SurfaceQuery};
@@ -52,8 +53,15 @@ fn max_heave_error(settings: &OceanSettings, times: &[f64]) -> f64 {
         for xz in [[9.0, -55.0], [-31.7, 12.4]] {
             // The Gerstner window around the buoy, as around a camera beside it.
             sim.place_window(xz);
-            sim.submit(0, 2 * f as u64 + 1 + (xz[0] < 0.0) as u64, None, t, None)
-                .unwrap();
+            sim.submit(
+                0,
+                2 * f as u64 + 1 + (xz[0] < 0.0) as u64,
+                None,
+                t,
+                &FoamScene::default(),
+                None,
+            )
+            .unwrap();
             let (texels, _) = sim.read_back(&ctx, 0).unwrap();
             let n = settings.fft_size;
             let steps: Vec<f64> = sim.cascades.iter().map(|c| c.patch_m / n as f64).collect();

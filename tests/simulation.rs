@@ -5,6 +5,7 @@
 mod common;
 
 use vkocean::ocean::cpu::CpuOcean;
+use vkocean::ocean::foam::FoamScene;
 use vkocean::ocean::simulation::Simulation;
 use vkocean::ocean::{OceanSettings, SeaState, SpectrumKind};
 
@@ -42,7 +43,8 @@ fn gpu_fields_match_the_cpu_reference() {
             waves: vkocean::ocean::Waves::Fft,
         };
         let mut sim = Simulation::new(&ctx, &settings).unwrap();
-        sim.submit(0, 1, None, t, None).unwrap();
+        sim.submit(0, 1, None, t, &FoamScene::default(), None)
+            .unwrap();
         let (displacement, normals) = sim.read_back(&ctx, 0).unwrap();
         let cpu = CpuOcean::new(&settings).fields(t);
         let plane = n * n;
@@ -71,9 +73,11 @@ fn same_seed_same_surface() {
     };
     let mut a = Simulation::new(&ctx, &settings).unwrap();
     let mut b = Simulation::new(&ctx, &settings).unwrap();
-    a.submit(0, 1, None, 1.5, None).unwrap();
+    a.submit(0, 1, None, 1.5, &FoamScene::default(), None)
+        .unwrap();
     // Each simulation has its own compute timeline: its first frame is value 1.
-    b.submit(0, 1, None, 1.5, None).unwrap();
+    b.submit(0, 1, None, 1.5, &FoamScene::default(), None)
+        .unwrap();
     let ra = a.read_back(&ctx, 0).unwrap();
     let rb = b.read_back(&ctx, 0).unwrap();
     assert!(
@@ -85,7 +89,8 @@ fn same_seed_same_surface() {
         ..settings
     };
     let mut c = Simulation::new(&ctx, &other).unwrap();
-    c.submit(0, 1, None, 1.5, None).unwrap();
+    c.submit(0, 1, None, 1.5, &FoamScene::default(), None)
+        .unwrap();
     assert!(
         c.read_back(&ctx, 0).unwrap().0 != ra.0,
         "another seed, another sea"
@@ -109,7 +114,8 @@ fn gerstner_gpu_matches_the_analytic_waves() {
     // Far from the world origin, where a naive float phase would lose precision.
     let (t, camera) = (2.75f64, [1234.5, -678.25]);
     sim.place_window(camera);
-    sim.submit(0, 1, None, t, None).unwrap();
+    sim.submit(0, 1, None, t, &FoamScene::default(), None)
+        .unwrap();
     let origin = sim.origin_m();
     let step = window / n as f64;
     for (o, c) in origin.iter().zip(camera) {
@@ -192,7 +198,8 @@ fn no_nan_or_inf_on_the_gpu_across_sea_states_and_sizes() {
                 ..OceanSettings::default()
             };
             let mut sim = Simulation::new(&ctx, &settings).unwrap();
-            sim.submit(0, 1, None, 10.0, None).unwrap();
+            sim.submit(0, 1, None, 10.0, &FoamScene::default(), None)
+                .unwrap();
             let (displacement, normals) = sim.read_back(&ctx, 0).unwrap();
             let finite = |t: &[[f32; 4]]| t.iter().all(|v| v.iter().all(|x| x.is_finite()));
             assert!(

@@ -5,7 +5,10 @@
 // (foam = (A, S): A the whitecaps' foam, S the residual foam they leave):
 //   1. the surface's Jacobian J_s from every cascade's derivatives at the texel's rest position
 //      (bilinear in each cascade's lattice), and the whitecap source
-//      clamp((threshold − J_s)·gain, 0, 1), as assemble.comp computes it on the lattice;
+//      clamp((threshold − J_s)·gain, 0, 1), as assemble.comp computes it on the lattice; and
+//      the foam the sea makes where it meets land and things: the surf where the shore's
+//      breaking criterion holds (common/shore.glsl), and a band around each object standing in
+//      the water (the buoy, the pillars) where the waves wash against it;
 //   2. semi-Lagrangian advection: the previous frame's foam read where the water at the texel
 //      was dt ago, x − u·dt (this level's previous placement, else the next coarser level's,
 //      else none), with u = drift·ŵ + v_c·ŵ⊥: the surface drift downwind, and the lateral
@@ -30,8 +33,19 @@ struct Level {
                    // and of the next coarser level (zw)
     vec4 place;    // xy: texel (0, 0)'s centre along and across the wind (m, mod the windrows'
                    // period); z: h (m); w: h over the next coarser level's h
+    vec4 anchor;   // xy: texel (0, 0)'s centre in world xz (m)
 };
-layout(std140, set = 0, binding = 1) uniform Levels { Level levels[FOAM_MAX_LEVELS]; };
+// The levels, and the scene's fields of the frame uniforms (as shaders/common/frame.glsl has
+// them) that common/terrain.glsl and common/shore.glsl read.
+layout(std140, set = 0, binding = 1) uniform Levels {
+    Level levels[FOAM_MAX_LEVELS];
+    vec4 terrain;    // island x, z, shelf depth, island radius
+    vec4 shore;      // the sea's Hs, mean ω, c_g at the simulated depth
+    vec4 open_sea;   // the open sea's floor depth, K_s there
+    vec4 objects[4]; // (x, z, radius, top height) of the objects in the water; 0 height = none
+} frame;
+#include "common/terrain.glsl"
+#include "common/shore.glsl"
 layout(set = 0, binding = 2, rgba16f) uniform writeonly image2DArray foam;
 layout(set = 0, binding = 3, rgba16f) uniform readonly image2DArray previous;
 layout(push_constant) uniform Params {
@@ -113,7 +127,7 @@ void main() {
         return;
     }
     uint l = id.z;
-    Level level = levels[l];
+    Level level = frame.levels[l];
     vec2 i = vec2(id.xy);
     float h = level.place.z;
 
@@ -126,6 +140,20 @@ void main() {
     }
     float source = clamp((params.threshold - surface_jacobian(params.choppiness * d)) * params.gain,
                          0.0, 1.0);
+    vec2 world = level.anchor.xy + i * h;
+    // The surf, over the island's slope only (a branch: almost every workgroup skips it).
+    if (near_island(world)) {
+        source = max(source, shore_waves(-terrain_height(world)).y);
+    }
+    // Contact: a band FOAM_CONTACT_M wide around each object, as strong as the sea is high
+    // (full from FOAM_CONTACT_HS_M of significant height).
+    float contact = 0.0;
+    for (int o = 0; o < 4; ++o) {
+        vec4 object = frame.objects[o];
+        float gap = length(world - object.xy) - object.z;
+        contact = max(contact, step(0.001, object.w) * (1.0 - smoothstep(0.0, FOAM_CONTACT_M, gap)));
+    }
+    source = max(source, contact * clamp(frame.shore.x / FOAM_CONTACT_HS_M, 0.0, 1.0));
 
     // 2. Where the water was dt ago: drift downwind, the windrows' flow across it.
     vec2 wind = params.wind;

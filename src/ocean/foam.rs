@@ -163,6 +163,17 @@ pub struct FoamLevels {
     pub origin_m: [[f64; 2]; MAX_LEVELS],
 }
 
+/// What the foam near the camera needs of the scene, as the frame uniforms hold it
+/// (src/render/uniforms.rs, shaders/common/frame.glsl): the island (`terrain`), the sea over
+/// the shallows (`shore`, `open_sea`) for the surf, the objects standing in the water.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct FoamScene {
+    pub terrain: [f32; 4],
+    pub shore: [f32; 4],
+    pub open_sea: [f32; 4],
+    pub objects: [[f32; 4]; 4],
+}
+
 /// Most levels (`FOAM_MAX_LEVELS` of src/shared.rs).
 pub const MAX_LEVELS: usize = crate::shared::FOAM_MAX_LEVELS as usize;
 

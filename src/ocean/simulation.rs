@@ -25,7 +25,7 @@ use fft_model::FftModel;
 pub use foam_sim::FOAM_FORMAT;
 use gerstner_model::GerstnerModel;
 
-use super::foam::{self, FoamLevels};
+use super::foam::{self, FoamLevels, FoamScene};
 use super::gerstner::Wave;
 use super::moments::{cox_munk_mean_square_slope, SeaMoments};
 use super::params::{OceanSettings, Waves};
@@ -212,6 +212,8 @@ pub(super) struct ModelFrame {
     /// The foam's levels this frame and the previous one (no levels: Gerstner waves).
     pub foam: FoamLevels,
     pub previous_foam: FoamLevels,
+    /// The scene the foam meets (surf, objects).
+    pub scene: FoamScene,
 }
 
 /// The compute-queue profiler and the frame it times, when timing.
@@ -422,7 +424,8 @@ impl Simulation {
     }
 
     /// Submits frame `value`'s simulation at time `time_s` into `slot` on the compute queue,
-    /// with the Gerstner window where [`Simulation::place_window`] last put it, after the
+    /// with the Gerstner window where [`Simulation::place_window`] last put it and the foam
+    /// meeting `scene` (its surf and the objects in the water), after the
     /// graphics timeline reached `wait_graphics` (the slot's previous user, `Frame::
     /// previous_user`); `timing` times the passes with a compute-queue profiler
     /// (`Profiler::for_compute`) for `frame`.
@@ -432,6 +435,7 @@ impl Simulation {
         value: u64,
         wait_graphics: Option<u64>,
         time_s: f64,
+        scene: &FoamScene,
         timing: Option<(&mut Profiler, &Frame)>,
     ) -> GpuResult<()> {
         let dt_s = self
@@ -445,6 +449,7 @@ impl Simulation {
         let frame = ModelFrame {
             foam: self.foam_levels,
             previous_foam,
+            scene: *scene,
             foam_threshold: self.foam_threshold,
             window_shift,
             slot,

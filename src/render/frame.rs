@@ -135,6 +135,7 @@ pub fn record_frame(
     };
 
     // ── graphics 1: the passes that read no simulation output ──────────────────────────────
+    let foam_scene;
     {
         let rec = frame.recorder(ctx, Submission::Scene);
         rec.begin_label(&format!("frame {} (graphics 1)", frame.index));
@@ -144,7 +145,7 @@ pub fn record_frame(
             hazard.record(&rec);
             // Dropped now; the deletion queue keeps it alive until this frame is done.
         }
-        r.write_uniforms(frame.slot, output, inputs);
+        foam_scene = r.write_uniforms(frame.slot, output, inputs);
         let sky = r.settings.sky();
         if r.sky_cube.is_stale(&sky) {
             let cube = &mut r.sky_cube;
@@ -199,6 +200,7 @@ pub fn record_frame(
         value,
         frame.previous_user(),
         inputs.time_s,
+        &foam_scene,
         Some((compute_profiler, &frame)),
     )?;
 

@@ -25,6 +25,7 @@ use crate::gpu::{
     check_bindings, Bind, Bindings, BoundSet, Buffer, Context, DescriptorSetLayout, FormatUse,
     GpuResult, Image, ImageDesc, MemoryLocation, Order, Output, Sampler, FRAMES_IN_FLIGHT,
 };
+use crate::ocean::foam::FoamScene;
 use crate::ocean::simulation::IMAGE_FORMAT;
 use crate::pass_names as names;
 
@@ -473,13 +474,14 @@ impl Renderer {
         Ok(())
     }
 
-    /// Writes slot `slot`'s frame uniforms for this frame (`frame_set(slot)` binds them).
+    /// Writes slot `slot`'s frame uniforms for this frame (`frame_set(slot)` binds them), and
+    /// returns what the foam simulation needs of them (the scene it meets).
     pub(super) fn write_uniforms(
         &mut self,
         slot: usize,
         output: &OutputTarget,
         inputs: &FrameInputs,
-    ) {
+    ) -> FoamScene {
         // The main target's size (--render-scale of the output's).
         let extent = self.targets.main.extent();
         let s = &self.settings;
@@ -520,6 +522,12 @@ impl Renderer {
                 reach_m: self.ocean.max_displacement_m,
             },
         );
+        FoamScene {
+            terrain: uniforms.terrain,
+            shore: uniforms.shore,
+            open_sea: uniforms.open_sea,
+            objects: uniforms.objects,
+        }
     }
 
     /// Slot `slot`'s frame descriptor set (uniforms, ocean images, sky cube).

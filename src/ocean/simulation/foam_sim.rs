@@ -30,6 +30,15 @@ struct GpuLevel {
     steps: [f32; 4],
     previous: [f32; 4],
     place: [f32; 4],
+    anchor: [f32; 4],
+}
+
+/// foam.comp's uniform block: the levels, then the scene (`FoamScene`'s fields in order).
+#[repr(C)]
+#[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
+struct GpuLevels {
+    levels: [GpuLevel; MAX_LEVELS],
+    scene: [[f32; 4]; 7],
 }
 
 #[repr(C)]
@@ -99,7 +108,7 @@ impl FoamSim {
                 Buffer::new(
                     ctx,
                     &format!("foam levels slot {slot}"),
-                    (MAX_LEVELS * std::mem::size_of::<GpuLevel>()) as u64,
+                    std::mem::size_of::<GpuLevels>() as u64,
                     vk::BufferUsageFlags::UNIFORM_BUFFER,
                     MemoryLocation::CpuToGpu,
                 )
@@ -134,8 +143,13 @@ impl FoamSim {
     /// Writes the frame's placement into its slot's buffer (into every slot's the first time),
     /// once the slot's previous compute work is done.
     pub(super) fn prepare(&mut self, f: &ModelFrame) {
-        let levels = gpu_levels(f, self.wind.dir);
-        let bytes: &[u8] = bytemuck::cast_slice(&levels);
+        let sc = &f.scene;
+        let o = sc.objects;
+        let block = GpuLevels {
+            levels: gpu_levels(f, self.wind.dir),
+            scene: [sc.terrain, sc.shore, sc.open_sea, o[0], o[1], o[2], o[3]],
+        };
+        let bytes: &[u8] = bytemuck::bytes_of(&block);
         if self.written {
             self.buffers[f.slot].write(bytes);
         } else {
@@ -221,6 +235,7 @@ fn gpu_levels(f: &ModelFrame, wind: [f64; 2]) -> [GpuLevel; MAX_LEVELS] {
             h as f32,
             (1.0 / foam::LEVEL_RATIO) as f32,
         ];
+        level.anchor = [centre[0] as f32, centre[1] as f32, 0.0, 0.0];
     }
     out
 }
