@@ -59,7 +59,6 @@ layout(push_constant) uniform Pass { uint view; } pass;
 
 // Debug views (`--view`, ViewMode in src/render/mod.rs) the scene shaders react to: VIEW_*
 // of src/shared.rs.
-#include "shared.glsl"
 uint debug_view() { return frame.modes.x; }
 // The water level (m).
 float water_level() { return frame.water.z; }

@@ -1,5 +1,5 @@
 #version 460
-// The foam near the camera (src/ocean/foam_sim.rs): a clipmap of world-space levels, each
+// The foam near the camera (src/ocean/simulation/foam_sim.rs): a clipmap of world-space levels, each
 // SIZE² texels of side h (0.25 m for the finest, ×4 a level), at rest positions like the waves'
 // images, so the foam rides the choppy displacement with the water it lies on. Per texel
 // (foam = (A, S): A the whitecaps' foam, S the residual foam they leave):
@@ -23,7 +23,7 @@ layout(local_size_x = 8, local_size_y = 8) in;
 layout(std430, set = 0, binding = 0) readonly buffer Fields { vec2 fields[]; };
 #include "common/fields.glsl"
 
-// Where a level lies (src/ocean/foam_sim.rs `GpuLevel`); texel i's centre is at
+// Where a level lies (src/ocean/simulation/foam_sim.rs `GpuLevel`); texel i's centre is at
 // origin + (i + ½)·h.
 struct Level {
     vec4 base01;   // cascades 0 and 1: texel (0, 0)'s centre in the cascade's lattice (texels)
@@ -96,7 +96,8 @@ float hash(uvec2 p) {
 vec3 noise(vec2 p, uvec2 period) {
     vec2 i = floor(p);
     vec2 f = p - i;
-    uvec2 a = uvec2(ivec2(i)) % period;
+    ivec2 p_i = ivec2(period);
+    uvec2 a = uvec2((ivec2(i) % p_i + p_i) % p_i); // i may be negative
     uvec2 b = (a + 1u) % period;
     vec2 u = f * f * (3.0 - 2.0 * f);
     vec2 du = 6.0 * f * (1.0 - f);
@@ -107,18 +108,23 @@ vec3 noise(vec2 p, uvec2 period) {
 }
 
 // The windrows' lateral flow v_c (m/s, across the wind) at (along, across) = (s, c) and its
-// divergence ∂v_c/∂c (1/s): v_c = −V·g·sin 2πφ with φ = c/λ + ψ(s, c), so the flow converges
-// on the lines φ ∈ ℤ, about λ apart. ψ (up to ±0.75 of a spacing, in cells 4λ long and λ
-// wide) lets the lines wander, join and break; g = ½ + ψ's own noise (0.5–1.5) makes some strong and
-// others faint along their length.
+// divergence ∂v_c/∂c (1/s): v_c = −V·g·sin 2πφ with φ = c/λ + 1.2·(ψ − ½), so the flow
+// converges on the lines φ ∈ ℤ, about λ apart. ψ (value noise in cells 4λ long and 2λ wide)
+// lets the lines wander (up to ±0.6 of a spacing) and join; φ keeps rising across the wind
+// (∂φ/∂c ≥ (1 − 0.6·1.5)/λ > 0: the noise's slope is at most 1.5 a cell), so no line folds
+// back. g = ½ + ψ (0.5–1.5) makes some lines strong and others faint along their length.
 vec2 windrow_flow(vec2 sc) {
     float l = params.windrow_m;
-    vec3 psi = noise(sc / vec2(4.0 * l, 1.0 * l), uvec2(FOAM_WINDROW_PERIOD / 4u,
-                                                         FOAM_WINDROW_PERIOD));
-    float phi = sc.y / l + 1.5 * (psi.x - 0.5);
-    float dphi_dc = 1.0 / l + 1.5 * psi.z / l;
-    float v = params.converge_m_s * (0.5 + psi.x);
-    return vec2(-v * sin(2.0 * PI * phi), -v * 2.0 * PI * cos(2.0 * PI * phi) * dphi_dc);
+    vec3 psi = noise(sc / vec2(4.0 * l, 2.0 * l), uvec2(FOAM_WINDROW_PERIOD / 4u,
+                                                         FOAM_WINDROW_PERIOD / 2u));
+    float phi = sc.y / l + 1.2 * (psi.x - 0.5);
+    float psi_c = psi.z / (2.0 * l); // ∂ψ/∂c
+    float phi_c = 1.0 / l + 1.2 * psi_c;
+    float g = 0.5 + psi.x;
+    float v = params.converge_m_s;
+    float s = sin(2.0 * PI * phi);
+    float c = cos(2.0 * PI * phi);
+    return vec2(-v * g * s, -v * (psi_c * s + g * 2.0 * PI * c * phi_c));
 }
 
 void main() {

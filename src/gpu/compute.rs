@@ -131,6 +131,15 @@ impl ComputeQueue {
         Ok(())
     }
 
+    /// Waits until every submitted compute work has finished (once, after the first frame's
+    /// warm-up, whose steps used both slots' per-slot buffers).
+    pub fn wait_for_last(&self) -> GpuResult<()> {
+        if self.last_value > 0 {
+            self.ctx.wait_timeline(self.timeline, self.last_value)?;
+        }
+        Ok(())
+    }
+
     /// The wait a graphics submission adds to sample this frame's compute results.
     pub fn graphics_wait(&self, value: u64, stages: vk::PipelineStageFlags2) -> SemaphoreOp {
         SemaphoreOp(

@@ -125,8 +125,8 @@ pub const WINDROW_SPACING_M: f64 = 5.0;
 /// gather it into streaks. A choice, not a measured value.
 pub const RESIDUAL_DECAY_S: f32 = 12.0;
 /// Turbulent diffusivity of the foam across the wind (m²/s): it keeps a windrow about
-/// √(K/k) wide where Langmuir circulation gathers foam at the rate k (storm: k ≈ 0.27/s, a
-/// metre). A choice, of the order of the near-surface eddy diffusivity u*_w·z at z ≈ 5 m.
+/// √(K/k) wide where Langmuir circulation gathers foam at the rate k (storm: k = 2πV/λ ≈
+/// 0.43/s, 0.76 m). A choice, of the order of the near-surface eddy diffusivity u*_w·z at z ≈ 6 m.
 pub const SPREAD_M2_S: f32 = 0.25;
 /// Share of a whitecap's foam it leaves as residual foam.
 pub const RESIDUAL_SHARE: f32 = 0.8;
@@ -255,8 +255,9 @@ mod tests {
             }
         }
         assert_eq!(levels.texel_m(0), FINEST_TEXEL_M);
-        // Within 50 m of the camera at 0.25 m a texel (the bound) at high.
-        assert!(FINEST_TEXEL_M * levels.size as f64 / 2.0 >= 50.0);
+        // 0.25 m a texel within 50 m of the camera (the bound) at high: the water draws
+        // the finest level alone out to 0.4 of its side from its centre (water.frag `foam_at`).
+        assert!(0.4 * FINEST_TEXEL_M * levels.size as f64 >= 50.0);
     }
 
     #[test]

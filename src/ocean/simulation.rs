@@ -264,6 +264,9 @@ pub struct Simulation {
     pub wait_stages: vk::PipelineStageFlags2,
     /// The images were initialized (the first submission does it).
     initialized: bool,
+    /// The last submission ran the warm-up, which read both slots' per-slot buffers: the next
+    /// one waits for it before the host rewrites the other slot's.
+    after_warmup: bool,
     /// Simulation time of the previous submission (s; f64: a long run keeps its frame steps).
     last_time_s: Option<f64>,
     /// Bound on how far the surface moves from its rest position (m): culling margin.
@@ -390,6 +393,7 @@ impl Simulation {
             queue: ComputeQueue::new(ctx)?,
             wait_stages: graphics_wait_stages(&ctx.info),
             initialized: false,
+            after_warmup: false,
             last_time_s: None,
         })
     }
@@ -489,6 +493,9 @@ impl Simulation {
         // The slot's previous compute work (two frames ago) must be done before the host
         // rewrites its inputs.
         self.queue.wait_for_slot(value)?;
+        if std::mem::replace(&mut self.after_warmup, !warmup.is_empty()) {
+            self.queue.wait_for_last()?;
+        }
         self.model.prepare(&frame);
         let model = &*self.model;
         self.queue.submit(slot, value, wait_graphics, |rec| {
