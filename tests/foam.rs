@@ -55,18 +55,9 @@ fn first_frame_foam_matches_the_cpu_reference() {
     let t = p["t"].as_f64().unwrap();
     let cpu = CpuOcean::new(&settings);
     let patches: Vec<f64> = cpu.cascades().iter().map(|c| c.patch_m).collect();
-    // The long steps of the residual foam's warm-up first, then the short ones and the frame.
+    // The warm-up's steps (its long steps for the residual foam first), then the frame.
     let step = foam::WARMUP_STEP_S as f64;
-    let long = foam::RESIDUAL_WARMUP_STEP_S as f64;
-    let span = foam::WARMUP_STEPS as f64 * step;
-    let steps = (1..=foam::RESIDUAL_WARMUP_STEPS)
-        .rev()
-        .map(|i| (span + i as f64 * long, long))
-        .chain(
-            (0..=foam::WARMUP_STEPS)
-                .rev()
-                .map(|i| (i as f64 * step, step)),
-        );
+    let steps = foam::warmup_schedule().into_iter().chain([(0.0, step)]);
     let mut expected = vec![0.0f64; n * n];
     let mut source = Vec::new();
     for (before_s, dt_s) in steps {

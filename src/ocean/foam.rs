@@ -53,6 +53,20 @@ pub const WARMUP_STEP_S: f32 = 0.1;
 /// their time step (s): 24 s, two of its lifetimes.
 pub const RESIDUAL_WARMUP_STEPS: usize = 12;
 pub const RESIDUAL_WARMUP_STEP_S: f32 = 2.0;
+/// The warm-up's steps before the first FFT frame, oldest first: (seconds before the frame,
+/// time step), RESIDUAL_WARMUP_STEPS long ones and then WARMUP_STEPS short ones, the last
+/// one short step before the frame.
+pub fn warmup_schedule() -> Vec<(f64, f64)> {
+    let short = WARMUP_STEP_S as f64;
+    let long = RESIDUAL_WARMUP_STEP_S as f64;
+    let short_span = WARMUP_STEPS as f64 * short;
+    let longs = (1..=RESIDUAL_WARMUP_STEPS)
+        .rev()
+        .map(|i| (short_span + i as f64 * long, long));
+    let shorts = (1..=WARMUP_STEPS).rev().map(|i| (i as f64 * short, short));
+    longs.chain(shorts).collect()
+}
+
 /// Coverage that counts as a whitecap in `--stats` (`surface.whitecap_fraction`).
 pub const WHITECAP_FOAM: f32 = 0.5;
 /// Highest J threshold: foam needs the surface squeezed by a tenth at least. Below about 1 m/s

@@ -545,19 +545,10 @@ impl Simulation {
         if self.model.h0().is_none() {
             return Vec::new();
         }
-        let short = foam::WARMUP_STEP_S as f64;
-        let long = foam::RESIDUAL_WARMUP_STEP_S as f64;
-        let short_span = foam::WARMUP_STEPS as f64 * short;
-        let times = (1..=foam::RESIDUAL_WARMUP_STEPS)
-            .rev()
-            .map(|i| (short_span + i as f64 * long, long))
-            .chain(
-                (1..=foam::WARMUP_STEPS)
-                    .rev()
-                    .map(|i| (i as f64 * short, short)),
-            );
-        let total = foam::RESIDUAL_WARMUP_STEPS + foam::WARMUP_STEPS;
-        times
+        let schedule = foam::warmup_schedule();
+        let total = schedule.len();
+        schedule
+            .into_iter()
             .enumerate()
             .map(|(k, (before_s, dt_s))| ModelFrame {
                 slot: (frame.slot + total - k) % FRAMES_IN_FLIGHT,
