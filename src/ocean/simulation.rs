@@ -322,7 +322,6 @@ impl Simulation {
         } else {
             FoamLevels::none()
         };
-        let (foam_size, foam_count) = (foam_levels.size, foam_levels.count);
         ctx.require_formats(&[FormatUse {
             format: FOAM_FORMAT,
             features: vk::FormatFeatureFlags::STORAGE_IMAGE
@@ -355,18 +354,14 @@ impl Simulation {
         let mut displacement = Vec::new();
         let mut normals = Vec::new();
         let mut foam = Vec::new();
+        let (foam_side, foam_layers) = (foam_levels.size as usize, foam_levels.count.max(1) as u32);
         for slot in 0..FRAMES_IN_FLIGHT {
-            let (f, name) = (IMAGE_FORMAT, format!("ocean displacement slot {slot}"));
-            displacement.push(image(name, f, n, layers)?);
+            let name = format!("ocean displacement slot {slot}");
+            displacement.push(image(name, IMAGE_FORMAT, n, layers)?);
             let name = format!("ocean normals+foam slot {slot}");
-            normals.push(image(name, f, n, layers)?);
+            normals.push(image(name, IMAGE_FORMAT, n, layers)?);
             let name = format!("foam levels slot {slot}");
-            foam.push(image(
-                name,
-                FOAM_FORMAT,
-                foam_size as usize,
-                foam_count.max(1) as u32,
-            )?);
+            foam.push(image(name, FOAM_FORMAT, foam_side, foam_layers)?);
         }
         let images = SlotImages {
             displacement: &displacement,
