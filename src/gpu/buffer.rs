@@ -11,6 +11,7 @@ use gpu_allocator::MemoryLocation;
 use super::context::Context;
 use super::error::{GpuError, GpuResult, VkResultExt};
 use super::garbage::Garbage;
+use super::queues::QueueUsers;
 use super::track::{Handle, State, StateCell, Tracked};
 
 /// A buffer and its memory. The host reaches a mapped buffer's bytes through `&mut self`
@@ -46,13 +47,46 @@ impl Buffer {
         usage: vk::BufferUsageFlags,
         location: MemoryLocation,
     ) -> GpuResult<Buffer> {
+        Buffer::create(ctx, name, size, usage, location, QueueUsers::Graphics)
+    }
+
+    /// A device-local buffer both queues use: written on the compute queue, read by graphics
+    /// through the compute timeline's wait (the spray's particles and indirect arguments).
+    /// CONCURRENT across the two families where they differ, like the simulation images, so no
+    /// ownership transfer is needed; [`Buffer::share`] hands its handle to the renderer.
+    pub fn shared(
+        ctx: &Arc<Context>,
+        name: &str,
+        size: vk::DeviceSize,
+        usage: vk::BufferUsageFlags,
+    ) -> GpuResult<Buffer> {
+        let location = MemoryLocation::GpuOnly;
+        let buffer = Buffer::create(ctx, name, size, usage, location, QueueUsers::Both)?;
+        // Device memory may be host-visible (a CPU driver maps it): the host never touches
+        // these, so the handles can be shared.
+        Ok(Buffer {
+            mapped: None,
+            ..buffer
+        })
+    }
+
+    fn create(
+        ctx: &Arc<Context>,
+        name: &str,
+        size: vk::DeviceSize,
+        usage: vk::BufferUsageFlags,
+        location: MemoryLocation,
+        users: QueueUsers,
+    ) -> GpuResult<Buffer> {
         if size == 0 {
             return Err(GpuError::Unsupported(format!("buffer {name}: 0 bytes")));
         }
+        let sharing = ctx.sharing(users);
         let info = vk::BufferCreateInfo::default()
             .size(size)
             .usage(usage)
-            .sharing_mode(vk::SharingMode::EXCLUSIVE);
+            .sharing_mode(sharing.mode)
+            .queue_family_indices(&sharing.families);
         // SAFETY: valid create info on a live device.
         let raw = unsafe { ctx.device.create_buffer(&info, None) }.vk("vkCreateBuffer")?;
         ctx.count_created(1);
@@ -102,6 +136,21 @@ impl Buffer {
             core: Rc::new(core),
             mapped,
         })
+    }
+
+    /// Another handle to this device-local buffer (the renderer's sets bind the simulation's
+    /// shared buffers). Panics on a mapped buffer: the host writes those through `&mut`, so
+    /// they have one owner.
+    pub fn share(&self) -> Buffer {
+        assert!(
+            self.mapped.is_none(),
+            "buffer {}: a mapped buffer has one owner",
+            self.core.name
+        );
+        Buffer {
+            core: self.core.clone(),
+            mapped: None,
+        }
     }
 
     /// Whether `self` and `other` are the same buffer.

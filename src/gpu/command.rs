@@ -340,6 +340,38 @@ impl<'a> Recorder<'a> {
         }
     }
 
+    pub(super) fn dispatch_indirect_raw(&self, args: &Buffer, offset: vk::DeviceSize) {
+        self.expect_outside_scope("a dispatch");
+        self.expect_bound(vk::PipelineBindPoint::COMPUTE);
+        assert!(
+            offset + 12 <= args.size(),
+            "indirect dispatch arguments past the buffer's end"
+        );
+        // SAFETY: recording-state invariant; a compute pipeline is bound and the arguments lie
+        // within the buffer, which has INDIRECT_BUFFER usage (checked by the caller).
+        unsafe {
+            self.ctx
+                .device
+                .cmd_dispatch_indirect(self.cmd, args.raw(), offset)
+        };
+    }
+
+    pub(super) fn draw_indirect_raw(&self, args: &Buffer, offset: vk::DeviceSize) {
+        self.expect_bound(vk::PipelineBindPoint::GRAPHICS);
+        assert!(
+            offset + 16 <= args.size(),
+            "indirect draw arguments past the buffer's end"
+        );
+        // SAFETY: recording-state invariant; inside a rendering scope with a bound pipeline,
+        // the arguments within the buffer, which has INDIRECT_BUFFER usage (checked by the
+        // caller); one draw, so the stride is unused.
+        unsafe {
+            self.ctx
+                .device
+                .cmd_draw_indirect(self.cmd, args.raw(), offset, 1, 16)
+        };
+    }
+
     pub(super) fn dispatch(&self, x: u32, y: u32, z: u32) {
         self.expect_outside_scope("a dispatch");
         self.expect_bound(vk::PipelineBindPoint::COMPUTE);

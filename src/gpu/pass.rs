@@ -15,6 +15,7 @@
 
 use ash::vk;
 
+use super::buffer::Buffer;
 use super::command::{Attachment, BindingsKey, ImageBarrier, Load, Recorder};
 use super::descriptors::{sampled_layout, BoundSet, Order, Resource};
 use super::image::{Image, Output};
@@ -165,8 +166,9 @@ fn reads<'a>(pass: &str, b: &Bindings<'a>) -> Result<Vec<Read<'a>>, String> {
         if used.writes && bound.order != Order::Tracked {
             return Err(format!("{}, but it is not tracked on this queue", what()));
         }
-        // Graphics shaders here sample images and read uniforms: storage descriptors and
-        // tracked buffers would need uses this tracker does not derive for those stages.
+        // Graphics shaders here sample images, read uniforms and read storage buffers the
+        // compute queue wrote (through its wait): storage descriptors and tracked buffers
+        // would need uses this tracker does not derive for those stages.
         let graphics = !used.stages.contains(vk::ShaderStageFlags::COMPUTE);
         let image = matches!(bound.resource, Resource::Image(_));
         let sampled = matches!(used.kind, Kind::CombinedImageSampler | Kind::SampledImage);
@@ -383,6 +385,17 @@ impl Recorder<'_> {
                         self.ctx
                             .journal_use(image.name(), journal, false, None, Some(by));
                     }
+                    // A storage buffer written on the compute queue (the spray's particles),
+                    // read through the wait like the images.
+                    (Order::Wait { by, .. }, Resource::Buffer(buffer)) => {
+                        let access = Access {
+                            stage: stages,
+                            access: vk::AccessFlags2::SHADER_STORAGE_READ,
+                        };
+                        self.require_wait(by, stages);
+                        self.ctx
+                            .journal_use(buffer.name(), (access, None), false, None, Some(by));
+                    }
                     // Uniforms, written by the host before the submission.
                     (_, resource) => {
                         let same = |r: &Resource| std::ptr::eq(r, resource);
@@ -453,6 +466,54 @@ impl Recorder<'_> {
     /// tracked resources need (storage `readonly`, `writeonly` or both, from the SPIR-V), the
     /// binds, the dispatch. Panics where [`check_bindings`] would have refused `b`.
     pub fn dispatch_with(&self, b: &Bindings, groups: [u32; 3]) {
+        self.uses(&self.dispatch_uses(b));
+        self.bind(b);
+        self.dispatch(groups[0], groups[1], groups[2]);
+    }
+
+    /// A compute dispatch whose group counts the GPU wrote (`VkDispatchIndirectCommand` at
+    /// `offset` in `args`, tracked on this queue: written by an earlier dispatch), with `b`'s
+    /// barriers as [`Recorder::dispatch_with`] records them and the arguments' read in the
+    /// DRAW_INDIRECT stage.
+    pub fn dispatch_indirect(&self, b: &Bindings, args: &Buffer, offset: vk::DeviceSize) {
+        args.expect_usage(
+            vk::BufferUsageFlags::INDIRECT_BUFFER,
+            "an indirect dispatch",
+        );
+        let mut uses = self.dispatch_uses(b);
+        uses.push((args, Use::IndirectRead));
+        self.uses(&uses);
+        self.bind(b);
+        self.dispatch_indirect_raw(args, offset);
+    }
+
+    /// One draw of `VkDrawIndirectCommand` at `offset` in `args`, with the bound pipeline,
+    /// inside a rendering scope. The arguments were written on the compute queue: `order` must
+    /// be the submission's wait for them (`Order::Wait` covering DRAW_INDIRECT), as a barrier
+    /// cannot be recorded inside the scope.
+    pub fn draw_indirect(&self, args: &Buffer, offset: vk::DeviceSize, order: Order) {
+        args.expect_usage(vk::BufferUsageFlags::INDIRECT_BUFFER, "an indirect draw");
+        let stage = vk::PipelineStageFlags2::DRAW_INDIRECT;
+        let Order::Wait { by, stages } = order else {
+            panic!(
+                "indirect draw from {}: its arguments must come through a semaphore wait",
+                args.name()
+            );
+        };
+        assert!(
+            stages.contains(stage),
+            "indirect draw from {}: {by} waits at {stages:?}, not at DRAW_INDIRECT",
+            args.name()
+        );
+        self.require_wait(by, stage);
+        let access = (Access::INDIRECT_READ, None);
+        self.ctx
+            .journal_use(args.name(), access, false, None, Some(by));
+        self.draw_indirect_raw(args, offset);
+    }
+
+    /// The tracked uses the shaders of `b` make (barriers for a dispatch).
+    fn dispatch_uses<'b>(&self, b: &Bindings<'b>) -> Vec<(&'b dyn Tracked, Use)> {
         let mut uses: Vec<(&dyn Tracked, Use)> = Vec::new();
         for read in reads(b.pipeline.name(), b).unwrap_or_else(|e| panic!("{e}")) {
             match read.order {
@@ -476,9 +537,7 @@ impl Recorder<'_> {
                 Resource::Buffer(buffer) => uses.push((&**buffer, next)),
             }
         }
-        self.uses(&uses);
-        self.bind(b);
-        self.dispatch(groups[0], groups[1], groups[2]);
+        uses
     }
 
     /// The frame graph: a read of what the host wrote before the submission.

@@ -200,6 +200,9 @@ pub struct GraphicsDesc<'a> {
     /// Control points per patch (tessellation pipelines).
     pub patch_control_points: u32,
     pub polygon_mode: vk::PolygonMode,
+    /// Blend premultiplied colour over the attachment (out = src + (1 − src.a)·dst), for
+    /// translucent draws (the spray); else the draw replaces what is there.
+    pub blend_over: bool,
     /// `constants[i]` specializes `constant_id = i` in every stage (32-bit values).
     pub constants: &'a [u32],
 }
@@ -217,6 +220,7 @@ impl Default for GraphicsDesc<'_> {
             topology: vk::PrimitiveTopology::TRIANGLE_LIST,
             patch_control_points: 0,
             polygon_mode: vk::PolygonMode::FILL,
+            blend_over: false,
             constants: &[],
         }
     }
@@ -249,6 +253,24 @@ fn interface_of(
     }
     layout.check(name, &interface)?;
     Ok(interface)
+}
+
+/// A colour attachment's blending: none (the draw replaces), or premultiplied colour over it.
+fn blend_state(over: bool) -> vk::PipelineColorBlendAttachmentState {
+    let state = vk::PipelineColorBlendAttachmentState::default()
+        .color_write_mask(vk::ColorComponentFlags::RGBA);
+    if !over {
+        return state;
+    }
+    let (one, under) = (vk::BlendFactor::ONE, vk::BlendFactor::ONE_MINUS_SRC_ALPHA);
+    state
+        .blend_enable(true)
+        .src_color_blend_factor(one)
+        .dst_color_blend_factor(under)
+        .color_blend_op(vk::BlendOp::ADD)
+        .src_alpha_blend_factor(one)
+        .dst_alpha_blend_factor(under)
+        .alpha_blend_op(vk::BlendOp::ADD)
 }
 
 impl Pipeline {
@@ -299,14 +321,7 @@ impl Pipeline {
             .depth_test_enable(desc.depth_compare.is_some())
             .depth_write_enable(desc.depth_write)
             .depth_compare_op(desc.depth_compare.unwrap_or(vk::CompareOp::ALWAYS));
-        let blend_attachments: Vec<_> = desc
-            .colour_formats
-            .iter()
-            .map(|_| {
-                vk::PipelineColorBlendAttachmentState::default()
-                    .color_write_mask(vk::ColorComponentFlags::RGBA)
-            })
-            .collect();
+        let blend_attachments = vec![blend_state(desc.blend_over); desc.colour_formats.len()];
         let blend =
             vk::PipelineColorBlendStateCreateInfo::default().attachments(&blend_attachments);
         let dynamic_states = [vk::DynamicState::VIEWPORT, vk::DynamicState::SCISSOR];

@@ -81,6 +81,12 @@ impl Access {
         stage: vk::PipelineStageFlags2::INDEX_INPUT,
         access: vk::AccessFlags2::INDEX_READ,
     };
+    /// The arguments of an indirect dispatch or draw (`vkCmdDispatchIndirect`,
+    /// `vkCmdDrawIndirect`): read in the DRAW_INDIRECT stage.
+    pub const INDIRECT_READ: Access = Access {
+        stage: vk::PipelineStageFlags2::DRAW_INDIRECT,
+        access: vk::AccessFlags2::INDIRECT_COMMAND_READ,
+    };
     pub const HOST_READ: Access = Access {
         stage: vk::PipelineStageFlags2::HOST,
         access: vk::AccessFlags2::HOST_READ,
@@ -150,6 +156,8 @@ pub enum Use {
     HostRead,
     /// Read as indices by indexed draws (buffers).
     IndexRead,
+    /// Read as the arguments of an indirect dispatch or draw (buffers).
+    IndirectRead,
     /// Handed to the presentation engine (the submission's semaphore signal orders it).
     Present,
 }
@@ -223,6 +231,7 @@ impl Use {
             Use::TransferDst => (L::TRANSFER_DST_OPTIMAL, Access::TRANSFER_WRITE, true, true),
             Use::HostRead => (L::UNDEFINED, Access::HOST_READ, false, false),
             Use::IndexRead => (L::UNDEFINED, Access::INDEX_READ, false, false),
+            Use::IndirectRead => (L::UNDEFINED, Access::INDIRECT_READ, false, false),
             Use::Present => (L::PRESENT_SRC_KHR, Access::NONE, false, false),
         };
         UseInfo {
