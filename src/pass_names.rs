@@ -31,23 +31,29 @@ pub const OCEAN_FFT: &str = "ocean fft";
 pub const OCEAN_ASSEMBLE: &str = "ocean assemble";
 /// FFT model: the foam near the camera (whitecaps, drift, residual foam, windrows).
 pub const OCEAN_FOAM: &str = "ocean foam";
+/// FFT model with `--spray on`: the spray's particles moved, landed and born (after the foam).
+pub const OCEAN_SPRAY: &str = "ocean spray";
+/// The spray's particles drawn over the scene (after the sky).
+pub const SPRAY: &str = "spray";
 /// Gerstner model: the wave sum written into the displacement and normal images.
 pub const OCEAN_GERSTNER: &str = "ocean gerstner";
 /// The first frame's foam warm-up steps (a debug label only, never timed).
 pub const OCEAN_WARMUP: &str = "ocean foam warm-up";
 
-/// The passes of an FFT frame with the final view and the default `--aa fxaa` (after the first
-/// frames, which also render the sky cube), in the order `--profile` reports them, at
-/// `--quality low`; at medium and high `OCEAN_FOAM` follows `OCEAN_ASSEMBLE`.
-pub const FFT_FRAME: [&str; 10] = [
+/// The passes of an FFT frame with the final view, the default `--aa fxaa` and `--spray on`
+/// (after the first frames, which also render the sky cube), in the order `--profile` reports
+/// them, at `--quality low`; at medium and high `OCEAN_FOAM` follows `OCEAN_ASSEMBLE`.
+pub const FFT_FRAME: [&str; 12] = [
     OCEAN_EVOLVE,
     OCEAN_FFT,
     OCEAN_ASSEMBLE,
+    OCEAN_SPRAY,
     REFLECTION,
     REFRACTION,
     SCENE,
     WATER,
     SKY,
+    SPRAY,
     ANTI_ALIASING,
     OUTPUT,
 ];

@@ -132,6 +132,13 @@ shared_constants! {
     /// significant wave height (m) up, weaker below. Choices, not measurements.
     FOAM_CONTACT_M: f32 = 1.5;
     FOAM_CONTACT_HS_M: f32 = 1.0;
+    /// The spray (src/ocean/spray.rs, shaders/ocean/spray.comp, shaders/spray/): most
+    /// particles alive in a slot, invocations per workgroup of the kernels over particles, the
+    /// emission grid's side in candidate points, and the longest a particle flies (s).
+    SPRAY_CAPACITY: u32 = 16384;
+    SPRAY_GROUP: u32 = 64;
+    SPRAY_EMIT_GRID: u32 = 128;
+    SPRAY_MAX_AGE_S: f32 = 6.0;
     /// `--view` values the shaders react to (`ViewMode` in src/render/mod.rs).
     VIEW_FINAL: u32 = 0;
     VIEW_REFLECTION: u32 = 1;

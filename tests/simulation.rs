@@ -41,6 +41,7 @@ fn gpu_fields_match_the_cpu_reference() {
             choppiness,
             seed: 42,
             waves: vkocean::ocean::Waves::Fft,
+            spray: true,
         };
         let mut sim = Simulation::new(&ctx, &settings).unwrap();
         sim.submit(0, 1, None, t, &FoamScene::default(), None)

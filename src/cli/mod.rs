@@ -35,6 +35,13 @@ use crate::render::{
 };
 use glam::Vec3;
 
+/// A feature turned on or off (`--spray`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum Switch {
+    On,
+    Off,
+}
+
 /// Largest accepted `--size` side; the device limit is checked again at run time.
 pub const MAX_SIDE: u32 = 16384;
 /// `--size` when not given.
@@ -188,6 +195,12 @@ pub struct Cli {
     #[arg(long, global = true, value_name = "X", allow_hyphen_values = true,
           value_parser = |s: &str| parse_in(s, 0.0, 10.0), help_heading = "Ocean")]
     pub choppiness: Option<f64>,
+
+    /// Spray: puffs of spume torn off breaking crests from Beaufort 6 (10.8 m/s) up, drawn over
+    /// the scene (FFT waves only; their count is in --stats).
+    #[arg(long, global = true, value_enum, value_name = "ON|OFF", default_value_t = Switch::On,
+          help_heading = "Ocean")]
+    pub spray: Switch,
 
     /// Number of cascades, 1 to 4 (disjoint wave-number bands, non-commensurate patches). [default: 3 at every quality level]
     #[arg(long, global = true, value_name = "K", allow_hyphen_values = true,
@@ -616,6 +629,7 @@ impl Cli {
                 choppiness: self.choppiness.unwrap_or(sea.choppiness),
                 seed: self.seed,
                 waves,
+                spray: self.spray == Switch::On,
             },
         })
     }

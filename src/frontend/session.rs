@@ -255,6 +255,7 @@ impl Session {
         // Graphics sampled the images: wait for it before the readback changes their layout.
         self.frames.wait_for(value)?;
         let (displacement, normals) = self.simulation.read_back(&self.ctx, slot)?;
+        let spray = self.simulation.spray_counts(&self.ctx, slot)?;
         let patches: Vec<f64> = self.simulation.cascades.iter().map(|c| c.patch_m).collect();
         let index = self.frames.submitted() - 1;
         crate::outln!(
@@ -264,7 +265,8 @@ impl Session {
                 t,
                 (&displacement, &normals),
                 self.simulation.settings.fft_size,
-                &patches
+                &patches,
+                spray
             )
         );
         Ok(())
@@ -373,6 +375,7 @@ fn ocean_bindings(simulation: &Simulation) -> OceanBindings {
         displacement: simulation.displacement.clone(),
         normals: simulation.normals.clone(),
         foam: simulation.foam.clone(),
+        spray: simulation.spray().cloned(),
         wait_stages: simulation.wait_stages,
         patch_m: simulation.patch_sizes(),
         cascades: simulation.cascades.len() as u32,

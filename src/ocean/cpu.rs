@@ -306,6 +306,7 @@ mod tests {
             choppiness: 1.0,
             seed,
             waves: crate::ocean::Waves::Fft,
+            spray: false,
         }
     }
 

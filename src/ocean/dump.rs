@@ -1,6 +1,7 @@
 //! `--dump DIR`: a frame's simulation as files for outside tools (numpy, tools/plot):
 //! h0.npy (complex64, K×N×N; FFT model only), displacement.npy and normals.npy (float32,
-//! K×N×N×4) and params.json, which says what they hold and how they were made.
+//! K×N×N×4), spray.npy (float32, P×12, the spray's live particles; with spray) and
+//! params.json, which says what they hold and how they were made.
 
 use std::sync::Arc;
 
@@ -35,6 +36,10 @@ pub fn files(
         "normals.npy",
         npy("<f4", &[k, n, n, 4], bytemuck::cast_slice(&normals)),
     ));
+    if let Some(particles) = sim.spray_particles(ctx, slot)? {
+        let bytes: &[u8] = bytemuck::cast_slice(&particles);
+        files.push(("spray.npy", npy("<f4", &[particles.len() / 12, 12], bytes)));
+    }
     let params = params(sim, t);
     files.push((
         "params.json",
@@ -78,6 +83,13 @@ pub fn params(sim: &Simulation, t: f64) -> Value {
             "hs_m": sim.sea_moments.hs_m,
             "mean_omega_rad_s": sim.sea_moments.mean_omega,
             "breaker_index": crate::shared::BREAKER_INDEX,
+        },
+        // spray.npy's rows (with spray): one puff of drops each (src/ocean/spray.rs).
+        "spray": {
+            "on": sim.spray().is_some(),
+            "columns": ["x_m", "y_m", "z_m", "age_s", "vx_m_s", "vy_m_s", "vz_m_s", "drop_radius_m", "water_below_m", "unused", "unused", "unused"],
+            "min_wind_m_s": super::spray::MIN_WIND_M_S,
+            "roughness_m": super::spray::roughness_m(s.sea.wind_speed_m_s),
         },
         // The sea surface's mean-square slope (Cox & Munk 1954 at the wind) and what each
         // cascade's waves carry of it (Σ k²E); the sun's glitter takes the rest (water.frag).

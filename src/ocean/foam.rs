@@ -123,8 +123,8 @@ pub const LEVEL_RATIO: f64 = 4.0;
 /// long fetch; the AMS Glossary gives 2.5–3 %. 3 %.
 pub const DRIFT_SHARE: f64 = 0.03;
 /// Air and sea water densities (kg/m³) for the friction velocity in the water.
-const AIR_DENSITY: f64 = 1.22;
-const WATER_DENSITY: f64 = 1025.0;
+pub const AIR_DENSITY: f64 = 1.22;
+pub const WATER_DENSITY: f64 = 1025.0;
 /// Langmuir circulation's characteristic velocity over the friction velocity in the water
 /// u*_w: about 8 (AMS Glossary, after Leibovich 1983, Annu. Rev. Fluid Mech. 15): the
 /// windrows' greatest lateral flow toward their lines.

@@ -15,6 +15,7 @@ pub mod params;
 pub mod shore;
 pub mod simulation;
 pub mod spectrum;
+pub mod spray;
 pub mod stats;
 pub mod surface;
 

@@ -29,6 +29,8 @@ pub struct OceanSettings {
     pub seed: u64,
     /// FFT cascades or Gerstner waves.
     pub waves: Waves,
+    /// Spray from breaking crests (`--spray`; FFT waves only: Gerstner waves have no wind).
+    pub spray: bool,
 }
 
 impl Default for OceanSettings {
@@ -42,6 +44,7 @@ impl Default for OceanSettings {
             choppiness: 1.0,
             seed: 1,
             waves: Waves::Fft,
+            spray: true,
         }
     }
 }

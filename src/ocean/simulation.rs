@@ -20,10 +20,12 @@ mod fft_model;
 mod foam_sim;
 mod gerstner_model;
 mod readback;
+mod spray_sim;
 
 use fft_model::FftModel;
 pub use foam_sim::FOAM_FORMAT;
 use gerstner_model::GerstnerModel;
+pub use spray_sim::{SprayBuffers, COUNTS_BYTES, DRAW_ARGS_OFFSET, LIVE_INDEX, PARTICLE_BYTES};
 
 use super::foam::{self, FoamLevels, FoamScene};
 use super::gerstner::Wave;
@@ -79,15 +81,17 @@ pub const MAX_CASCADES: usize = 4;
 /// (`OCEAN_MANUAL_FILTER` in shaders/common/water.glsl).
 pub const IMAGE_FORMAT: vk::Format = vk::Format::R32G32B32A32_SFLOAT;
 
-/// The stages at which graphics waits for the compute timeline before sampling the
-/// simulation images: every stage a water shader samples them in (vertex: the clipmap water and
-/// the floating objects; tessellation evaluation: the tessellated water, named only where the
-/// device has tessellation shaders, as a stage mask may name only enabled stages; fragment).
+/// The stages at which graphics waits for the compute timeline before reading what the
+/// simulation wrote: every stage a water shader samples the images in (vertex: the clipmap
+/// water, the floating objects and the spray's particles; tessellation evaluation: the
+/// tessellated water, named only where the device has tessellation shaders, as a stage mask
+/// may name only enabled stages; fragment), and the spray's indirect draw (DRAW_INDIRECT).
 /// The renderer checks each pipeline that reads them against it (`Order::Wait`,
 /// `gpu::check_bindings`).
 pub fn graphics_wait_stages(device: &DeviceInfo) -> vk::PipelineStageFlags2 {
-    let mut stages =
-        vk::PipelineStageFlags2::VERTEX_SHADER | vk::PipelineStageFlags2::FRAGMENT_SHADER;
+    let mut stages = vk::PipelineStageFlags2::DRAW_INDIRECT
+        | vk::PipelineStageFlags2::VERTEX_SHADER
+        | vk::PipelineStageFlags2::FRAGMENT_SHADER;
     if device.tessellation_shader {
         stages |= vk::PipelineStageFlags2::TESSELLATION_EVALUATION_SHADER;
     }
@@ -214,6 +218,11 @@ pub(super) struct ModelFrame {
     pub previous_foam: FoamLevels,
     /// The scene the foam meets (surf, objects).
     pub scene: FoamScene,
+    /// The camera's world xz (m): the spray's emission grid lies around it.
+    pub camera_xz: [f64; 2],
+    /// The step moves the spray: every frame, and the warm-up's short steps (the spray lives
+    /// seconds; the long steps would throw it metres at a time).
+    pub spray: bool,
 }
 
 /// The compute-queue profiler and the frame it times, when timing.
@@ -232,6 +241,10 @@ trait WaveModel {
     }
     /// The waves (Gerstner only).
     fn gerstner_waves(&self) -> Option<&[Wave]> {
+        None
+    }
+    /// The spray's buffers (FFT only, with `--spray on`).
+    fn spray(&self) -> Option<&SprayBuffers> {
         None
     }
 }
@@ -269,6 +282,8 @@ pub struct Simulation {
     after_warmup: bool,
     /// Simulation time of the previous submission (s; f64: a long run keeps its frame steps).
     last_time_s: Option<f64>,
+    /// The camera's world xz at the last `place_window` (m).
+    camera_xz: [f64; 2],
     /// Bound on how far the surface moves from its rest position (m): culling margin.
     pub max_displacement_m: f64,
     /// The rendered sea's significant height and mean frequency (the shore's shoaling and
@@ -390,6 +405,7 @@ impl Simulation {
             initialized: false,
             after_warmup: false,
             last_time_s: None,
+            camera_xz: [0.0; 2],
         })
     }
 
@@ -404,6 +420,7 @@ impl Simulation {
     /// a fixed world lattice (no swimming) and the camera sits at its centre. Called before the
     /// frame's uniforms are written, which carry the origin.
     pub fn place_window(&mut self, camera_xz: [f64; 2]) {
+        self.camera_xz = camera_xz;
         self.foam_levels = self.foam_levels.around(camera_xz);
         if self.is_window() {
             let window = self.settings.patch_size_m;
@@ -449,6 +466,8 @@ impl Simulation {
             foam: self.foam_levels,
             previous_foam,
             scene: *scene,
+            camera_xz: self.camera_xz,
+            spray: true,
             foam_threshold: self.foam_threshold,
             window_shift,
             slot,
@@ -549,6 +568,7 @@ impl Simulation {
                 slot: (frame.slot + total - k) % FRAMES_IN_FLIGHT,
                 time_s: frame.time_s - before_s,
                 dt_s: dt_s as f32,
+                spray: dt_s <= foam::WARMUP_STEP_S as f64,
                 ..*frame
             })
             .collect()
@@ -562,5 +582,11 @@ impl Simulation {
     /// The Gerstner waves (Gerstner mode).
     pub fn gerstner_waves(&self) -> Option<&[Wave]> {
         self.model.gerstner_waves()
+    }
+
+    /// The spray's particle and count buffers, when the run has spray (FFT waves, `--spray
+    /// on`).
+    pub fn spray(&self) -> Option<&SprayBuffers> {
+        self.model.spray()
     }
 }

@@ -34,13 +34,15 @@ pub fn whitecap_fraction(normals: &Texels, n: usize) -> f64 {
 
 /// One `--stats` line: height statistics per cascade, and for the surface (all cascades summed)
 /// sampled on the largest cascade's grid, each cascade read at x mod L_c by bilinear
-/// interpolation, with the surface's whitecap fraction.
+/// interpolation, with the surface's whitecap fraction; and the spray's counts when the run has
+/// spray (`spray`: live particles, puffs born and landed in the frame).
 pub fn stats_line(
     frame: u64,
     t: f64,
     (displacement, normals): (&Texels, &Texels),
     n: usize,
     patch_m: &[f64],
+    spray: Option<[u32; 3]>,
 ) -> String {
     let plane = n * n;
     let cascades: Vec<Value> = (0..patch_m.len())
@@ -68,7 +70,11 @@ pub fn stats_line(
         (0..patch_m.len()).map(|c| height(c, x, z)).sum()
     }));
     surface["whitecap_fraction"] = json!(whitecap_fraction(normals, n));
-    json!({"frame": frame, "t": t, "cascades": cascades, "surface": surface}).to_string()
+    let mut line = json!({"frame": frame, "t": t, "cascades": cascades, "surface": surface});
+    if let Some([particles, born, landed]) = spray {
+        line["spray"] = json!({"particles": particles, "born": born, "landed": landed});
+    }
+    line.to_string()
 }
 
 /// A little-endian `.npy` (format 1.0) file: `descr` e.g. "<f4" or "<c8", row-major `shape`.

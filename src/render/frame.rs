@@ -12,12 +12,15 @@
 //!  compute     waits for the graphics timeline at f − 1 (frame f − 2 last sampled slot f % 2),
 //!              signals the compute timeline with the frame's value
 //!    evolve, fft, assemble (or the Gerstner kernel)      writes the slot's simulation images
+//!    foam, spray (FFT; foam at medium and high)          writes the slot's foam, particles
 //!  graphics 2  waits for the compute timeline at the frame's value (vertex, tessellation
 //!              evaluation and fragment stages), signals the frame timeline (and the
 //!              swapchain's `ready` semaphore); a window's image waits for `acquired`
 //!    water       tessellated patches; samples reflection, refraction (colour and depth) and,
 //!                through the compute wait, the simulation images   writes main colour + depth
 //!    sky         where nothing else was drawn                        writes main colour
+//!    spray       --spray on, final view: the spray's puffs, an indirect draw of what the
+//!                compute queue counted (blended; depth tested)      writes main colour
 //!    textures    --view reflection|refraction|dudv: that texture     writes main colour
 //!    anti-aliasing  --aa fxaa, final view: FXAA; samples main colour
 //!                writes anti-aliased colour (and its edge mask into main depth)
@@ -36,7 +39,7 @@ use super::passes::TexturesViewPass;
 use super::renderer::{OutputTarget, Renderer};
 use super::targets::ColourDepth;
 use super::uniforms::ViewIndex;
-use super::FrameInputs;
+use super::{FrameInputs, ViewMode};
 use crate::gpu::egui::EguiPainter;
 use crate::gpu::selftest::SyncHazard;
 use crate::gpu::{
@@ -243,6 +246,19 @@ pub fn record_frame(
         profiler.pass(&rec, names::SKY, || {
             scope.record(|| r.sky.record(&rec, &set, ViewIndex::Main))
         });
+        // The spray over everything drawn (the final view only).
+        if let Some(spray) = r
+            .spray
+            .as_ref()
+            .filter(|_| r.settings.view == ViewMode::Final)
+        {
+            let sets = spray.sets(set[0], frame.slot);
+            let draw = spray.draw(&sets);
+            let scope = rec.rendering(names::SPRAY, &main, Some(keep(&t.main.depth)), &[draw]);
+            profiler.pass(&rec, names::SPRAY, || {
+                scope.record(|| spray.record(&rec, &sets, frame.slot))
+            });
+        }
         if TexturesViewPass::shows(r.settings.view) {
             let over = [Target::new(&t.main.colour, Load::DontCare)];
             let draw = r.textures_view.draw(&texture_sets);

@@ -12,7 +12,9 @@ use super::atmosphere::Sky;
 use super::camera::Camera;
 use super::passes::output::OutputPass;
 use super::passes::water::{TileView, WaterKind, WaterSamplers};
-use super::passes::{AntiAliasingPass, SkyCube, SkyPass, TerrainPass, TexturesViewPass, WaterPass};
+use super::passes::{
+    AntiAliasingPass, SkyCube, SkyPass, SprayPass, TerrainPass, TexturesViewPass, WaterPass,
+};
 use super::scene::{dudv_size, generate_dudv, load_dudv, DUDV_SIDE};
 use super::targets::Targets;
 use super::targets::{DEPTH_FORMAT, HDR_FORMAT};
@@ -151,6 +153,8 @@ pub struct Renderer {
     pub(super) terrain: TerrainPass,
     /// The ocean (tessellated or clipmap) and its textures set.
     pub(super) water: WaterPass,
+    /// The spray's puffs over the main view (`--spray on`, FFT waves).
+    pub(super) spray: Option<SprayPass>,
     /// `--view reflection|refraction|dudv`.
     pub(super) textures_view: TexturesViewPass,
     /// `--aa fxaa` with the final view (`SceneSettings::anti_aliased`).
@@ -326,6 +330,23 @@ impl Renderer {
                 manual_filter: !ocean_linear,
             },
         )?;
+        let spray = ocean
+            .spray
+            .as_ref()
+            .map(|buffers| {
+                let order = Order::Wait {
+                    by: "compute timeline",
+                    stages: ocean.wait_stages,
+                };
+                SprayPass::new(
+                    ctx,
+                    &frame_set_layout,
+                    targets.display_format(),
+                    buffers,
+                    order,
+                )
+            })
+            .transpose()?;
         let textures_view = TexturesViewPass::new(
             ctx,
             &frame_set_layout,
@@ -358,6 +379,7 @@ impl Renderer {
             sky,
             terrain,
             water,
+            spray,
             textures_view,
             anti_aliasing,
             scale_filter: if ctx.filters_linearly(output_format) {
@@ -390,6 +412,10 @@ impl Renderer {
             })
             .collect();
         check_bindings(names::WATER, &draws)?;
+        if let Some(spray) = &self.spray {
+            let sets = spray.sets(frame[0], 0);
+            check_bindings(names::SPRAY, &[spray.draw(&sets)])?;
+        }
         let textures = [frame[0], &self.water.textures().set];
         check_bindings(names::TEXTURES_VIEW, &[self.textures_view.draw(&textures)])?;
         if let Some(pass) = &self.anti_aliasing {

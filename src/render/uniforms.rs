@@ -49,6 +49,8 @@ pub struct OceanBindings {
     pub normals: Vec<crate::gpu::Image>,
     /// Per frame slot: the foam near the camera (`Simulation::foam`), one layer per level.
     pub foam: Vec<crate::gpu::Image>,
+    /// The spray's particles and draw arguments (`Simulation::spray`), when the run has spray.
+    pub spray: Option<crate::ocean::simulation::SprayBuffers>,
     /// The stages at which a graphics submission waits for the compute timeline before
     /// sampling them (`simulation::graphics_wait_stages`): the frame set's `Order::Wait`.
     pub wait_stages: ash::vk::PipelineStageFlags2,

@@ -7,6 +7,7 @@ use std::sync::Arc;
 use ash::vk;
 
 use super::foam_sim::{FoamSim, Wind};
+use super::spray_sim::{SprayBuffers, SpraySim};
 use super::{scope, Kernel, ModelFrame, SlotImages, Timer, WaveModel};
 use crate::gpu::oneshot::upload_on;
 use crate::gpu::{
@@ -58,6 +59,8 @@ pub(super) struct FftModel {
     assemble_sets: Vec<BoundSet>,
     /// The foam near the camera, after assemble from the same FFT output.
     foam: FoamSim,
+    /// The spray, after the foam (`--spray on`).
+    spray: Option<SpraySim>,
 }
 
 impl FftModel {
@@ -109,9 +112,14 @@ impl FftModel {
             dir: wind_vector(&settings.sea),
             u10: settings.sea.wind_speed_m_s,
         };
+        let spray = settings
+            .spray
+            .then(|| SpraySim::new(ctx, &fft.data, foam, wind))
+            .transpose()?;
         let foam = FoamSim::new(ctx, &fft.data, foam, wind)?;
         let model = FftModel {
             foam,
+            spray,
             h0: h0_buffer,
             _omega_steps: steps_buffer,
             fft,
@@ -195,6 +203,9 @@ fn upload_spectrum(
 impl WaveModel for FftModel {
     fn prepare(&mut self, f: &ModelFrame) {
         self.foam.prepare(f);
+        if let Some(spray) = &mut self.spray {
+            spray.prepare(f);
+        }
     }
 
     fn record(&self, rec: &Recorder, timer: &mut Timer, f: &ModelFrame) {
@@ -236,6 +247,13 @@ impl WaveModel for FftModel {
             rec.dispatch_with(&b, [groups, groups, f.layers]);
         });
         self.foam.record(rec, timer, f);
+        if let Some(spray) = self.spray.as_ref().filter(|_| f.spray) {
+            spray.record(rec, timer, f);
+        }
+    }
+
+    fn spray(&self) -> Option<&SprayBuffers> {
+        self.spray.as_ref().map(SpraySim::buffers)
     }
 
     fn h0(&self) -> Option<&Buffer> {

@@ -1,9 +1,9 @@
-//! Reading the simulation back to the host (`--dump`, `--stats`, tests): the images of a slot
-//! and h0, each on the compute queue that wrote or owns them (README, "Across queues").
+//! Reading the simulation back to the host (`--dump`, `--stats`, tests): the images of a slot,
+//! the spray's counts and h0, each on the compute queue that wrote or owns them (README, "Across queues").
 
 use std::sync::Arc;
 
-use super::{Simulation, Texels};
+use super::{Simulation, Texels, COUNTS_BYTES, LIVE_INDEX, PARTICLE_BYTES};
 use crate::gpu::oneshot::{download_image_layers_on, download_on};
 use crate::gpu::{Context, GpuResult, Use};
 
@@ -25,6 +25,38 @@ impl Simulation {
         let bytes = download_image_layers_on(ctx, ctx.compute, &images, Use::ComputeRead)?;
         let texels = |b: &[u8]| -> Texels { bytemuck::cast_slice(b).to_vec() };
         Ok((texels(&bytes[0]), texels(&bytes[1])))
+    }
+
+    /// The spray's counts in `slot` as the last compute submission left them: (live particles,
+    /// puffs born, puffs landed that frame); `None` without spray. Read on the compute queue
+    /// that wrote them (the caller waited for the frame that drew them).
+    pub fn spray_counts(&self, ctx: &Arc<Context>, slot: usize) -> GpuResult<Option<[u32; 3]>> {
+        let Some(spray) = self.spray() else {
+            return Ok(None);
+        };
+        let bytes = download_on(ctx, ctx.compute, &spray.counts[slot], COUNTS_BYTES as usize)?;
+        let counts: &[u32] = bytemuck::cast_slice(&bytes);
+        Ok(Some([counts[LIVE_INDEX], counts[9], counts[8]]))
+    }
+
+    /// The spray's live particles in `slot` (`None` without spray): 12 f32 each, as
+    /// spray.comp's `Particle` holds them (position, age, velocity, drop radius, the water's
+    /// height under it, 3 unused). Read on the compute queue that wrote them.
+    pub fn spray_particles(&self, ctx: &Arc<Context>, slot: usize) -> GpuResult<Option<Vec<f32>>> {
+        let Some([live, ..]) = self.spray_counts(ctx, slot)? else {
+            return Ok(None);
+        };
+        if live == 0 {
+            return Ok(Some(Vec::new()));
+        }
+        let buffer = &self.spray().expect("counts read").particles[slot];
+        let bytes = download_on(
+            ctx,
+            ctx.compute,
+            buffer,
+            (live as u64 * PARTICLE_BYTES) as usize,
+        )?;
+        Ok(Some(bytemuck::cast_slice(&bytes).to_vec()))
     }
 
     /// h0 as uploaded, read back on the compute queue that owns it (FFT mode; for dumps):

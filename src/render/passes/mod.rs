@@ -7,11 +7,13 @@
 //! target ([`SceneTarget`], shaders/common/display.glsl), so terrain and sky have a pipeline for
 //! each. `textures_view` shows a texture full screen (`--view`); `anti_aliasing` smooths the
 //! main target's edges into a target of its own (`--aa fxaa`); `output` puts the main (or the
-//! anti-aliased) target into the output image.
+//! anti-aliased) target into the output image. `spray` draws the spray's particles over the
+//! main view (a set of its own: the particles).
 
 pub mod anti_aliasing;
 pub mod output;
 pub mod sky;
+pub mod spray;
 pub mod terrain;
 pub mod textures_view;
 pub mod water;
@@ -22,6 +24,7 @@ use ash::vk;
 
 pub use anti_aliasing::AntiAliasingPass;
 pub use sky::{SkyCube, SkyPass};
+pub use spray::SprayPass;
 pub use terrain::TerrainPass;
 pub use textures_view::TexturesViewPass;
 pub use water::WaterPass;
@@ -70,6 +73,8 @@ pub enum Depth {
     /// The background (sky) at the far plane, drawn last: only where nothing was drawn, so
     /// covered pixels are never shaded.
     Background,
+    /// Translucent draws (the spray): tested against what was drawn, writing no depth.
+    Test,
     /// No depth attachment (full-screen debug views).
     None,
 }
@@ -164,6 +169,7 @@ pub fn scene_pipeline(
     let (compare, write) = match depth {
         Depth::TestWrite => (Some(vk::CompareOp::GREATER), true),
         Depth::Background => (Some(vk::CompareOp::GREATER_OR_EQUAL), false),
+        Depth::Test => (Some(vk::CompareOp::GREATER), false),
         Depth::None => (None, false),
     };
     assert!(desc.constants.len() <= DISPLAY_CONSTANT_ID);
