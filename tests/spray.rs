@@ -93,8 +93,8 @@ fn puffs_fly_with_the_wind_and_fall_at_their_drops_terminal_speed() {
         assert!((29e-6..=301e-6).contains(&radius), "radius {radius}");
         assert!(y >= below, "a puff under the water: {r:?}");
     }
-    // After a second aloft a drop has long forgotten its launch (its drag time is at most
-    // 0.12 s, for the largest): it moves with the wind at its height (the logarithmic profile,
+    // After a second aloft a drop has all but forgotten its launch (its drag time near its
+    // terminal speed is v_t/g, about 0.25 s for the largest, 300 µm: e^−4 of it is left): it moves with the wind at its height (the logarithmic profile,
     // `spray::wind_at`) and falls through it at its terminal speed (`terminal_velocity`, within
     // 3 % of Gunn & Kinzer's measurements). Measured on lavapipe (6,335 puffs): horizontal
     // median error −0.03 %, 96 % within 10 %; vertical median −1.3 %, 90 % within 10 % (the
@@ -133,8 +133,8 @@ fn puffs_fly_with_the_wind_and_fall_at_their_drops_terminal_speed() {
 #[test]
 fn spray_is_drawn_over_a_storm_and_nothing_over_a_calm_sea() {
     // Low over the storm, looking downwind: with spray, white puffs over the crests. The
-    // pictures differ (the puffs, and the foam they leave where they land), and where they
-    // differ the spray's is brighter. Measured on lavapipe: 41 % of the pixels, +39 grey.
+    // pictures differ (the puffs; `--quality low` has no foam levels, so no landing foam), and
+    // where they differ the spray's is brighter. Measured on lavapipe: 41 % of the pixels, +39 grey.
     let view = [
         "--quality",
         "low",

@@ -61,7 +61,8 @@ struct Particle {
 layout(std430, set = 0, binding = 2) readonly buffer Previous { Particle previous[]; };
 layout(std430, set = 0, binding = 3) writeonly buffer Current { Particle current[]; };
 // [0..2] the update's dispatch arguments, [3] the live count, [4..7] the draw's arguments
-// (VkDrawIndirectCommand), [8] puffs landed this frame, [9] puffs born this frame.
+// (VkDrawIndirectCommand), [8] puffs landed this frame, [9] puffs born this frame (those
+// stored: none are when the buffer is full).
 layout(std430, set = 0, binding = 4) readonly buffer PreviousCounts { uint previous_counts[16]; };
 layout(std430, set = 0, binding = 5) buffer CurrentCounts { uint counts[16]; };
 layout(set = 0, binding = 6, rgba16f) uniform image2DArray foam;
@@ -95,9 +96,10 @@ vec3 displacement_at(vec2 xz) {
     return vec3(spray.step.w * d.x, d.y, spray.step.w * d.z);
 }
 
-// The height of the drawn surface over world point xz and the rest position it comes from
-// (one fixed-point step of r = xz − D(r): a puff lands within a few centimetres of where the
-// exact surface is, far below what its size shows).
+// The height of the drawn surface over world point xz and the rest position it comes from: one
+// fixed-point step of r = xz − D(r), exact where the horizontal displacement D is uniform and
+// off by about |∇D|·|D| where it is not (most at steep crests, where a puff may land a step
+// early or late: small against a puff's size of a metre and more).
 float surface_over(vec2 xz, out vec2 rest) {
     rest = xz - displacement_at(xz).xz;
     return displacement_at(rest).y;
@@ -114,12 +116,13 @@ float breaking(vec2 xz) {
 }
 
 // Drag rate k (1/s) of a drop of radius r at relative speed `speed` (src/ocean/spray.rs
-// `drag_rate`).
+// `drag_rate`), in the form with the speed cancelled out: k = 3ρ_a·C_D·|v| / (8ρ_w·r) with
+// C_D = 24/Re·(1 + 0.15·Re^0.687) is the Stokes rate 9μ/(2ρ_w·r²) times (1 + 0.15·Re^0.687),
+// finite at any speed (no division by a vanishing Re).
 float drag_rate(float r, float speed) {
     float rho_a = spray.drops.z, mu = spray.drops.w, rho_w = spray.water.x;
-    float re = max(2.0 * r * speed * rho_a / mu, 1e-4);
-    float cd = 24.0 / re * (1.0 + 0.15 * pow(re, 0.687));
-    return 3.0 * rho_a * cd * speed / (8.0 * rho_w * r);
+    float re = 2.0 * r * speed * rho_a / mu;
+    return 9.0 * mu / (2.0 * rho_w * r * r) * (1.0 + 0.15 * pow(re, 0.687));
 }
 
 // The wind (m/s, along the wind) at height z above the water: the logarithmic profile through
@@ -129,7 +132,10 @@ float wind_at(float z) {
     return spray.wind.z * log(max(z, 10.0 * z0) / z0) / log(10.0 / z0);
 }
 
-// Residual foam where a puff falls: the finest foam level holding the rest position.
+// Residual foam where a puff falls: the finest foam level holding the rest position. Two puffs
+// landing on one texel in one dispatch race (load, add, store): one of the two additions may be
+// lost. That is harmless (a texel's foam is a look, and the sum is clamped to 1 anyway) and
+// cheaper than an atomic on a float image, which Vulkan 1.3 does not require.
 void land(vec2 rest) {
     for (uint l = 0u; l < sizes.levels; ++l) {
         vec4 level = spray.levels[l];
@@ -144,11 +150,14 @@ void land(vec2 rest) {
     }
 }
 
-void append(Particle p) {
+// Appends p to this slot's particles; false when they are full (p is dropped).
+bool append(Particle p) {
     uint at = atomicAdd(counts[3], 1u);
     if (at < SPRAY_CAPACITY) {
         current[at] = p;
+        return true;
     }
+    return false;
 }
 
 void update(uint i) {
@@ -165,7 +174,7 @@ void update(uint i) {
     vec3 air = vec3(spray.wind.x * u, 0.0, spray.wind.y * u);
     vec3 rel = v - air;
     // dv_rel/dt = g − k·v_rel with k held: v_rel(t) = v_rel·e^(−kt) + (g/k)(1 − e^(−kt)).
-    float k = max(drag_rate(r, length(rel)), 1e-3);
+    float k = drag_rate(r, length(rel));
     float e = exp(-k * dt);
     vec3 gk = vec3(0.0, -spray.water.y, 0.0) / k;
     x += air * dt + rel * (1.0 - e) / k + gk * (dt - (1.0 - e) / k);
@@ -207,8 +216,10 @@ void emit(uint id) {
                       + across * (random(state) - 0.5);
     float up = mix(spray.launch.y, spray.launch.z, random(state));
     float r = exp(mix(log(spray.drops.x), log(spray.drops.y), random(state)));
-    atomicAdd(counts[9], 1u);
-    append(Particle(vec4(x, 0.0), vec4(side_speed.x, up, side_speed.y, r), vec4(d.y, 0.0, 0.0, 0.0)));
+    if (append(Particle(vec4(x, 0.0), vec4(side_speed.x, up, side_speed.y, r),
+                        vec4(d.y, 0.0, 0.0, 0.0)))) {
+        atomicAdd(counts[9], 1u);
+    }
 }
 
 void main() {

@@ -32,6 +32,8 @@ pub(super) struct BufferCore {
     pub(super) size: vk::DeviceSize,
     usage: vk::BufferUsageFlags,
     name: String,
+    /// Created for both queues (`Buffer::shared`): CONCURRENT where the families differ.
+    both_queues: bool,
     /// What the last recorded use left (`track`).
     pub(super) state: StateCell,
 }
@@ -124,6 +126,7 @@ impl Buffer {
             size,
             usage,
             name: name.to_string(),
+            both_queues: users == QueueUsers::Both,
             state: StateCell::new(State::NEW),
         };
         bound.map_err(|result| GpuError::Bind {
@@ -173,6 +176,13 @@ impl Buffer {
         self.core.expect_usage(usage, what);
     }
 
+    /// Panics unless the buffer was made for both queues (`Buffer::shared`): a read on the
+    /// graphics queue of what the compute queue wrote needs CONCURRENT sharing where the
+    /// families differ (vkocean transfers no buffer's ownership).
+    pub(super) fn expect_both_queues(&self, what: &str) {
+        self.core.expect_both_queues(what);
+    }
+
     /// The handle descriptor sets keep alive.
     pub(super) fn core(&self) -> &Rc<BufferCore> {
         &self.core
@@ -215,6 +225,16 @@ impl BufferCore {
         assert!(
             self.usage.contains(usage),
             "buffer {} lacks {usage:?} usage, which {what} needs",
+            self.name
+        );
+    }
+
+    /// See [`Buffer::expect_both_queues`].
+    pub(super) fn expect_both_queues(&self, what: &str) {
+        assert!(
+            self.both_queues,
+            "buffer {}: {what} reads it on the graphics queue after the compute queue wrote it, \
+             so it must be made with Buffer::shared",
             self.name
         );
     }

@@ -388,6 +388,7 @@ impl Recorder<'_> {
                     // A storage buffer written on the compute queue (the spray's particles),
                     // read through the wait like the images.
                     (Order::Wait { by, .. }, Resource::Buffer(buffer)) => {
+                        buffer.expect_both_queues("a draw");
                         let access = Access {
                             stage: stages,
                             access: vk::AccessFlags2::SHADER_STORAGE_READ,
@@ -505,6 +506,7 @@ impl Recorder<'_> {
             "indirect draw from {}: {by} waits at {stages:?}, not at DRAW_INDIRECT",
             args.name()
         );
+        args.expect_both_queues("an indirect draw");
         self.require_wait(by, stage);
         let access = (Access::INDIRECT_READ, None);
         self.ctx

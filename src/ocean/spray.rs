@@ -3,7 +3,7 @@
 //! src/render/passes/spray.rs). Each particle is a puff of drops of one radius, flying
 //! ballistically through the wind with drag until it falls back into the sea, where it leaves
 //! foam. The constants and the drag law are here, with their sources; the kernel computes the
-//! same `drop_acceleration` per particle.
+//! same `drag_rate` and `wind_at` per particle.
 
 use super::foam::{drag_coefficient, AIR_DENSITY, WATER_DENSITY};
 
@@ -69,12 +69,11 @@ pub fn sphere_drag(re: f64) -> f64 {
 /// The drag deceleration rate k (1/s) of a drop of radius `r` (m) and density `rho_w` moving
 /// at `speed` (m/s) through `air`: dv/dt = g − k·v_rel, k = 3ρ_a·C_D·|v_rel| / (8ρ_w·r) (drag
 /// ½ρ_a·C_D·πr²·|v|v over the mass 4/3·πr³·ρ_w). In the Stokes limit k = 9μ/(2ρ_w·r²).
+/// Computed as that Stokes rate times Schiller & Naumann's correction (1 + 0.15·Re^0.687), the
+/// same product with the speed cancelled out, finite at any speed (as the kernel computes it).
 pub fn drag_rate(r: f64, rho_w: f64, speed: f64, air: Air) -> f64 {
     let re = 2.0 * r * speed * air.density / air.viscosity;
-    if re < 1e-6 {
-        return 9.0 * air.viscosity / (2.0 * rho_w * r * r);
-    }
-    3.0 * air.density * sphere_drag(re) * speed / (8.0 * rho_w * r)
+    9.0 * air.viscosity / (2.0 * rho_w * r * r) * (1.0 + 0.15 * re.powf(0.687))
 }
 
 /// The fall speed (m/s) at which drag balances gravity, for a drop of radius `r` (m) and
@@ -88,11 +87,21 @@ pub fn terminal_velocity(r: f64, rho_w: f64, air: Air) -> f64 {
 }
 
 /// The sea's roughness length z0 (m) at wind `u10`: Charnock's law with the friction velocity
-/// u* = √C_D·U10 of Large & Pond's drag (`foam::drag_coefficient`).
+/// u* = √C_D·U10 of Large & Pond's drag (`foam::drag_coefficient`), at least
+/// `MIN_ROUGHNESS_M` (so that a calm keeps the profile finite).
 pub fn roughness_m(u10: f64) -> f64 {
     let u_star = drag_coefficient(u10).sqrt() * u10;
-    CHARNOCK * u_star * u_star / GRAVITY
+    (CHARNOCK * u_star * u_star / GRAVITY).max(MIN_ROUGHNESS_M)
 }
+
+/// The least roughness length (m): about a smooth surface's 0.11·ν/u* at u* = 0.1 m/s (ν of
+/// air 1.5·10⁻⁵ m²/s); Charnock's z0 passes it at a U10 of about 3.5 m/s, far below where
+/// spray starts.
+pub const MIN_ROUGHNESS_M: f64 = 1.6e-5;
+
+/// The longest step the spray integrates at once (s): a stalled frame (a window dragged, a
+/// debugger) moves the puffs by this much, not by the whole pause.
+pub const MAX_STEP_S: f32 = 0.1;
 
 /// The wind (m/s) at height `z_m` above the water: the logarithmic profile u(z) =
 /// (u*/κ)·ln(z/z0), scaled so that u(10 m) = U10 (it then holds for the drag the profile
@@ -167,6 +176,20 @@ mod tests {
                 "{u10} m/s: profile C_D {profile:.2e} against {large_pond:.2e}"
             );
         }
+    }
+
+    /// A calm keeps the wind profile finite (zero everywhere), and the floor on z0 leaves
+    /// Charnock's value alone where spray flies (U10 from 10.8 m/s).
+    #[test]
+    fn the_profile_is_finite_in_a_calm() {
+        assert_eq!(wind_at(0.0, 1.0), 0.0);
+        assert!(wind_at(0.5, 0.01).is_finite());
+        let u_star = drag_coefficient(MIN_WIND_M_S).sqrt() * MIN_WIND_M_S;
+        assert!(roughness_m(MIN_WIND_M_S) > 5.0 * MIN_ROUGHNESS_M);
+        assert_eq!(
+            roughness_m(MIN_WIND_M_S),
+            CHARNOCK * u_star * u_star / GRAVITY
+        );
     }
 
     #[test]

@@ -298,13 +298,14 @@ impl SpraySim {
         self.steps.set(step.wrapping_add(1));
         let h = spray::EMIT_SPACING_M;
         let chance = spray::EMIT_PER_M2_S * spray::intensity(self.wind.u10) * h * h;
+        let dt_s = f.dt_s.min(spray::MAX_STEP_S);
         let counts = Counts {
             n: f.n,
             cascades: f.layers,
             levels: f.foam.count as u32,
             step,
-            dt_s: f.dt_s,
-            chance: (chance * f.dt_s as f64) as f32,
+            dt_s,
+            chance: (chance * dt_s as f64) as f32,
         };
         let run = |mode: Mode, slot: usize, groups: u32| {
             let pipeline = &self.pipelines[mode as usize];
