@@ -4,8 +4,9 @@
 # sweep_runs FN: calls `FN ARGS...` once per run, ARGS being vkocean's arguments for it (FN adds
 # --validation and whatever else it checks): every --view, both --waves models, each water
 # --geometry of SWEEP_GEOMETRIES (default: both; tools/swiftshader: clipmap, the device has no
-# tessellation) and every --quality headless at 160x90 for 3 frames, and bench fft at sizes 64
-# and 128.
+# tessellation) and every --quality headless at 160x90 for 3 frames, the storm at medium (the
+# spray flies, lands and adds to the foam levels: about 9,000 puffs, 100 landing a frame), and
+# bench fft at sizes 64 and 128.
 sweep_runs() {
     local fn=$1 view waves geometry quality
     local small=(--headless --size 160x90 --frames 3)
@@ -21,5 +22,6 @@ sweep_runs() {
     for quality in low medium high; do
         "$fn" "${small[@]}" --quality "$quality"
     done
+    "$fn" "${small[@]}" --preset storm --quality medium
     "$fn" bench fft --sizes 64,128 --runs 3
 }
