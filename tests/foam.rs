@@ -374,53 +374,115 @@ fn half_width(ac: &[f64]) -> f64 {
         .unwrap_or(ac.len() as f64)
 }
 
-#[test]
-fn storm_foam_lies_in_streaks_along_the_wind() {
-    // Beaufort 7 and above: foam "blown in streaks along the direction of the wind". The
-    // storm seen from 60 m straight down, the wind along the picture's x, at four moments 5 s
-    // apart (its whitecaps come in groups: the foam, R ≥ 0.2 in --view foam, covers 9–60 % of
-    // the picture from one moment to the next): the foam is correlated further along the wind than across it, the
-    // autocorrelations summed over the four pictures. The residual foam the whitecaps leave
-    // drifts downwind and Langmuir circulation gathers it into windrows (src/ocean/foam.rs);
-    // the lattice's foam alone measured 1.0, its whitecaps being crest segments across the
-    // wind. The bound: twice. Measured on lavapipe: 10.2 px along, 3.9 across (2.63).
-    let mut along = vec![0.0; FW / 2];
-    let mut across = vec![0.0; FH / 2];
+/// Per threshold: the half-widths along and across the wind (px) and the mask's cover.
+type Widths = Vec<(f64, f64, f64)>;
+
+/// The foam of `preset` seen from 60 m straight down, the wind along the picture's x, at four
+/// moments 5 s apart (its whitecaps come in groups: one moment alone swings widely): for each
+/// threshold, the half-widths (px) of the autocorrelation of the mask R ≥ threshold (`--view
+/// foam`) along and across the wind, the autocorrelations summed over the four pictures, and
+/// the mask's mean cover. The first moment's final picture too, for what the masks look like.
+fn streaks(preset: &str, thresholds: &[f64]) -> (Widths, Vec<f64>, Vec<f64>) {
+    let mut along = vec![vec![0.0; FW / 2]; thresholds.len()];
+    let mut across = vec![vec![0.0; FH / 2]; thresholds.len()];
+    let mut cover = vec![0.0; thresholds.len()];
+    let mut first = None;
     for time in ["15", "20", "25", "30"] {
         let args = [
-            "--quality",
-            "high",
             "--preset",
-            "storm",
+            preset,
             "--time",
             time,
             "--camera=0,60,0",
             "--look-at=0,0,-1",
-            "--view",
-            "foam",
         ];
-        let view = common::shot("foam-streaks-storm", (FW as u32, FH as u32), &args, &[]);
-        let mask: Vec<bool> = view.chunks(4).map(|c| linear(c[0]) >= 0.2).collect();
-        let cover = mask.iter().filter(|&&m| m).count() as f64 / mask.len() as f64;
-        assert!(
-            cover > 0.05,
-            "storm at {time} s: foam on {cover:.2} of the picture"
-        );
-        let (x, y) = autocorrelation(&mask);
-        along.iter_mut().zip(&x).for_each(|(a, v)| *a += v);
-        across.iter_mut().zip(&y).for_each(|(a, v)| *a += v);
+        let name = format!("streaks-{preset}-{time}");
+        let (luminance, alpha) = if first.is_none() {
+            foam_pictures(&name, &args)
+        } else {
+            let mut all = vec!["--quality", "high", "--view", "foam"];
+            all.extend_from_slice(&args);
+            let view = common::shot(
+                &format!("foam-{name}-view"),
+                (FW as u32, FH as u32),
+                &all,
+                &[],
+            );
+            (
+                Vec::new(),
+                view.chunks(4).map(|c| Some(linear(c[0]))).collect(),
+            )
+        };
+        let r: Vec<f64> = alpha.iter().map(|a| a.unwrap_or(0.0)).collect();
+        if first.is_none() {
+            first = Some((luminance, r.clone()));
+        }
+        for (k, &threshold) in thresholds.iter().enumerate() {
+            let mask: Vec<bool> = r.iter().map(|&v| v >= threshold).collect();
+            cover[k] += mask.iter().filter(|&&m| m).count() as f64 / mask.len() as f64 / 4.0;
+            let (x, y) = autocorrelation(&mask);
+            along[k].iter_mut().zip(&x).for_each(|(a, v)| *a += v);
+            across[k].iter_mut().zip(&y).for_each(|(a, v)| *a += v);
+        }
     }
-    let (along, across) = (half_width(&along), half_width(&across));
+    let widths = (0..thresholds.len())
+        .map(|k| (half_width(&along[k]), half_width(&across[k]), cover[k]))
+        .collect();
+    let (luminance, r) = first.unwrap();
+    (widths, luminance, r)
+}
+
+#[test]
+fn foam_lies_in_streaks_along_the_wind() {
+    // Beaufort 7 and above: foam "blown in streaks along the direction of the wind"; below, the
+    // windrows gather the thin residual foam into lines along the wind (Langmuir 1938). The
+    // residual foam drifts downwind, the windrows' lateral flow gathers it and their downwind
+    // jet draws it out (src/ocean/foam.rs); the lattice's foam alone measured 1.0 in both seas,
+    // its whitecaps being crest segments across the wind. The bounds: the storm twice
+    // as long along the wind as across, the moderate sea 1.3 times.
+    //
+    // The foam mask is the foam one sees: R ≥ 0.02, a whitening that makes the dark water seen
+    // from above much brighter (checked below on the final picture). The storm's denser
+    // foam (R ≥ 0.2) too, as before the thin foam was drawn. Measured on lavapipe: storm
+    // R ≥ 0.02 4.29 (14.0 px along, 3.3 across, cover 0.88), R ≥ 0.2 3.98 (cover 0.33);
+    // moderate R ≥ 0.02 1.60 (6.8 px along, 4.3 across, cover 0.25; 0.92 with the residual
+    // foam's earlier 12 s life, no downwind jet and spreading across the wind only).
+    let thin = 0.02;
+    let (storm, _, _) = streaks("storm", &[thin, 0.2]);
+    let (moderate, luminance, r) = streaks("moderate", &[thin]);
+    for (what, (along, across, cover), bound) in [
+        ("storm, R ≥ 0.02", storm[0], 2.0),
+        ("storm, R ≥ 0.2", storm[1], 2.0),
+        ("moderate, R ≥ 0.02", moderate[0], 1.3),
+    ] {
+        let ratio = along / across;
+        eprintln!("{what}: {along:.2} px along the wind, {across:.2} across ({ratio:.2}), cover {cover:.3}");
+        assert!(
+            (0.05..0.95).contains(&cover),
+            "{what}: the mask covers {cover:.3} of the picture"
+        );
+        assert!(
+            along < (FW / 2 - 1) as f64,
+            "{what}: no half-width along the wind"
+        );
+        assert!(
+            ratio >= bound,
+            "{what}: {along:.2} px along, {across:.2} across"
+        );
+    }
+    // That thin foam is seen: in the moderate sea's final picture the pixels with R ≥ 0.02 (and
+    // below 0.2: no whitecap) are brighter than those with none (R < 0.005). Measured: 0.0654
+    // against 0.0369 (1.77 times).
+    let thin_px: Vec<bool> = r.iter().map(|&v| (thin..0.2).contains(&v)).collect();
+    let clear_px: Vec<bool> = r.iter().map(|&v| v < 0.005).collect();
+    let (t, nt) = mean_of(&luminance, &thin_px);
+    let (c, nc) = mean_of(&luminance, &clear_px);
+    eprintln!("moderate: thin foam {t:.4} ({nt} px), clear water {c:.4} ({nc} px)");
     assert!(
-        along < (FW / 2 - 1) as f64,
-        "storm: no half-width along the wind"
+        nt > 1000 && nc > 1000,
+        "{nt} px of thin foam, {nc} of clear water"
     );
-    let ratio = along / across;
-    eprintln!("storm: half-widths {along:.2} px along the wind, {across:.2} across ({ratio:.2})");
-    assert!(
-        ratio >= 2.0,
-        "storm: {along:.2} px along, {across:.2} across"
-    );
+    assert!(t > 1.3 * c, "thin foam {t:.4} against clear water {c:.4}");
 }
 
 #[test]

@@ -59,12 +59,14 @@ layout(push_constant) uniform Params {
     float decay_s;         // τ_A
     float residual_decay_s; // τ_S
     float residual;        // share of a whitecap's foam left behind as residual foam
-    float spread_m2_s;     // turbulent diffusivity across the wind (m²/s)
+    float spread_m2_s;     // turbulent diffusivity (m²/s)
     float choppiness;
     uint n;
     uint cascades;
     uint size;
     uint levels;
+    float jet_m_s;         // the windrows' downwind jet (m/s): their surface flow's excess
+    uint step;             // steps recorded so far (which diagonal the spreading takes)
 } params;
 
 // Level `l`'s previous foam at texel position q (texel centres at whole numbers), bilinear;
@@ -107,24 +109,31 @@ vec3 noise(vec2 p, uvec2 period) {
     return vec3(value, d);
 }
 
-// The windrows' lateral flow v_c (m/s, across the wind) at (along, across) = (s, c) and its
-// divergence ∂v_c/∂c (1/s): v_c = −V·g·sin 2πφ with φ = c/λ + 1.2·(ψ − ½), so the flow
+// The windrows' flow at (along, across) = (s, c): x the lateral flow v_c (m/s, across the
+// wind), y the downwind jet u_j (m/s, on top of the drift), z the flow's divergence
+// ∂v_c/∂c + ∂u_j/∂s (1/s). v_c = −V·g·sin 2πφ with φ = c/λ + 1.2·(ψ − ½), so the flow
 // converges on the lines φ ∈ ℤ, about λ apart. ψ (value noise in cells 4λ long and 2λ wide)
 // lets the lines wander (up to ±0.6 of a spacing) and join; φ keeps rising across the wind
 // (∂φ/∂c ≥ (1 − 0.6·1.5)/λ > 0: the noise's slope is at most 1.5 a cell), so no line folds
 // back. g = ½ + ψ (0.5–1.5) makes some lines strong and others faint along their length.
-vec2 windrow_flow(vec2 sc) {
+// u_j = J·g·cos 2πφ: the water runs faster downwind along the lines than between them, so
+// the shear draws whatever floats out along the wind as the lines gather it.
+vec3 windrow_flow(vec2 sc) {
     float l = params.windrow_m;
     vec3 psi = noise(sc / vec2(4.0 * l, 2.0 * l), uvec2(FOAM_WINDROW_PERIOD / 4u,
                                                          FOAM_WINDROW_PERIOD / 2u));
     float phi = sc.y / l + 1.2 * (psi.x - 0.5);
+    float psi_s = psi.y / (4.0 * l); // ∂ψ/∂s
     float psi_c = psi.z / (2.0 * l); // ∂ψ/∂c
     float phi_c = 1.0 / l + 1.2 * psi_c;
     float g = 0.5 + psi.x;
     float v = params.converge_m_s;
+    float j = params.jet_m_s;
     float s = sin(2.0 * PI * phi);
     float c = cos(2.0 * PI * phi);
-    return vec2(-v * g * s, -v * (psi_c * s + g * 2.0 * PI * c * phi_c));
+    float lateral_c = -v * (psi_c * s + g * 2.0 * PI * c * phi_c);
+    float jet_s = j * psi_s * (c - g * 2.0 * PI * s * 1.2);
+    return vec3(-v * g * s, j * g * c, lateral_c + jet_s);
 }
 
 void main() {
@@ -165,15 +174,19 @@ void main() {
     vec2 wind = params.wind;
     vec2 across = vec2(-wind.y, wind.x);
     vec2 sc = level.place.xy + vec2(dot(i * h, wind), dot(i * h, across));
-    vec2 flow = windrow_flow(sc);
-    vec2 u = params.drift_m_s * wind + flow.x * across;
+    vec3 flow = windrow_flow(sc);
+    vec2 u = (params.drift_m_s + flow.y) * wind + flow.x * across;
     vec2 back = i - u * params.dt_s / h; // in this level's texels
-    // Turbulent spreading across the wind (diffusivity K): the mean of the two points a random
-    // walk of variance 2K·dt reaches, which keeps the windrows a metre or so wide where the
-    // flow gathers them (width √(K/k) for a convergence rate k). At most a texel either way:
-    // two taps further apart would leave two copies rather than a blur (the warm-up's 2 s
-    // steps spread less than K asks).
-    vec2 spread = across * min(sqrt(2.0 * params.spread_m2_s * params.dt_s) / h, 1.0);
+    // Turbulent spreading (diffusivity K, the same every way): the mean of the two points a
+    // random walk reaches along one diagonal of the wind, the other diagonal the next step.
+    // Over two steps the variance is 4K·dt along both diagonals, so 2K·dt a step along and
+    // across the wind: the windrows stay a metre or so wide where the flow gathers them (width
+    // √(K/k) for a convergence rate k), and a whitecap's crest-long patch is not drawn out
+    // across the wind more than along it. At most a texel either way: two taps further apart
+    // would leave two copies rather than a blur (the warm-up's 5 s steps spread less than K
+    // asks).
+    vec2 diagonal = (wind + ((params.step & 1u) == 0u ? across : -across)) * sqrt(0.5);
+    vec2 spread = diagonal * min(sqrt(4.0 * params.spread_m2_s * params.dt_s) / h, 1.0);
     float inside, inside2;
     vec2 here = 0.5 * (previous_at(l, level.previous.xy + back + spread, inside)
                        + previous_at(l, level.previous.xy + back - spread, inside2));
@@ -192,7 +205,7 @@ void main() {
 
     // 3. Decay, the source, and the residual foam the flow gathers.
     float a = max(before.x * exp(-params.dt_s / params.decay_s), source);
-    float s = before.y * exp(-params.dt_s / params.residual_decay_s) * exp(-params.dt_s * flow.y);
+    float s = before.y * exp(-params.dt_s / params.residual_decay_s) * exp(-params.dt_s * flow.z);
     s = clamp(max(s, params.residual * a), 0.0, 1.0);
     imageStore(foam, ivec3(id), vec4(a, s, 0.0, 0.0));
 }

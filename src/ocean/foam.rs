@@ -50,9 +50,10 @@ pub const GERSTNER_THRESHOLD: f32 = 0.5;
 pub const WARMUP_STEPS: usize = 20;
 pub const WARMUP_STEP_S: f32 = 0.1;
 /// Steps run before those for the residual foam near the camera (`RESIDUAL_DECAY_S`), and
-/// their time step (s): 24 s, two of its lifetimes.
+/// their time step (s): 60 s, two of its lifetimes (each step at `high` costs about as much
+/// as a frame's compute, so fewer, longer steps).
 pub const RESIDUAL_WARMUP_STEPS: usize = 12;
-pub const RESIDUAL_WARMUP_STEP_S: f32 = 2.0;
+pub const RESIDUAL_WARMUP_STEP_S: f32 = 5.0;
 /// The warm-up's steps before the first FFT frame, oldest first: (seconds before the frame,
 /// time step), RESIDUAL_WARMUP_STEPS long ones and then WARMUP_STEPS short ones, the last
 /// one short step before the frame.
@@ -135,11 +136,21 @@ pub const LANGMUIR_VELOCITY_PER_U_STAR: f64 = 8.0;
 /// growing with time). The foam near the camera draws the smallest: 5 m.
 pub const WINDROW_SPACING_M: f64 = 5.0;
 /// e-folding time of the residual foam a whitecap leaves (s): thin lace that outlives the
-/// whitecap's stage-B foam (DECAY_S) several times over, long enough for the windrows to
-/// gather it into streaks. A choice, not a measured value.
-pub const RESIDUAL_DECAY_S: f32 = 12.0;
-/// Turbulent diffusivity of the foam across the wind (m²/s): it keeps a windrow about
-/// √(K/k) wide where Langmuir circulation gathers foam at the rate k (storm: k = 2πV/λ ≈
+/// whitecap's stage-B foam (DECAY_S) many times over, long enough for the windrows to gather
+/// it into streaks (at the moderate sea they converge at 2πV/λ ≈ 0.15/s: 7 s). A choice, not
+/// a measured value: windrows of foam persist for minutes where surfactants stabilise it,
+/// and 30 s is the shorter end of that. (12 s measured 0.92 along the wind over across at the
+/// moderate sea, R ≥ 0.02; 30 s 1.15; storm R ≥ 0.2, 2.6 against 4.7 with the jet.)
+pub const RESIDUAL_DECAY_S: f32 = 30.0;
+/// The windrows' downwind jet over their lateral flow: the surface water runs faster
+/// downwind along the lines than between them (the downwind jets under the convergence
+/// zones of Langmuir 1938 and the observations Leibovich 1983 reviews, of the same order as
+/// the lateral flow, both scaling with u*_w). Taken equal (a choice of that order): at the
+/// moderate sea 0.12 m/s, a shear of about 2π·0.12/5 ≈ 0.15/s across a 5 m spacing, which
+/// draws the residual foam out along the wind while the lines gather it.
+pub const WINDROW_JET_SHARE: f64 = 1.0;
+/// Turbulent diffusivity of the foam, the same along and across the wind (m²/s): it keeps a
+/// windrow about √(K/k) wide where Langmuir circulation gathers foam at the rate k (storm: k = 2πV/λ ≈
 /// 0.43/s, 0.76 m). A choice, of the order of the near-surface eddy diffusivity u*_w·z at z ≈ 6 m.
 pub const SPREAD_M2_S: f32 = 0.25;
 /// Share of a whitecap's foam it leaves as residual foam.

@@ -60,6 +60,8 @@ struct FoamParams {
     cascades: u32,
     size: u32,
     levels: u32,
+    jet_m_s: f32,
+    step: u32,
 }
 
 /// The wind a foam step needs: its unit direction (x, z) and speed U10 (m/s).
@@ -79,6 +81,8 @@ pub(super) struct FoamSim {
     /// Both slots' buffers hold a placement (the first frame writes both: its warm-up steps
     /// use both slots).
     written: bool,
+    /// Steps recorded so far (the spreading alternates its diagonal with them).
+    steps: std::cell::Cell<u32>,
 }
 
 impl FoamSim {
@@ -137,6 +141,7 @@ impl FoamSim {
             sets,
             wind,
             written: false,
+            steps: std::cell::Cell::new(0),
         })
     }
 
@@ -166,10 +171,13 @@ impl FoamSim {
         if levels == 0 {
             return;
         }
+        let step = self.steps.get();
+        self.steps.set(step.wrapping_add(1));
+        let lateral = foam::windrow_velocity(self.wind.u10);
         let params = FoamParams {
             wind: self.wind.dir.map(|v| v as f32),
             drift_m_s: (foam::DRIFT_SHARE * self.wind.u10) as f32,
-            converge_m_s: foam::windrow_velocity(self.wind.u10) as f32,
+            converge_m_s: lateral as f32,
             windrow_m: foam::WINDROW_SPACING_M as f32,
             dt_s: f.dt_s,
             threshold: f.foam_threshold,
@@ -183,6 +191,8 @@ impl FoamSim {
             cascades: f.layers,
             size: f.foam.size,
             levels,
+            jet_m_s: (foam::WINDROW_JET_SHARE * lateral) as f32,
+            step,
         };
         let kernel = &self.kernel;
         scope(timer, rec, names::OCEAN_FOAM, || {
