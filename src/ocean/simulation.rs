@@ -53,6 +53,34 @@ fn scope(timer: &mut Timer, rec: &Recorder, name: &'static str, body: impl FnOnc
     }
 }
 
+/// Per-slot uniform buffers the host rewrites each frame, once the slot's previous compute work
+/// is done. The first write fills every slot: the first frame's warm-up steps use both.
+pub(super) struct SlotUniforms {
+    buffers: Vec<Buffer>,
+    written: bool,
+}
+
+impl SlotUniforms {
+    pub(super) fn new(buffers: Vec<Buffer>) -> Self {
+        SlotUniforms {
+            buffers,
+            written: false,
+        }
+    }
+
+    /// Writes `bytes` into slot `slot`'s buffer, or into every slot's the first time.
+    pub(super) fn write(&mut self, slot: usize, bytes: &[u8]) {
+        if self.written {
+            self.buffers[slot].write(bytes);
+        } else {
+            for b in &mut self.buffers {
+                b.write(bytes);
+            }
+            self.written = true;
+        }
+    }
+}
+
 /// Moves the simulation images into GENERAL, where they stay for good, and zeroes them (no foam
 /// before the first frame). Recorded at the start of the first compute submission, on the queue
 /// that writes them, so the graphics queue first sees them through the compute timeline.

@@ -9,7 +9,7 @@ use std::sync::Arc;
 
 use ash::vk;
 
-use super::{scope, Kernel, ModelFrame, Timer};
+use super::{scope, Kernel, ModelFrame, SlotUniforms, Timer};
 use crate::gpu::{
     Bind, Bindings, BoundSet, Buffer, Context, Image, MemoryLocation, Order, Recorder,
 };
@@ -74,13 +74,10 @@ pub(super) struct Wind {
 pub(super) struct FoamSim {
     kernel: Kernel,
     /// Per slot: the levels' placement, written by the host.
-    buffers: Vec<Buffer>,
+    buffers: SlotUniforms,
     /// Per slot: reads the FFT output and the other slot's foam, writes this slot's.
     sets: Vec<BoundSet>,
     wind: Wind,
-    /// Both slots' buffers hold a placement (the first frame writes both: its warm-up steps
-    /// use both slots).
-    written: bool,
     /// Steps recorded so far (the spreading alternates its diagonal with them).
     steps: std::cell::Cell<u32>,
 }
@@ -137,10 +134,9 @@ impl FoamSim {
             .collect::<Result<Vec<_>, _>>()?;
         Ok(FoamSim {
             kernel,
-            buffers,
+            buffers: SlotUniforms::new(buffers),
             sets,
             wind,
-            written: false,
             steps: std::cell::Cell::new(0),
         })
     }
@@ -154,15 +150,7 @@ impl FoamSim {
             levels: gpu_levels(f, self.wind.dir),
             scene: [sc.terrain, sc.shore, sc.open_sea, o[0], o[1], o[2], o[3]],
         };
-        let bytes: &[u8] = bytemuck::bytes_of(&block);
-        if self.written {
-            self.buffers[f.slot].write(bytes);
-        } else {
-            for b in &mut self.buffers {
-                b.write(bytes);
-            }
-            self.written = true;
-        }
+        self.buffers.write(f.slot, bytemuck::bytes_of(&block));
     }
 
     /// Records the foam step of frame `f` (after assemble: it reads the same FFT output).

@@ -17,7 +17,7 @@ use std::sync::Arc;
 use ash::vk;
 
 use super::foam_sim::Wind;
-use super::{scope, ModelFrame, Timer};
+use super::{scope, ModelFrame, SlotUniforms, Timer};
 use crate::gpu::{
     Bind, Bindings, BoundSet, Buffer, Context, DescriptorSetLayout, GpuResult, Image,
     MemoryLocation, Order, Pipeline, PipelineLayout, Recorder, FRAMES_IN_FLIGHT,
@@ -104,15 +104,13 @@ pub(super) struct SpraySim {
     _set_layout: DescriptorSetLayout,
     pipelines: [Pipeline; 4],
     /// Per slot: spray.comp's uniforms, written by the host.
-    uniforms: Vec<Buffer>,
+    uniforms: SlotUniforms,
     buffers: SprayBuffers,
     /// Per slot: reads the previous slot's particles and counts, writes this slot's.
     sets: Vec<BoundSet>,
     wind: Wind,
     /// Steps recorded so far (the emission's random seed).
     steps: Cell<u32>,
-    /// Both slots' uniforms hold the frame's (the first frame's warm-up uses both).
-    written: bool,
 }
 
 /// Per slot: the particles and counts (both queues use them), and the uniforms.
@@ -217,12 +215,11 @@ impl SpraySim {
         Ok(SpraySim {
             _set_layout: set_layout,
             pipelines,
-            uniforms,
+            uniforms: SlotUniforms::new(uniforms),
             buffers,
             sets,
             wind,
             steps: Cell::new(0),
-            written: false,
         })
     }
 
@@ -279,15 +276,7 @@ impl SpraySim {
             water: [spray::DROP_DENSITY as f32, spray::GRAVITY as f32, 0.0, 0.0],
             levels,
         };
-        let bytes = bytemuck::bytes_of(&block);
-        if self.written {
-            self.uniforms[f.slot].write(bytes);
-        } else {
-            for u in &mut self.uniforms {
-                u.write(bytes);
-            }
-            self.written = true;
-        }
+        self.uniforms.write(f.slot, bytemuck::bytes_of(&block));
     }
 
     /// Records step `f`'s spray (after the foam step: landing puffs add to its field): a
