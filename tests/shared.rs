@@ -14,7 +14,7 @@ use vkocean::gpu::{
     PipelineLayout,
 };
 use vkocean::ocean::moments::{SeaMoments, DEEP_WATER_M};
-use vkocean::ocean::shore::{reference_group_speed, shoaling, shore_waves};
+use vkocean::ocean::shore::{reference_group_speed, runup_m, shoaling, shore_waves, travel_time_s};
 use vkocean::render::scene::terrain_height;
 use vkocean::render::SceneLayout;
 
@@ -29,13 +29,14 @@ struct Push {
 }
 
 /// At `points`, run on the GPU: `terrain_height` of terrain.glsl and `shore_waves` of
-/// shore.glsl over the depth there (height, scale, breaking, local Hs).
+/// shore.glsl over the depth there (height, scale, breaking, local Hs), then the surf's travel
+/// time and run-up at the point's slope (`surf_slope`) and the rest zero.
 fn gpu_terrain(
     ctx: &std::sync::Arc<vkocean::gpu::Context>,
     layout: &SceneLayout,
     sea: &SeaMoments,
     points: &[[f32; 2]],
-) -> Vec<[f32; 4]> {
+) -> Vec<[[f32; 4]; 2]> {
     let storage = vk::BufferUsageFlags::STORAGE_BUFFER
         | vk::BufferUsageFlags::TRANSFER_DST
         | vk::BufferUsageFlags::TRANSFER_SRC;
@@ -51,7 +52,7 @@ fn gpu_terrain(
     let heights = Buffer::new(
         ctx,
         "test heights",
-        bytes(4 * points.len()),
+        bytes(8 * points.len()),
         storage,
         MemoryLocation::GpuOnly,
     )
@@ -111,8 +112,14 @@ fn gpu_terrain(
         rec.dispatch_with(&b, [(points.len() as u32).div_ceil(64), 1, 1]);
     })
     .unwrap();
-    let out = download(ctx, &heights, points.len() * 16).unwrap();
+    let out = download(ctx, &heights, points.len() * 32).unwrap();
     bytemuck::cast_slice(&out).to_vec()
+}
+
+/// The bed slope terrain_height.comp gives point `i` for the surf's functions.
+fn surf_slope(i: usize) -> f64 {
+    let m = 0.005 + 0.3 * (0.618f32 * i as f32).fract();
+    f64::from(m)
 }
 
 #[test]
@@ -154,9 +161,9 @@ fn the_terrain_and_the_shore_are_the_same_in_rust_and_glsl() {
             })
             .collect();
         let gpu = gpu_terrain(&ctx, layout, sea, &points);
-        let (mut worst_h, mut worst_shore) = (0.0f32, 0.0f64);
+        let (mut worst_h, mut worst_shore, mut worst_surf) = (0.0f32, 0.0f64, 0.0f64);
         let mut breaking = 0;
-        for (p, g) in points.iter().zip(&gpu) {
+        for (i, (p, [g, surf])) in points.iter().zip(&gpu).enumerate() {
             let cpu = terrain_height(layout, p[0], p[1]);
             worst_h = worst_h.max((cpu - g[0]).abs());
             let w = shore_waves(sea, -cpu as f64);
@@ -169,18 +176,32 @@ fn the_terrain_and_the_shore_are_the_same_in_rust_and_glsl() {
                 worst_shore = worst_shore.max((c - g).abs());
             }
             breaking += (w.breaking > 0.0 && cpu < 0.0) as usize;
+            let m = surf_slope(i);
+            // At the GPU's own height: T grows as √d, steeply at the waterline.
+            let t = travel_time_s(sea.mean_omega, -g[0] as f64, m);
+            let r = runup_m(sea.hs_m, sea.mean_omega, m);
+            for (c, g) in [(t, surf[0] as f64), (r, surf[1] as f64)] {
+                worst_surf = worst_surf.max((c - g).abs() / c.abs().max(1.0));
+            }
         }
         // f32 on both sides; sin/exp of GLSL are within a few ulp of Rust's. 1 mm over a
         // height range of 60–250 m: any change to a constant or a term breaks it by metres.
         assert!(worst_h < 1e-3, "{layout:?}: max |CPU − GPU| = {worst_h} m");
-        let range = gpu.iter().map(|g| g[0]).fold(f32::MIN, f32::max)
-            - gpu.iter().map(|g| g[0]).fold(f32::MAX, f32::min);
+        let range = gpu.iter().map(|g| g[0][0]).fold(f32::MIN, f32::max)
+            - gpu.iter().map(|g| g[0][0]).fold(f32::MAX, f32::min);
         assert!(range > 40.0, "the grid covers the island: range {range} m");
         // Scale, breaking and local Hs / Hs (all about 0–1.3): f32 against f64. A changed
         // constant (γ, Guo's β) moves them by more than 10⁻².
         assert!(
             worst_shore < 1e-3,
             "{sea:?}: max |CPU − GPU| of the shore = {worst_shore}"
+        );
+        // The surf's travel time (s, up to hundreds over the shelf's gentlest slopes) and
+        // run-up (m): relative to the value or 1, whichever is larger. A changed node or
+        // weight of the quadrature, or a constant of Stockdon's, moves them by more than 10⁻³.
+        assert!(
+            worst_surf < 1e-4,
+            "{sea:?}: max |CPU − GPU| of the surf = {worst_surf}"
         );
         assert!(
             breaking > 10,

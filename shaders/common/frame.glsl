@@ -34,7 +34,7 @@ layout(set = 0, binding = 0, std140) uniform FrameUniforms {
     vec4 buoy;           // the floating buoy (object 0): xyz its unit axis; w: its heave (m)
     vec4 shore;          // the waves over the shallows (common/shore.glsl): x the sea's Hs (m),
                          // y its mean angular frequency ω̄ (rad/s), z c_g(ω̄) at the depth it is
-                         // simulated for (m/s); w: unused
+                         // simulated for (m/s); w the surf's clock (common/shore.glsl)
     vec4 open_sea;       // past the island's slope (SHELF_FOOT_R): x the floor's depth (m,
                          // common/terrain.glsl); y the shoaling coefficient there
     vec4 light;          // x: radiance of the sun's disc above the air, which the sky pass

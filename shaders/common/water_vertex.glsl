@@ -15,6 +15,9 @@ layout(location = 3) out vec2 out_shore; // the water's depth (m) and K_s here
 // sky's at the zenith (cube lookups here cost a fraction of what they cost per pixel).
 layout(location = 4) flat out vec3 out_sun_light;
 layout(location = 5) flat out vec3 out_sky_zenith;
+// The surf's bores (common/shore.glsl): x their phase θ (waves), y their share of the sea
+// (0–1), zw θ's gradient over the water (waves per metre, toward deeper water).
+layout(location = 6) out vec4 out_surf;
 
 void emit_water_vertex(vec2 xz) {
     vec3 eye = water_eye();
@@ -24,11 +27,20 @@ void emit_water_vertex(vec2 xz) {
     // Past the island's slope the floor is flat: its depth and K_s come with the frame.
     float depth = frame.open_sea.x;
     float ks = frame.open_sea.y;
+    vec4 surf = vec4(0.0);
     if (near_island(world_xz)) {
         depth = water_level() - terrain_height(world_xz);
         ks = shore_shoaling(depth);
+        surf = shore_surf(world_xz, depth, shore_waves_at(ks, depth).y, frame.shore.w);
     }
-    vec3 d = shore_waves_at(ks, depth).x * ocean_displacement_at(xz, length(offset));
+    vec3 waves = shore_waves_at(ks, depth);
+    vec3 d = waves.x * ocean_displacement_at(xz, length(offset));
+    // Where the waves have broken, a share surf.y of the sea is bores, as high as the sea
+    // there (SURF_BORE); the shares add in quadrature, so the local Hs holds. Their face no
+    // sharper than the triangles hold: about frame.lod.y pixels apart.
+    float spacing_m = frame.lod.y * length(offset) / frame.lod.x;
+    float bore = SURF_BORE * waves.z * shore_bore(surf.x, shore_front(surf.zw, spacing_m)).x;
+    d = d * sqrt(1.0 - surf.y * surf.y) + vec3(0.0, surf.y * bore, 0.0);
     vec3 rel = vec3(offset.x + d.x, water_level() + d.y - eye.y, offset.y + d.z);
     out_rel_pos = rel;
     out_xz = xz;
@@ -36,6 +48,7 @@ void emit_water_vertex(vec2 xz) {
     // Interpolated to the pixels (the surf, water.frag): dry land counts as just dry, so
     // the waterline between a vertex on a hill and one at sea lies near the shore's.
     out_shore = vec2(max(depth, -1.0), ks);
+    out_surf = surf;
     out_sun_light = sun_light();
     out_sky_zenith = sky_lookup(vec3(0.0, 1.0, 0.0));
     gl_Position = frame.views[0].view_proj * vec4(rel, 1.0);

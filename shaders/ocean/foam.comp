@@ -6,9 +6,10 @@
 //   1. the surface's Jacobian J_s from every cascade's derivatives at the texel's rest position
 //      (bilinear in each cascade's lattice), and the whitecap source
 //      clamp((threshold − J_s)·gain, 0, 1), as assemble.comp computes it on the lattice; and
-//      the foam the sea makes where it meets land and things: the surf where the shore's
-//      breaking criterion holds (common/shore.glsl), and a band around each object standing in
-//      the water (the buoy, the pillars) where the waves wash against it;
+//      the foam the sea makes where it meets land and things: the rollers of the surf's
+//      bores where the shore's breaking criterion holds (common/shore.glsl), and a band
+//      around each object standing in the water (the buoy, the pillars) where the waves wash
+//      against it;
 //   2. semi-Lagrangian advection: the previous frame's foam read where the water at the texel
 //      was dt ago, x − u·dt (this level's previous placement, else the next coarser level's,
 //      else none), with u = drift·ŵ + v_c·ŵ⊥: the surface drift downwind, and the lateral
@@ -67,6 +68,7 @@ layout(push_constant) uniform Params {
     uint levels;
     float jet_m_s;         // the windrows' downwind jet (m/s): their surface flow's excess
     uint step;             // steps recorded so far (which diagonal the spreading takes)
+    float surf_clock;      // the surf's clock at this step's time (frame.shore.w's, waves)
 } params;
 
 // Level `l`'s previous foam at texel position q (texel centres at whole numbers), bilinear;
@@ -156,9 +158,20 @@ void main() {
     float source = clamp((params.threshold - surface_jacobian(params.choppiness * d)) * params.gain,
                          0.0, 1.0);
     vec2 world = level.anchor.xy + i * h;
-    // The surf, over the island's slope only (a branch: almost every workgroup skips it).
+    // The surf, over the island's slope only (a branch: almost every workgroup skips it): the
+    // bores' rollers (common/shore.glsl), at full strength while the roller passes (its first
+    // SURF_ROLLER of a period) and, when a step is longer than that (the warm-up's), as much as
+    // the field's decay leaves of what the face laid down within the step: each bore leaves a
+    // band of foam behind it that thins with age, not a band wherever the step happened to land.
     if (near_island(world)) {
-        source = max(source, shore_waves(-terrain_height(world)).y);
+        float depth = -terrain_height(world);
+        vec4 surf = shore_surf(world, depth, shore_waves(depth).y, params.surf_clock);
+        float period = SHORE_TAU / max(frame.shore.y, 1e-3);
+        float age = fract(surf.x) * period; // since the face passed (s)
+        float roller = SURF_ROLLER * period;
+        float fresh = step(age, max(params.dt_s, roller))
+                      * exp(-max(age - roller, 0.0) / params.decay_s);
+        source = max(source, surf.y / SURF_SHARE * fresh * shore_strength(world, floor(surf.x)));
     }
     // Contact: a band FOAM_CONTACT_M wide around each object, as strong as the sea is high
     // (full from FOAM_CONTACT_HS_M of significant height).

@@ -16,6 +16,7 @@
 #include "common/frame.glsl"
 #include "common/water.glsl"
 #include "common/display.glsl"
+#include "common/terrain.glsl"
 #include "common/shore.glsl"
 #include "common/underwater.glsl"
 
@@ -25,6 +26,7 @@ layout(location = 2) in vec3 in_displacement;
 layout(location = 3) in vec2 in_shore; // water.tese: the water's depth (m) and K_s
 layout(location = 4) flat in vec3 in_sun_light; // water.tese: sun_light(), the frame's
 layout(location = 5) flat in vec3 in_sky_zenith; // and the sky's radiance at the zenith
+layout(location = 6) in vec4 in_surf; // water_vertex.glsl: the bores' phase, share, gradient
 layout(location = 0) out vec4 out_colour;
 
 // The pipeline that draws the surface from under the water (src/render/passes/water.rs).
@@ -310,12 +312,25 @@ void main() {
     vec4 nf = ocean_normal_foam(in_xz, dist, pixel_m, shore.x, resolved);
     nf.w = foam_at(in_xz, nf.w);
     vec3 n = nf.xyz;
-    // Surf where the waves break on the shallows (shore.y, 0–1): breaking foam on the crests
-    // and their fronts (a field of 1) and, between them, the white water the broken waves carry
-    // as bores across the surf zone (0.85: dense, some of the lace showing), not the thin
-    // residue an open-sea whitecap leaves a wave period later.
-    float crest = smoothstep(-0.2, 0.6, in_displacement.y / max(0.5 * shore.z, 0.01));
-    nf.w = max(nf.w, shore.y * mix(0.85, 1.0, crest));
+    // The surf (common/shore.glsl). Where the waves have broken, a share in_surf.y of the sea
+    // is bores: their slope (the sawtooth's, as high as the vertex drew it) replaces that share
+    // of the simulated slopes, and their white water covers the face and the roller behind it,
+    // more for the set's larger waves. Where the waves break but no bore is drawn (the storm's
+    // flat shelf), foam on the simulated crests (in_displacement.y over half the local Hs).
+    // A branch: the water away from the island's shallows (almost every pixel, in whole
+    // blocks) skips it.
+    if (in_surf.y > 0.0 || shore.y > 0.0) {
+        vec2 world_xz = frame.views[0].eye.xz + in_xz - frame.water.xy;
+        float front = shore_front(in_surf.zw, max(frame.lod.y * dist / frame.lod.x, pixel_m));
+        vec2 slopes = -n.xz / max(n.y, 1e-3) * sqrt(1.0 - in_surf.y * in_surf.y)
+                      + in_surf.y * SURF_BORE * shore.z * shore_bore(in_surf.x, front).y * in_surf.zw;
+        n = normalize(vec3(-slopes.x, 1.0, -slopes.y));
+        float wave = floor(in_surf.x + front); // the face ahead belongs to the next wave
+        float roller = shore_roller(in_surf.x, front) * shore_strength(world_xz, wave);
+        float crest = smoothstep(0.0, 0.6, in_displacement.y / max(0.5 * shore.z, 0.01));
+        float bores = in_surf.y / SURF_SHARE;
+        nf.w = max(nf.w, max(bores * roller, shore.y * (1.0 - bores) * crest));
+    }
     uint view = debug_view();
     if (view == VIEW_DISPLACEMENT) {
         out_colour = target_colour(0.5 + 0.25 * in_displacement.xzy);

@@ -17,9 +17,19 @@
 //! The literature's values (the minimum K_s, Green's law, γ) are rows of the Physical accuracy
 //! table (src/ocean/accuracy.rs).
 //!
-//! Not modelled: refraction (crests turning parallel to the shore), the wavelength shortening
-//! in shallow water, wave set-up and run-up. The factor scales the displacement of every
-//! cascade alike, so short waves that would not feel the bottom shrink with the long ones.
+//! - **The surf** (what the breaking looks like): where the waves have broken over a sloping
+//!   bed the water is drawn as bores, one train of crests at the mean period P = 2π/ω̄ whose
+//!   phase is the time T a crest still takes to the waterline at the phase speed ω̄/k(d)
+//!   (`travel_time_s`), so the crests follow the depth contours (as refraction turns them) and
+//!   slow and crowd as the water shoals; a crest-to-trough height of (√3/2)·the local Hs.
+//!   On the beach each bore runs up as a ballistic sheet (Shen & Meyer 1963) whose set of
+//!   waves reaches Stockdon et al. (2006)'s 2 % run-up (`runup_m`); the sand it reaches is wet.
+//!   The clock that drives them is `surf_clock`; the GLSL is in shore.glsl.
+//!
+//! Not modelled: refraction of the simulated sea (its crests keep their direction; only the
+//! bores follow the contours), the simulated waves' shortening in shallow water, wave set-up
+//! apart from the run-up. The factor scales the displacement of every cascade alike, so short
+//! waves that would not feel the bottom shrink with the long ones.
 
 use super::moments::SeaMoments;
 use super::spectrum::G;
@@ -85,6 +95,50 @@ pub fn shore_waves_at(sea: &SeaMoments, ks: f64, depth: f64) -> ShoreWaves {
         breaking: (ks * hs / limit.max(1e-3) - 1.0).clamp(0.0, 1.0),
         hs_m: local,
     }
+}
+
+/// Waves the surf's clock counts before it starts again (`SURF_WAVES` of shore.glsl): a wave's
+/// strength is drawn from its number mod this.
+pub const SURF_WAVES: f64 = 256.0;
+
+/// The surf's clock at time `time_s` (s) for a sea of mean angular frequency `mean_omega`:
+/// the waves since t = 0, mod `SURF_WAVES`, reduced in f64 so it keeps its precision however
+/// late (`frame.shore.w`).
+pub fn surf_clock(time_s: f64, mean_omega: f64) -> f32 {
+    (time_s * mean_omega.max(1e-3) / std::f64::consts::TAU).rem_euclid(SURF_WAVES) as f32
+}
+
+/// Below this bed slope the surf draws no bores (`SURF_SLOPE_MIN` of shore.glsl).
+pub const SURF_SLOPE_MIN: f64 = 0.01;
+
+/// The time (s) a crest of angular frequency `omega` takes from `depth` to the waterline over
+/// a bed of slope `slope` at the phase speed c = ω/k: T = (1/(m·ω))·∫₀^d k(h) dh, the integral
+/// by three-point Gauss–Legendre in u with h = d·u² (`shore_travel_s` of shore.glsl; exact in
+/// shallow water, where T = 2√d/(m·√g)).
+pub fn travel_time_s(omega: f64, depth: f64, slope: f64) -> f64 {
+    if depth <= 0.0 {
+        return 0.0;
+    }
+    let nodes = [
+        (0.5 - 0.5 * 0.6f64.sqrt(), 5.0 / 18.0),
+        (0.5, 8.0 / 18.0),
+        (0.5 + 0.5 * 0.6f64.sqrt(), 5.0 / 18.0),
+    ];
+    let integral: f64 = nodes
+        .iter()
+        .map(|&(u, w)| w * 2.0 * kh(omega, (depth * u * u).max(1e-6)) / u)
+        .sum();
+    integral / (slope.max(SURF_SLOPE_MIN) * omega)
+}
+
+/// The 2 % run-up (m above the still water) of a sea of deep-water significant height `hs`
+/// and mean angular frequency `omega` on a beach of slope `slope`: Stockdon et al. (2006),
+/// eq. 19, R₂ = 1.1·(0.35·β·√(H₀L₀) + ½·√(H₀L₀·(0.563·β² + 0.004))), with L₀ = g·T²/2π at
+/// the mean period (`shore_runup_m` of shore.glsl).
+pub fn runup_m(hs: f64, omega: f64, slope: f64) -> f64 {
+    let l0 = std::f64::consts::TAU * G / (omega * omega).max(1e-6);
+    let hl = hs * l0;
+    1.1 * (0.35 * slope * hl.sqrt() + 0.5 * (hl * (0.563 * slope * slope + 0.004)).sqrt())
 }
 
 #[cfg(test)]
@@ -174,6 +228,93 @@ mod tests {
         // Dry land: flat water, full surf at the waterline.
         let w = shore_waves(&sea, -2.0);
         assert_eq!((w.scale, w.breaking), (0.0, 1.0));
+    }
+
+    /// k·h solving y·tanh y = ω²h/g by bisection (any depth: `spectrum::dispersion` floors
+    /// the depth at 1 mm).
+    fn solved_kh(omega: f64, h: f64) -> f64 {
+        let k0h = omega * omega * h / G;
+        let (mut lo, mut hi) = (0.0, k0h.sqrt() + k0h + 1.0);
+        for _ in 0..200 {
+            let mid = 0.5 * (lo + hi);
+            if mid * mid.tanh() < k0h {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        0.5 * (lo + hi)
+    }
+
+    /// ∫ ds / c from `depth` to the waterline over a plane bed of slope `slope`: ds = dh/m,
+    /// c = ω/k, summed by the midpoint rule over 20,000 steps in u with h = d·u² (the
+    /// integrand 2·d·u·k(d·u²) has no singularity at the waterline).
+    fn travel_time_by_steps(omega: f64, depth: f64, slope: f64) -> f64 {
+        let steps = 20_000;
+        let du = 1.0 / steps as f64;
+        (0..steps)
+            .map(|i| {
+                let u = (i as f64 + 0.5) * du;
+                let h = depth * u * u;
+                2.0 * depth * u * solved_kh(omega, h) / h * du
+            })
+            .sum::<f64>()
+            / (slope * omega)
+    }
+
+    #[test]
+    fn bores_travel_at_the_phase_speed() {
+        // Airy's phase speed c = ω/k, so in shallow water √(g·d) (kh < 0.1 here): the time
+        // to the waterline 2√d/(m·√g). Checked within 0.5 % against a fine sum of ds/c in
+        // every regime, and within 1 % against the shallow-water limit where it holds.
+        for period in [5.0, 8.0, 12.0] {
+            let omega = std::f64::consts::TAU / period;
+            for slope in [0.02, 0.1, 0.2] {
+                for depth in [0.05, 0.5, 2.0, 8.0, 20.0] {
+                    let t = travel_time_s(omega, depth, slope);
+                    let reference = travel_time_by_steps(omega, depth, slope);
+                    assert!(
+                        (t / reference - 1.0).abs() < 5e-3,
+                        "T {t} s, sum {reference} s (P {period} s, m {slope}, d {depth} m)"
+                    );
+                    if kh(omega, depth) < 0.1 {
+                        let shallow = 2.0 * depth.sqrt() / (slope * G.sqrt());
+                        assert!((t / shallow - 1.0).abs() < 1e-2, "T {t}, shallow {shallow}");
+                    }
+                }
+            }
+        }
+        assert_eq!(
+            travel_time_s(0.8, -1.0, 0.1),
+            0.0,
+            "dry land: the bore is there"
+        );
+    }
+
+    #[test]
+    fn the_runup_is_stockdons() {
+        // Stockdon et al. (2006), eq. 19, by hand: H₀ 2 m, T 10 s (L₀ = 156.13 m), β 0.1:
+        // √(H₀L₀) = 17.671 m; set-up 0.35·0.1·17.671 = 0.6185 m; swash
+        // √(312.26·0.00963) = 1.7341 m; R₂ = 1.1·(0.6185 + 0.8671) = 1.634 m.
+        let r = runup_m(2.0, std::f64::consts::TAU / 10.0, 0.1);
+        assert!((r / 1.634 - 1.0).abs() < 2e-3, "R2 {r} m");
+        // Steeper beaches reach higher; higher and longer waves too.
+        let omega = 0.8;
+        assert!(runup_m(2.0, omega, 0.15) > runup_m(2.0, omega, 0.05));
+        assert!(runup_m(3.0, omega, 0.1) > runup_m(2.0, omega, 0.1));
+        assert!(runup_m(2.0, 0.5, 0.1) > runup_m(2.0, omega, 0.1));
+    }
+
+    #[test]
+    fn the_surf_clock_counts_waves() {
+        let omega = std::f64::consts::TAU / 8.0;
+        assert!((surf_clock(4.0, omega) - 0.5).abs() < 1e-6);
+        // It starts again after SURF_WAVES waves, and keeps its precision a week in.
+        assert!((surf_clock(8.0 * (SURF_WAVES + 2.25), omega) - 2.25).abs() < 1e-5);
+        let week: f64 = 7.0 * 86_400.0;
+        let t = (week / 8.0).floor() * 8.0 + 2.0;
+        let expected = ((week / 8.0).floor() % SURF_WAVES + 0.25) as f32;
+        assert!((surf_clock(t, omega) - expected).abs() < 1e-4);
     }
 
     #[test]

@@ -10,7 +10,7 @@ use super::{FresnelModel, ViewMode};
 use crate::ocean::buoy::BuoyPose;
 use crate::ocean::foam::{FoamLevels, MAX_LEVELS};
 use crate::ocean::moments::SeaMoments;
-use crate::ocean::shore::{reference_group_speed, shoaling};
+use crate::ocean::shore::{reference_group_speed, shoaling, surf_clock};
 use crate::shared::{BUOY_FREEBOARD_M, BUOY_RADIUS_M};
 
 /// Per-frame inputs.
@@ -197,7 +197,7 @@ pub struct FrameUniforms {
     pub buoy: [f32; 4],
     /// The waves over the shallows (shaders/common/shore.glsl, `ocean::shore`): x the sea's
     /// significant height (m), y its mean angular frequency ω̄ (rad/s), z c_g(ω̄) at the depth
-    /// it is simulated for (m/s); w: unused.
+    /// it is simulated for (m/s); w the surf's clock (`ocean::shore::surf_clock`).
     pub shore: [f32; 4],
     /// Past the island's slope: x the open sea's floor depth (m, `SceneLayout::deep_floor_m`),
     /// y the shoaling coefficient there; zw: unused.
@@ -427,10 +427,7 @@ impl FrameUniforms {
                 let b = &p.inputs.buoy;
                 [b.axis[0], b.axis[1], b.axis[2], b.heave_m].map(|v| v as f32)
             },
-            shore: {
-                let sea = &p.ocean.sea_moments;
-                [sea.hs_m, sea.mean_omega, reference_group_speed(sea), 0.0].map(|v| v as f32)
-            },
+            shore: shore_uniform(&p.ocean.sea_moments, p.time_s),
             light: [
                 if p.analytic_sky { p.sun_scale } else { 0.0 },
                 p.ocean.mean_square_slope,
@@ -469,6 +466,17 @@ fn foam_levels(levels: &FoamLevels, water: &WaterFrame) -> [[f32; 4]; MAX_LEVELS
         let uv = |i: usize| ((water.centre[i] - levels.origin_m[l][i]) / side) as f32;
         [uv(0), uv(1), (1.0 / side) as f32, levels.count as f32]
     })
+}
+
+/// `FrameUniforms::shore` for the sea `sea` at time `time_s`.
+fn shore_uniform(sea: &SeaMoments, time_s: f64) -> [f32; 4] {
+    let [hs, omega, c_g] = [sea.hs_m, sea.mean_omega, reference_group_speed(sea)];
+    [
+        hs as f32,
+        omega as f32,
+        c_g as f32,
+        surf_clock(time_s, omega),
+    ]
 }
 
 #[cfg(test)]

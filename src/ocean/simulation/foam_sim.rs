@@ -14,6 +14,7 @@ use crate::gpu::{
     Bind, Bindings, BoundSet, Buffer, Context, Image, MemoryLocation, Order, Recorder,
 };
 use crate::ocean::foam::{self, MAX_LEVELS};
+use crate::ocean::shore;
 use crate::pass_names as names;
 use crate::shaders;
 use crate::shared::FOAM_WINDROW_PERIOD;
@@ -62,6 +63,7 @@ struct FoamParams {
     levels: u32,
     jet_m_s: f32,
     step: u32,
+    surf_clock: f32,
 }
 
 /// The wind a foam step needs: its unit direction (x, z) and speed U10 (m/s).
@@ -181,6 +183,8 @@ impl FoamSim {
             levels,
             jet_m_s: (foam::WINDROW_JET_SHARE * lateral) as f32,
             step,
+            // The step's own time: each warm-up step's bores are where they were then.
+            surf_clock: shore::surf_clock(f.time_s, f64::from(f.scene.shore[1])),
         };
         let kernel = &self.kernel;
         scope(timer, rec, names::OCEAN_FOAM, || {
