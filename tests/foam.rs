@@ -4,7 +4,7 @@
 
 mod common;
 
-use common::{read_npy_f32, run, scratch, stderr};
+use common::{linear, read_npy_f32, run, scratch, stderr};
 use vkocean::ocean::cpu::{surface_jacobian, CpuOcean};
 use vkocean::ocean::foam;
 use vkocean::ocean::{OceanSettings, SeaState};
@@ -106,16 +106,6 @@ fn first_frame_foam_matches_the_cpu_reference() {
 
 const FW: usize = 480;
 const FH: usize = 270;
-
-/// An sRGB byte's linear value (IEC 61966-2-1).
-fn linear(v: u8) -> f64 {
-    let v = f64::from(v) / 255.0;
-    if v <= 0.04045 {
-        v / 12.92
-    } else {
-        ((v + 0.055) / 1.055).powf(2.4)
-    }
-}
 
 /// Linear luminance of each pixel of a picture, and `--view foam`'s foam reflectance R of each
 /// water pixel (`None` elsewhere: the view draws the water exactly grey, the land not).

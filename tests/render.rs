@@ -193,18 +193,10 @@ fn calm_water_seen_from_above_shows_the_terrain() {
 /// whose foam whitens the water by 0.3 or more (its reflectance R), and how many water pixels
 /// there are.
 fn foam_share(p: &[u8]) -> (f64, usize) {
-    let srgb_to_linear = |v: u8| {
-        let v = v as f64 / 255.0;
-        if v <= 0.04045 {
-            v / 12.92
-        } else {
-            ((v + 0.055) / 1.055).powf(2.4)
-        }
-    };
     let water: Vec<f64> = p
         .chunks(4)
         .filter(|c| c[0] == c[1] && c[1] == c[2])
-        .map(|c| srgb_to_linear(c[0]))
+        .map(|c| common::linear(c[0]))
         .collect();
     let foamy = water.iter().filter(|&&f| f >= 0.3).count();
     (foamy as f64 / water.len().max(1) as f64, water.len())

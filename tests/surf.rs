@@ -1,10 +1,12 @@
 //! The surf as drawn (shaders/common/shore.glsl): bores that run shoreward at the phase speed,
 //! swash that runs up the beach and back no higher than Stockdon's run-up, sand darkened where
-//! the sea has reached it. Pictures straight down onto the island's east shore in the moderate
+//! the sea has reached it. Pictures straight down onto the island's shores in the moderate
 //! sea (--quality high), measured with the terrain's own height (`terrain_height`, the Rust twin
 //! of the shader's) at each pixel's ground point.
 
 mod common;
+
+use common::linear;
 
 use vkocean::ocean::shore::{kh, runup_m};
 use vkocean::render::scene::terrain_height;
@@ -12,16 +14,6 @@ use vkocean::render::uniforms::SceneLayout;
 
 const W: usize = 480;
 const H: usize = 270;
-/// An sRGB byte's linear value (IEC 61966-2-1).
-fn linear(v: u8) -> f64 {
-    let v = f64::from(v) / 255.0;
-    if v <= 0.04045 {
-        v / 12.92
-    } else {
-        ((v + 0.055) / 1.055).powf(2.4)
-    }
-}
-
 /// A camera `height` m straight above (x, z), the picture's x along world x and its rows
 /// along world z (`--look-at` a hair toward −z puts −z at the top).
 struct TopDown {

@@ -205,6 +205,16 @@ pub fn shot(name: &str, size: (u32, u32), args: &[&str], env: &[(&str, &str)]) -
     pixels
 }
 
+/// An sRGB byte's linear value (IEC 61966-2-1).
+pub fn linear(v: u8) -> f64 {
+    let v = f64::from(v) / 255.0;
+    if v <= 0.04045 {
+        v / 12.92
+    } else {
+        ((v + 0.055) / 1.055).powf(2.4)
+    }
+}
+
 /// Rec. 709 luma of each RGBA pixel (0..255).
 pub fn luma(p: &[u8]) -> Vec<f64> {
     p.chunks(4)
