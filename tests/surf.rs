@@ -233,7 +233,8 @@ fn the_swash_runs_up_the_beach_and_back_and_wets_the_sand() {
     // The beach from 30 m up (0.13 m a pixel) at eight instants a second apart (more than a
     // wave period, 6.6 s). Land pixels are binned by their height over the 2 % run-up R₂ of
     // Stockdon et al. (2006) at their own slope. The swash's foam (white: max − min of the
-    // channels under 0.3 of the max, where the sand has 0.42–0.46) reaches up to a height that changes from shot to shot by
+    // channels under 0.3 of the max, where the sand has 0.42–0.46, and a linear luminance
+    // over 0.3: the sunlit foam has 0.42, dry sand 0.29) reaches up to a height that changes from shot to shot by
     // at least 0.25·R₂ (it runs up and back), never above 1.1·R₂ and at least once above
     // 0.4·R₂. Sand below 0.6·R₂ that the foam does not cover is darker than the dry sand at
     // 1.2–1.8·R₂ (below the grass) in linear luminance: ratio ≤ 0.8 (soaked sand is 0.68 of
@@ -264,7 +265,7 @@ fn the_swash_runs_up_the_beach_and_back_and_wets_the_sand() {
             let [red, green, blue] = [c[0], c[1], c[2]].map(linear);
             let luminance = 0.2126 * red + 0.7152 * green + 0.0722 * blue;
             let (max, min) = (c[0].max(c[1]).max(c[2]), c[0].min(c[1]).min(c[2]));
-            if f64::from(max - min) < 0.3 * f64::from(max) {
+            if f64::from(max - min) < 0.3 * f64::from(max) && luminance > 0.3 {
                 white.push(r);
             } else if (0.05..0.6).contains(&r) {
                 wet = (wet.0 + luminance, wet.1 + 1);

@@ -162,13 +162,13 @@ float shore_front(vec2 gradient, float spacing_m) {
 
 // The white water a bore carries (0–1) at phase θ, its face `front` of a period: on the face as
 // it steepens, full on the roller behind it, thinning to half over the next 0.4 of the period
-// (the bore's own foam: the inner surf zone stays white between bores; the foam field adds
-// what each leaves behind and its lace: ocean/foam.comp).
+// and half from there to the next face (the bore's own foam: the inner surf zone stays white
+// between bores; the foam field adds what each leaves behind and its lace: ocean/foam.comp).
 float shore_roller(float phase, float front) {
     float f = fract(phase);
     float face = smoothstep(1.0 - front, 1.0 - 0.3 * front, f);
     float behind = mix(1.0, 0.5, smoothstep(SURF_ROLLER, SURF_ROLLER + 0.4, f));
-    return max(face, behind * step(f, 1.0 - front));
+    return max(face, behind);
 }
 
 // Crest-to-trough height of a bore over the local significant height: a sawtooth H high has

@@ -38,7 +38,8 @@ void emit_water_vertex(vec2 xz) {
     // Where the waves have broken, a share surf.y of the sea is bores, as high as the sea
     // there (SURF_BORE); the shares add in quadrature, so the local Hs holds. Their face no
     // sharper than the triangles hold: about frame.lod.y pixels apart.
-    float spacing_m = frame.lod.y * length(offset) / frame.lod.x;
+    float spacing_m = frame.lod.y * length(vec3(offset.x, water_level() - eye.y, offset.y))
+                      / frame.lod.x;
     float bore = SURF_BORE * waves.z * shore_bore(surf.x, shore_front(surf.zw, spacing_m)).x;
     d = d * sqrt(1.0 - surf.y * surf.y) + vec3(0.0, surf.y * bore, 0.0);
     vec3 rel = vec3(offset.x + d.x, water_level() + d.y - eye.y, offset.y + d.z);

@@ -158,14 +158,20 @@ void main() {
     float source = clamp((params.threshold - surface_jacobian(params.choppiness * d)) * params.gain,
                          0.0, 1.0);
     vec2 world = level.anchor.xy + i * h;
-    // The surf, over the island's slope only (a branch: almost every workgroup skips it): the
-    // bores' rollers (common/shore.glsl), at full strength while the roller passes (its first
-    // SURF_ROLLER of a period) and, when a step is longer than that (the warm-up's), as much as
-    // the field's decay leaves of what the face laid down within the step: each bore leaves a
-    // band of foam behind it that thins with age, not a band wherever the step happened to land.
+    // The surf, where the waves break over the island's slope (branches: almost every
+    // workgroup skips them): the bores' rollers (common/shore.glsl), at full strength while
+    // the roller passes (its first SURF_ROLLER of a period) and, when a step is longer than
+    // that (the warm-up's), as much as the field's decay leaves of what the face laid down
+    // within the step: each bore leaves a band of foam behind it that thins with age, not a
+    // band wherever the step happened to land.
+    float depth = 0.0;
+    float breaking = 0.0;
     if (near_island(world)) {
-        float depth = -terrain_height(world);
-        vec4 surf = shore_surf(world, depth, shore_waves(depth).y, params.surf_clock);
+        depth = -terrain_height(world);
+        breaking = shore_waves(depth).y;
+    }
+    if (breaking > 0.0) {
+        vec4 surf = shore_surf(world, depth, breaking, params.surf_clock);
         float period = SHORE_TAU / max(frame.shore.y, 1e-3);
         float age = fract(surf.x) * period; // since the face passed (s)
         float roller = SURF_ROLLER * period;

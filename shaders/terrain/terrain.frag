@@ -43,7 +43,8 @@ vec3 beach(vec3 colour, vec3 light, vec3 n, vec3 v) {
     float depth = clamp(0.5 * under, 0.0, 0.05);
     vec3 water = colour * exp(-depth * ABSORPTION_PER_M) * (1.0 - f) + sky;
     float edge = under / slope; // metres from the edge, down the beach
-    uint wave = uint(floor(frame.shore.w));
+    // The lace changes with each wave, at each point of the shore when its wave arrives.
+    uint wave = uint(int(floor(frame.shore.w + shore_offset(in_world.xz))));
     float lace = 0.6 * shore_noise(in_world.xz, 0.5, wave) + 0.4 * shore_noise(in_world.xz, 0.17, wave);
     float foam = (1.0 - smoothstep(0.0, mix(0.6, 2.0, swash.z), edge)) * mix(0.6, 1.0, swash.z);
     foam = max(foam, 0.5 * exp(-edge / 3.0) * smoothstep(0.5, 0.75, lace)) * mix(0.7, 1.0, lace);
@@ -73,10 +74,10 @@ void main() {
     vec3 light = sun_light() * lambert / 3.14159265 + sky_ambient(n);
     vec3 colour = albedo * light;
     float dist = length(in_rel_pos);
-    // The swash's reach: R₂ is at most 1.1·(0.35·0.5 + ½·√(0.563·0.25 + 0.004))·√(H₀L₀) ≈
-    // 0.4·√(H₀L₀) on the steepest sand (a branch: most pixels skip it).
+    // The swash's reach: R₂ is at most 1.1·(0.35·0.5 + ½·√(0.563·0.25 + 0.004))·√(H₀L₀) =
+    // 0.402·√(H₀L₀) on the steepest beach beach() allows (a branch: most pixels skip it).
     float omega = max(frame.shore.y, 1e-3);
-    float reach = 0.4 * sqrt(frame.shore.x * SHORE_TAU * SHORE_G / (omega * omega));
+    float reach = 0.41 * sqrt(frame.shore.x * SHORE_TAU * SHORE_G / (omega * omega));
     if (in_object < 0 && in_world.y > -0.2 && in_world.y < reach) {
         colour = beach(colour, light, n, -in_rel_pos / dist);
     }
