@@ -35,7 +35,7 @@ use crate::render::{
 };
 use glam::Vec3;
 
-/// A feature turned on or off (`--spray`).
+/// A feature turned on or off (`--spray`, `--foam-sim`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum Switch {
     On,
@@ -201,6 +201,19 @@ pub struct Cli {
     #[arg(long, global = true, value_enum, value_name = "ON|OFF", default_value_t = Switch::On,
           help_heading = "Ocean")]
     pub spray: Switch,
+
+    /// The foam simulation near the camera: three world-space levels of 0.25, 1 and 4 m a texel
+    /// (drift, residual foam, windrows, the surf's and the objects' foam). Off leaves the FFT
+    /// lattice's whitecaps alone, as at --quality low; its cost on lavapipe is in README
+    /// (The ocean, foam). FFT waves only. [default: on above a 64² FFT grid (medium, high)]
+    #[arg(
+        long,
+        global = true,
+        value_enum,
+        value_name = "ON|OFF",
+        help_heading = "Ocean"
+    )]
+    pub foam_sim: Option<Switch>,
 
     /// Number of cascades, 1 to 4 (disjoint wave-number bands, non-commensurate patches). [default: 3 at every quality level]
     #[arg(long, global = true, value_name = "K", allow_hyphen_values = true,
@@ -630,6 +643,7 @@ impl Cli {
                 seed: self.seed,
                 waves,
                 spray: self.spray == Switch::On,
+                foam_sim: self.foam_sim.map(|s| s == Switch::On),
             },
         })
     }

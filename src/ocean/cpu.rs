@@ -307,6 +307,7 @@ mod tests {
             seed,
             waves: crate::ocean::Waves::Fft,
             spray: false,
+            foam_sim: None,
         }
     }
 

@@ -211,6 +211,11 @@ impl FoamLevels {
         if fft_size <= 64 {
             return FoamLevels::none();
         }
+        FoamLevels::levels()
+    }
+
+    /// The three levels at any FFT size (`--foam-sim on`).
+    pub fn levels() -> FoamLevels {
         FoamLevels {
             count: 3,
             size: 512,

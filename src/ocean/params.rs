@@ -31,6 +31,9 @@ pub struct OceanSettings {
     pub waves: Waves,
     /// Spray from breaking crests (`--spray`; FFT waves only: Gerstner waves have no wind).
     pub spray: bool,
+    /// The foam simulation near the camera (`--foam-sim`; FFT waves only): `None` for the
+    /// default, on above a 64² grid (`foam::FoamLevels::layout`).
+    pub foam_sim: Option<bool>,
 }
 
 impl Default for OceanSettings {
@@ -45,6 +48,7 @@ impl Default for OceanSettings {
             seed: 1,
             waves: Waves::Fft,
             spray: true,
+            foam_sim: None,
         }
     }
 }

@@ -360,10 +360,10 @@ impl Simulation {
             what: "the ocean simulation images",
         }])?;
         let fft = matches!(settings.waves, Waves::Fft);
-        let foam_levels = if fft {
-            FoamLevels::layout(n)
-        } else {
-            FoamLevels::none()
+        let foam_levels = match (fft, settings.foam_sim) {
+            (false, _) | (true, Some(false)) => FoamLevels::none(),
+            (true, None) => FoamLevels::layout(n),
+            (true, Some(true)) => FoamLevels::levels(),
         };
         ctx.require_formats(&[FormatUse {
             format: FOAM_FORMAT,
