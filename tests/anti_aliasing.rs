@@ -5,7 +5,7 @@
 
 mod common;
 
-use common::{clean_run, luma, run, scratch};
+use common::{luma, scratch};
 use vkocean::pass_names::{ANTI_ALIASING, FFT_FRAME, OUTPUT, SPRAY};
 
 const W: usize = 320;
@@ -117,31 +117,9 @@ fn fxaa_blends_the_stair_steps_of_an_edge_and_leaves_flat_regions_alone() {
     );
 }
 
-/// The pass names of a `--profile` run of 7 frames (validation on, asserted clean).
+/// The pass names of a `--profile` run at 320x180 (common::profiled_passes).
 fn profiled_passes(name: &str, args: &[&str]) -> Vec<String> {
-    let dir = scratch(&format!("aa-profile-{name}"));
-    let profile = dir.join("p.json");
-    let mut all = vec![
-        "--headless",
-        "--validation",
-        "--size",
-        "320x180",
-        "--frames",
-        "7",
-        "--profile",
-        profile.to_str().unwrap(),
-    ];
-    all.extend_from_slice(args);
-    clean_run(&run(&all), &format!("{all:?}"));
-    let json: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(&profile).unwrap()).unwrap();
-    let _ = std::fs::remove_dir_all(&dir);
-    json["passes"]
-        .as_array()
-        .expect("passes")
-        .iter()
-        .map(|p| p["name"].as_str().unwrap().to_string())
-        .collect()
+    common::profiled_passes(&format!("aa-{name}"), "320x180", args)
 }
 
 #[test]

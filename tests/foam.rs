@@ -540,33 +540,13 @@ fn foam_sim_overrides_the_quality_level() {
     // `--foam-sim` wins over the quality level: on at `low` (which has none by default), off at
     // `medium` (which has it), seen as `--profile`'s "ocean foam" pass.
     let passes = |quality: &str, switch: &[&str]| -> Vec<String> {
-        let dir = scratch(&format!("foam-sim-{quality}-{}", switch.len()));
-        let profile = dir.join("p.json");
-        let mut args = vec![
-            "--headless",
-            "--validation",
-            "--size",
-            "64x36",
-            "--quality",
-            quality,
-            "--frames",
-            "7",
-            "--profile",
-            profile.to_str().expect("temp paths are UTF-8"),
-        ];
+        let mut args = vec!["--quality", quality];
         args.extend_from_slice(switch);
-        let out = run(&args);
-        common::clean_run(&out, &format!("{args:?}"));
-        let json: serde_json::Value =
-            serde_json::from_slice(&std::fs::read(&profile).expect("profile written"))
-                .expect("profile is JSON");
-        let _ = std::fs::remove_dir_all(&dir);
-        json["passes"]
-            .as_array()
-            .expect("passes")
-            .iter()
-            .map(|p| p["name"].as_str().expect("name").to_string())
-            .collect()
+        common::profiled_passes(
+            &format!("foam-sim-{quality}-{}", switch.len()),
+            "64x36",
+            &args,
+        )
     };
     let has_foam = |names: &[String]| names.iter().any(|n| n == "ocean foam");
     assert!(!has_foam(&passes("low", &[])), "a foam pass at low");

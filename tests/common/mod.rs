@@ -57,6 +57,35 @@ pub fn clean_run(out: &Output, what: &str) -> String {
     err
 }
 
+/// The pass names of a `--profile` run of 7 frames of `size` with `args` (validation on,
+/// asserted clean); `name` names the scratch directory.
+pub fn profiled_passes(name: &str, size: &str, args: &[&str]) -> Vec<String> {
+    let dir = scratch(&format!("profile-{name}"));
+    let profile = dir.join("p.json");
+    let mut all = vec![
+        "--headless",
+        "--validation",
+        "--size",
+        size,
+        "--frames",
+        "7",
+        "--profile",
+        profile.to_str().expect("temp paths are UTF-8"),
+    ];
+    all.extend_from_slice(args);
+    clean_run(&run(&all), &format!("{all:?}"));
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&profile).expect("profile written"))
+            .expect("profile is JSON");
+    let _ = std::fs::remove_dir_all(&dir);
+    json["passes"]
+        .as_array()
+        .expect("passes")
+        .iter()
+        .map(|p| p["name"].as_str().expect("name").to_string())
+        .collect()
+}
+
 /// Parses `validation: N warnings, M errors` from stderr.
 pub fn validation_counts(stderr: &str) -> Option<(u32, u32)> {
     let line = stderr.lines().find(|l| l.starts_with("validation: "))?;
