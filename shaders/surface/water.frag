@@ -83,6 +83,14 @@ vec4 ocean_normal_foam(vec2 xz, float dist, float pixel_m, float scale, out floa
 
 float fresnel(float cos_theta); // below
 
+// Schlick's approximation to the Fresnel reflectance at incidence cos θ = c: F0 + (1 − F0)(1 − c)⁵
+// (powers by multiplication: pow() is an exp2 of a log2).
+float schlick(float c) {
+    float m = 1.0 - c;
+    float m2 = m * m;
+    return F0 + (1.0 - F0) * m2 * m2 * m;
+}
+
 // The reflection at `uv` (of the view) from layer `layer`, whose top max(⌊h / 2^layer⌋, 1) rows
 // of the `h` hold it (the rows below are not written: the lookup stays half a row inside).
 vec3 blurred_reflection(vec2 uv, float layer, float h) {
@@ -258,27 +266,29 @@ vec3 foam_light(vec3 n, vec3 v, vec3 l, vec3 sunlight, vec3 horizon, float lace)
     return FOAM_ALBEDO * (0.4 + 0.6 * lace) * (surface + 0.5 * sides);
 }
 
-// Fraction of light reflected at incidence cos θ (θ between normal and view).
+// Fraction of light reflected at incidence cos θ (θ between normal and view). Every model in
+// a few multiplications and at most one square root: lavapipe runs all three, whichever the
+// uniform picks (it evaluates both sides of a branch), twice a pixel (here and in the glitter).
 float fresnel(float cos_theta) {
     uint model = frame.modes.y;
+    float c = clamp(cos_theta, 1e-4, 1.0);
     if (model == FRESNEL_EXACT) {
-        // Exact unpolarised Fresnel equations (seed 004 §2.5), Snell: sin θt = sin θi / n.
-        float ti = acos(clamp(cos_theta, 1e-4, 1.0));
-        if (ti < 1e-3) {
-            return F0;
-        }
-        float tt = asin(sin(ti) / N_WATER);
-        float s = sin(tt - ti) / sin(tt + ti);
-        float t = tan(tt - ti) / tan(tt + ti);
-        return clamp(0.5 * (s * s + t * t), 0.0, 1.0);
+        // The exact unpolarised Fresnel equations (seed 004 §2.5) for a dielectric, written
+        // without angles (Cook & Torrance 1982, eq. in their appendix; Walter et al. 2007,
+        // eq. 22): g = √(n² − 1 + c²), F = ½ (g−c)²/(g+c)² · (1 + (c(g+c) − 1)²/(c(g−c) + 1)²),
+        // the same as ½ (sin²(θt−θi)/sin²(θt+θi) + tan²(θt−θi)/tan²(θt+θi)) with Snell's θt.
+        float g = sqrt(N_WATER * N_WATER - 1.0 + c * c);
+        float a = (g - c) / (g + c);
+        float b = (c * (g + c) - 1.0) / (c * (g - c) + 1.0);
+        return clamp(0.5 * a * a * (1.0 + b * b), 0.0, 1.0);
     }
     if (model == FRESNEL_POWER) {
         // Seed 001 eq. 6: r_refract = θ^r with r = 0.5, θ taken as cos θ = N·V (the angle itself
         // would make straight-down views fully reflective).
-        return 1.0 - pow(cos_theta, 0.5);
+        return 1.0 - sqrt(c);
     }
     // Schlick's approximation.
-    return F0 + (1.0 - F0) * pow(1.0 - cos_theta, 5.0);
+    return schlick(c);
 }
 
 // The surface seen from under the water (the camera's below it): within Snell's window,
@@ -292,7 +302,7 @@ vec3 from_below(vec3 n, vec3 v, float dist) {
     float c = max(dot(ray, n), 0.0); // cosine of the angle in the water
     float s2 = N_WATER * N_WATER * (1.0 - c * c); // sin² of the angle in the air
     float ca = sqrt(max(1.0 - s2, 0.0));
-    float f = s2 >= 1.0 ? 1.0 : F0 + (1.0 - F0) * pow(1.0 - ca, 5.0);
+    float f = s2 >= 1.0 ? 1.0 : schlick(ca);
     vec3 through = N_WATER * ray + (ca - N_WATER * c) * n;
     vec3 below = water_inscatter(vec3(ray.x, -ray.y, ray.z));
     vec3 colour = mix(sky_lookup(through), below, f);
