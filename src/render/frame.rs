@@ -24,7 +24,8 @@
 //!    textures    --view reflection|refraction|dudv: that texture     writes main colour
 //!    anti-aliasing  --aa fxaa, final view: FXAA; samples main colour
 //!                writes anti-aliased colour (and its edge mask into main depth)
-//!    output      main (or anti-aliased) colour copied (or blitted) into the output image
+//!    output      main (or anti-aliased) colour copied (same size) or drawn (scaled) into
+//!                the output image
 //!    readback    screenshots: the output into a host buffer; present: to PRESENT_SRC
 //! ```
 //!
@@ -64,8 +65,8 @@ const CLEAR_DEPTH: Load = Load::Clear(vk::ClearValue {
 });
 
 /// The stages at which graphics 2 waits for a swapchain image's acquire: the output pass's
-/// first write to it, a copy or blit (transfer) or, where the image takes no copies, a draw
-/// (colour attachment output). The image's state starts `available_after` these stages, so the
+/// first write to it, a copy (transfer) or, when it scales or where the image takes no copies,
+/// a draw (colour attachment output). The image's state starts `available_after` these stages, so the
 /// first write's barrier chains with the wait.
 pub const ACQUIRE_WAIT_STAGE: vk::PipelineStageFlags2 = vk::PipelineStageFlags2::from_raw(
     vk::PipelineStageFlags2::ALL_TRANSFER.as_raw()

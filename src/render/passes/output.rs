@@ -1,17 +1,20 @@
 //! Output pass: puts the main target (display colour at `--render-scale` of the output's size),
 //! or with `--aa fxaa` the anti-aliased target of the same size and format, into the output
 //! image (a swapchain image or the headless target). A copy when the two have the same size and
-//! format; otherwise a blit, bilinear when the sizes differ, which also
-//! converts between RGBA and BGRA byte orders (a recreated swapchain may change it).
+//! format and the output takes copies; otherwise drawn: a full-screen triangle samples the
+//! picture into the output as a colour attachment (shaders/post/output.frag; nearest at the
+//! same size, bilinear when scaling), which also converts between RGBA and BGRA byte orders (a
+//! recreated swapchain may change it). Only COLOR_ATTACHMENT is a guaranteed usage of swapchain
+//! images (`supportedUsageFlags`), so the draw works into every output.
 //!
-//! Drawn instead where the output takes no copies: only COLOR_ATTACHMENT is a guaranteed usage
-//! of swapchain images (`supportedUsageFlags`), so without TRANSFER_DST
-//! (`OutputTarget::transfer_dst` false) a full-screen triangle samples the picture into the
-//! output as a colour attachment (shaders/post/output.frag; nearest at the same size, bilinear
-//! when scaling). `VKOCEAN_OUTPUT=draw` forces this path (tests/output.rs compares it with the
-//! copy and the blit). Its pipeline and descriptor set are made at the first drawn frame and
-//! remade when the output's format or the sampled picture changes (the old ones go to the
-//! deletion queue).
+//! Why a draw rather than a blit when scaling: on lavapipe at `--quality low` (640x360 to
+//! 1280x720) the draw took 6.3–7.1 ms against the blit's 7.7–8.0 (medians of `bench frames`,
+//! runs alternating; 2026-12-01, a day this VM ran about 1.8 times slower than README's
+//! numbers), and a GPU blits with a draw of its own anyway. `VKOCEAN_OUTPUT=draw` draws even
+//! where a copy would do, `VKOCEAN_OUTPUT=transfer` copies or blits wherever the output takes
+//! transfers (tests/output.rs compares the paths). The drawn path's pipeline and descriptor set
+//! are made at the first drawn frame and remade when the output's format or the sampled picture
+//! changes (the old ones go to the deletion queue).
 //!
 //! Why the tone map is not a pass of its own here: at 1280x720 on lavapipe a full-screen
 //! tone-map pass at the output's size cost 12–14 ms, the blit from a half-size main target
@@ -31,14 +34,25 @@ use crate::pass_names as names;
 use crate::render::OutputTarget;
 use crate::shaders;
 
-/// Set to `draw` to draw the output even where it takes copies (tests, experiments).
+/// `draw` draws the output even where a copy would do; `transfer` copies or blits wherever the
+/// output takes transfers (tests, experiments).
 pub const OUTPUT_ENV: &str = "VKOCEAN_OUTPUT";
 
-/// The output pass: a copy or blit, or (`Drawn`, made when first needed) a draw.
+/// How the picture gets into the output (`VKOCEAN_OUTPUT`).
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Path {
+    /// A copy where the sizes and formats match, else a draw.
+    Auto,
+    /// Always a draw.
+    Draw,
+    /// A copy or a blit where the output takes transfers.
+    Transfer,
+}
+
+/// The output pass: a copy, or (`Drawn`, made when first needed) a draw; a blit on request.
 pub struct OutputPass {
     ctx: Arc<Context>,
-    /// Draws even into an output that takes copies (`VKOCEAN_OUTPUT=draw`).
-    force_draw: bool,
+    path: Path,
     /// The drawing pipeline, and its set for the picture it last sampled.
     drawn: RefCell<Option<Drawn>>,
 }
@@ -61,7 +75,11 @@ impl OutputPass {
     pub fn new(ctx: &Arc<Context>) -> OutputPass {
         OutputPass {
             ctx: ctx.clone(),
-            force_draw: std::env::var(OUTPUT_ENV).is_ok_and(|v| v == "draw"),
+            path: match std::env::var(OUTPUT_ENV).as_deref() {
+                Ok("draw") => Path::Draw,
+                Ok("transfer") => Path::Transfer,
+                _ => Path::Auto,
+            },
             drawn: RefCell::new(None),
         }
     }
@@ -89,15 +107,20 @@ impl OutputPass {
         } else {
             scale_filter
         };
-        if self.force_draw || !output.transfer_dst {
-            return self.draw(rec, main, output, filter);
+        let same = main.extent() == output.extent && main.format() == output.format;
+        match self.path {
+            Path::Draw => self.draw(rec, main, output, filter),
+            _ if !output.transfer_dst => self.draw(rec, main, output, filter),
+            _ if same => {
+                rec.copy_image(main, output.image);
+                Ok(())
+            }
+            Path::Transfer => {
+                rec.blit_image(main, output.image, filter);
+                Ok(())
+            }
+            Path::Auto => self.draw(rec, main, output, filter),
         }
-        if main.extent() == output.extent && main.format() == output.format {
-            rec.copy_image(main, output.image);
-        } else {
-            rec.blit_image(main, output.image, filter);
-        }
-        Ok(())
     }
 
     /// The drawn output: a full-screen triangle sampling `main` with `filter`.
