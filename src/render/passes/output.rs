@@ -108,19 +108,19 @@ impl OutputPass {
             scale_filter
         };
         let same = main.extent() == output.extent && main.format() == output.format;
-        match self.path {
-            Path::Draw => self.draw(rec, main, output, filter),
-            _ if !output.transfer_dst => self.draw(rec, main, output, filter),
-            _ if same => {
-                rec.copy_image(main, output.image);
-                Ok(())
-            }
-            Path::Transfer => {
-                rec.blit_image(main, output.image, filter);
-                Ok(())
-            }
-            Path::Auto => self.draw(rec, main, output, filter),
+        let draw = match self.path {
+            Path::Draw => true,
+            Path::Transfer => !output.transfer_dst,
+            Path::Auto => !output.transfer_dst || !same,
+        };
+        if draw {
+            self.draw(rec, main, output, filter)?;
+        } else if same {
+            rec.copy_image(main, output.image);
+        } else {
+            rec.blit_image(main, output.image, filter);
         }
+        Ok(())
     }
 
     /// The drawn output: a full-screen triangle sampling `main` with `filter`.
