@@ -1,6 +1,6 @@
 //! The light's picture tests (issue 17), headless on lavapipe, validation-clean: the sky at noon,
 //! sunset and under an overcast; the sun's path on the water toward a sun on the horizon; the
-//! view from under the water.
+//! view from under the water; the open sea at noon and its horizon (issue 34).
 
 mod common;
 
@@ -169,4 +169,99 @@ fn under_the_water_the_surface_is_seen_from_below() {
         (ar / ab) > 1.3 * (r / b),
         "above {ar:.0}/{ab:.0} vs under {r:.0}/{b:.0}: expected the underwater picture bluer"
     );
+}
+
+/// Mean linear (r, g, b) of the rows `rows` of a `w`-wide picture (sRGB decoded per pixel).
+fn mean_linear(p: &[u8], w: usize, rows: std::ops::Range<usize>) -> [f64; 3] {
+    let px = &p[rows.start * w * 4..rows.end * w * 4];
+    let mut sum = [0.0; 3];
+    for c in px.chunks(4) {
+        for i in 0..3 {
+            sum[i] += common::linear(c[i]);
+        }
+    }
+    sum.map(|s| s / (px.len() / 4) as f64)
+}
+
+fn linear_luma([r, g, b]: [f64; 3]) -> f64 {
+    0.2126 * r + 0.7152 * g + 0.0722 * b
+}
+
+/// Hue (degrees) of an RGB colour: 180 cyan, 240 blue.
+fn hue([r, g, b]: [f64; 3]) -> f64 {
+    let (max, min) = (r.max(g).max(b), r.min(g).min(b));
+    if max == b {
+        240.0 + 60.0 * (r - g) / (max - min).max(1e-9)
+    } else if max == g {
+        120.0 + 60.0 * (b - r) / (max - min).max(1e-9)
+    } else {
+        (60.0 * (g - b) / (max - min).max(1e-9)).rem_euclid(360.0)
+    }
+}
+
+#[test]
+fn the_noon_sea_is_dark_blue_and_darker_than_the_sky_above_the_horizon() {
+    // The moderate sea from 2 m, level (the horizon between rows 359 and 360), 1280x720 as the
+    // issue measured it, under the default day's sun (11.7° up) and at noon (60°, the same 0.3
+    // of cloud), looking away from the sun (no glitter). Issue 34 measured before: noon's open
+    // water sRGB (91,141,177) against (42,82,103) (the light grew, the exposure compensated
+    // half of it), and the sea 3–12 px below the horizon at 0.91–0.96 of the sky 3–12 px above.
+    const W: usize = 1280;
+    const H: usize = 720;
+    let sea = |name: &str, sun: Option<&str>, look_at: &str| {
+        let mut args = vec![
+            "--preset",
+            "moderate",
+            "--camera",
+            "0,2,0",
+            "--look-at",
+            look_at,
+        ];
+        if let Some(sun) = sun {
+            args.extend_from_slice(&["--sun", sun]);
+        }
+        common::shot(&format!("sky-{name}"), (W as u32, H as u32), &args, &[])
+    };
+    let away = "0,2,100";
+    let day = sea("sea-day", None, away);
+    let noon = sea("sea-noon", Some("-70,60"), away);
+    let across = sea("sea-noon-across", Some("-70,60"), "100,2,0");
+    // Open water: the bottom quarter (8–16° below the horizon, 9–17 m away). With the eye
+    // adapted to daylight, noon's water is no brighter than the default day's: its own light
+    // grows with the sun, and so does everything it is seen beside. And it is blue: hue
+    // 200–250° (cyan is 180°) with blue at least 1.5 times green in linear light.
+    let water = H * 3 / 4..H;
+    let (day_water, noon_water) = (
+        mean_linear(&day, W, water.clone()),
+        mean_linear(&noon, W, water),
+    );
+    let (day_l, noon_l) = (linear_luma(day_water), linear_luma(noon_water));
+    assert!(
+        noon_l <= day_l,
+        "open water's linear luminance: noon {noon_l:.4}, default day {day_l:.4} (expected no brighter)"
+    );
+    let [_, g, b] = noon_water;
+    let h = hue(noon_water);
+    assert!(
+        (200.0..=250.0).contains(&h) && b >= 1.5 * g,
+        "noon's open water {noon_water:.4?}: hue {h:.0}° (expected 200–250), blue/green {:.2} (≥ 1.5)",
+        b / g
+    );
+    // The horizon holds: a rough sea seen at grazing angles reflects less than a mirror
+    // (its visible facets lean toward the eye), so the sea just below the horizon is at most
+    // 0.85 of the sky just above it, whatever the light and the azimuth away from the sun.
+    for (what, p) in [
+        ("default day", &day),
+        ("noon", &noon),
+        ("noon, across the sun", &across),
+    ] {
+        let sky = linear_luma(mean_linear(p, W, H / 2 - 12..H / 2 - 2));
+        let sea = linear_luma(mean_linear(p, W, H / 2 + 3..H / 2 + 13));
+        assert!(
+            sea <= 0.85 * sky,
+            "{what}: the sea 3–12 px below the horizon {sea:.4} against the sky above it {sky:.4}: \
+             {:.2} (expected ≤ 0.85)",
+            sea / sky
+        );
+    }
 }

@@ -106,3 +106,13 @@ vec3 sun_light() { return frame.sun_light.rgb * textureLod(sky_cube, frame.sun_d
 vec3 sky_ambient(vec3 n) {
     return 0.5 * (sky_lookup(normalize(n + vec3(0.0, 1.0, 0.0))) + sky_lookup(vec3(0.0, 1.0, 0.0)));
 }
+
+// Aerial perspective over the sea: what `dist` metres of air at sea level let through of what is
+// behind them (Koschmieder 1924: L = L_object · T + L_horizon · (1 − T), the sky at the horizon
+// standing for the air light of an endless path), T = exp(−β d) with the atmosphere's own
+// extinction at sea level (src/shared.rs: Rayleigh scattering and the aerosols' extinction), so
+// blue hazes first and the sky above the horizon stays brighter than the sea under it. Returns
+// 1 − T, the horizon's share.
+vec3 aerial_haze(float dist) {
+    return 1.0 - exp(-dist * (RAYLEIGH_SCATTERING + MIE_EXTINCTION));
+}

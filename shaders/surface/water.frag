@@ -291,6 +291,23 @@ float fresnel(float cos_theta) {
     return schlick(c);
 }
 
+// The share of the sky a rough sea reflects toward the eye at cos θ = c of its drawn normal,
+// whose unresolved slopes have a standard deviation σ_V along the view (Bruneton, Neyret &
+// Holzschuch 2010, §4: the Fresnel factor averaged over the visible facets of a Gaussian slope
+// distribution, their fit F̄ ≈ (1 − c)^(5·exp(−2.69 σ_V)) / (1 + 22.7 σ_V^1.5)), written as
+// Schlick's F0 + (1 − F0)·F̄ so a smooth sea (σ_V → 0) gets Schlick back. At grazing views the
+// facets the eye sees lean toward it, so a rough sea reflects well below the mirror's Fresnel
+// and the sea under the horizon is darker than the sky above it. The other models (`--fresnel`
+// exact or power, the seeds' own) stay as they are, for comparison.
+float sea_fresnel(float c, float sigma_v) {
+    if (frame.modes.y != FRESNEL_SCHLICK) {
+        return fresnel(c);
+    }
+    float m = 1.0 - clamp(c, 0.0, 1.0);
+    float mean = pow(m, 5.0 * exp(-2.69 * sigma_v)) / (1.0 + 22.7 * sigma_v * sqrt(sigma_v));
+    return F0 + (1.0 - F0) * mean;
+}
+
 // The surface seen from under the water (the camera's below it): within Snell's window,
 // arcsin(1/1.333) = 48.6° of the normal, the sky refracted through it (Snell, written out),
 // less what the surface reflects back down (Schlick's Fresnel at the angle in the air); outside
@@ -426,7 +443,8 @@ void main() {
     vec3 transmitted = mix(deep, c_refract, exp(-thickness * ABSORPTION_PER_M));
 
     float cos_theta = clamp(dot(n, v), 0.0, 1.0);
-    float f = fresnel(cos_theta);
+    // The unresolved slopes' spread along the view: half their mean square (isotropic).
+    float f = sea_fresnel(cos_theta, sqrt(0.5 * unresolved));
     vec3 colour = mix(transmitted, c_reflect, f);
 
     // Whitecaps: a layer of foam of reflectance R over the water (foam_layer), lit as a
@@ -458,6 +476,6 @@ void main() {
     float glitter = sun_glitter(n, v, sun, unresolved) * (1.0 - opacity);
     colour += sunlight * glitter;
 
-    float haze = 1.0 - exp(-dist / 9000.0);
+    vec3 haze = aerial_haze(dist);
     out_colour = target_colour(mix(colour, horizon, haze));
 }

@@ -89,6 +89,6 @@ void main() {
         return;
     }
     vec3 horizon = sky_lookup(normalize(vec3(in_rel_pos.x, 0.0, in_rel_pos.z) + vec3(0.0, 0.02, 0.0)));
-    float haze = 1.0 - exp(-dist / 9000.0);
+    vec3 haze = aerial_haze(dist);
     out_colour = target_colour(mix(colour, horizon, haze));
 }

@@ -57,13 +57,18 @@ impl Sky {
         })
     }
 
-    /// The exposure the display applies: the eye adapts to the light, halfway in log terms
-    /// (exposure ∝ 1/√E), so a noon sea is brighter than an evening one and a dusk still dark,
-    /// but neither white nor black. 1 under `REFERENCE_IRRADIANCE`.
+    /// The exposure the display applies. In daylight brighter than the default day's, the eye
+    /// (and a camera's automatic exposure) adapts fully, exposure ∝ 1/E: lightness constancy,
+    /// so a noon sea looks as dark as it is, not lit up like a pool. Below it, in the low sun,
+    /// dusk and under cloud, it adapts halfway in log terms (exposure ∝ 1/√E), so an evening
+    /// or an overcast is darker and a dusk still dark, but neither white nor black. 1 under
+    /// `REFERENCE_IRRADIANCE`.
     pub fn exposure(&self) -> f32 {
         let [r, g, b] = self.global_irradiance();
         let luminance = 0.2126 * r + 0.7152 * g + 0.0722 * b;
-        ((REFERENCE_IRRADIANCE / luminance.max(1e-6)).sqrt()).clamp(0.25, 6.0) as f32
+        let ratio = REFERENCE_IRRADIANCE / luminance.max(1e-6);
+        let exposure = if ratio < 1.0 { ratio } else { ratio.sqrt() };
+        exposure.clamp(0.1, 6.0) as f32
     }
 }
 
@@ -209,7 +214,7 @@ mod tests {
     }
 
     #[test]
-    fn the_default_day_has_exposure_one_and_the_eye_adapts_halfway() {
+    fn the_default_day_has_exposure_one_brighter_days_adapt_fully_darker_ones_halfway() {
         let day = |elevation: f32, cloud_cover| {
             let e = elevation.to_radians();
             let sun_dir = Vec3::new(e.cos(), e.sin(), 0.0);
@@ -218,18 +223,41 @@ mod tests {
                 cloud_cover,
             }
         };
+        let luminance = |sky: &Sky| {
+            let [r, g, b] = sky.global_irradiance();
+            0.2126 * r + 0.7152 * g + 0.0722 * b
+        };
         let reference = day(crate::render::default_sun_dir().y.asin().to_degrees(), 0.3);
         assert!(
             (reference.exposure() - 1.0).abs() < 0.02,
             "{}",
             reference.exposure()
         );
-        // Noon is brighter, so exposed less; an overcast lets a quarter through (Kasten &
-        // Czeplak), so exposed √4 = 2 times more.
-        assert!(day(60.0, 0.3).exposure() < 0.6);
+        // Noon is brighter, so exposed less, by the whole ratio of the light (to f32 rounding).
+        let noon = day(60.0, 0.3);
+        let full = (REFERENCE_IRRADIANCE / luminance(&noon)) as f32;
+        assert!(
+            full < 0.3,
+            "noon's light is {:.1}× the default's",
+            1.0 / full
+        );
+        assert!(
+            (noon.exposure() / full - 1.0).abs() < 1e-5,
+            "{}",
+            noon.exposure()
+        );
+        // An overcast lets a quarter through (Kasten & Czeplak): exposed √4 = 2 times more.
         let overcast =
             day(11.7, 1.0).global_irradiance()[1] / day(11.7, 0.0).global_irradiance()[1];
         assert!((overcast - 0.25).abs() < 1e-9, "{overcast}");
+        let dim = day(11.7, 1.0);
+        let half = (REFERENCE_IRRADIANCE / luminance(&dim)).sqrt() as f32;
+        assert!(half > 1.5, "{half}");
+        assert!(
+            (dim.exposure() / half - 1.0).abs() < 1e-5,
+            "{}",
+            dim.exposure()
+        );
         assert_eq!(day(-8.0, 0.0).exposure(), 6.0);
     }
 
