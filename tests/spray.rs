@@ -96,8 +96,8 @@ fn puffs_fly_with_the_wind_and_fall_at_their_drops_terminal_speed() {
     // After a second aloft a drop has all but forgotten its launch (its drag time near its
     // terminal speed is v_t/g, about 0.25 s for the largest, 300 µm: e^−4 of it is left): it moves with the wind at its height (the logarithmic profile,
     // `spray::wind_at`) and falls through it at its terminal speed (`terminal_velocity`, within
-    // 3 % of Gunn & Kinzer's measurements). Measured on lavapipe (6,335 puffs): horizontal
-    // median error −0.03 %, 96 % within 10 %; vertical median −1.3 %, 90 % within 10 % (the
+    // 3 % of Gunn & Kinzer's measurements). Measured on lavapipe (10,032 puffs): horizontal
+    // median error −0.10 %, 97 % within 10 %; vertical median −0.39 %, 96 % within 10 % (the
     // wind shear a puff falls through, and the last of a launch, make the rest).
     let old: Vec<&&[f32]> = rows.iter().filter(|r| r[3] > 1.0).collect();
     assert!(old.len() >= 200, "{} puffs older than 1 s", old.len());
@@ -134,7 +134,9 @@ fn puffs_fly_with_the_wind_and_fall_at_their_drops_terminal_speed() {
 fn spray_is_drawn_over_a_storm_and_nothing_over_a_calm_sea() {
     // Low over the storm, looking downwind: with spray, white puffs over the crests. The
     // pictures differ (the puffs; `--quality low` has no foam levels, so no landing foam), and
-    // where they differ the spray's is brighter. Measured on lavapipe: 41 % of the pixels, +39 grey.
+    // where they differ the spray's is brighter. Measured on lavapipe: 16 % of the pixels, +35 grey
+    // (the spray blown off the next crest; 42 % while the choppiness had its sign inverted and
+    // the waves broke in the troughs, around the camera).
     let view = [
         "--quality",
         "low",

@@ -2,8 +2,9 @@
 // Evolve the spectrum to time t and build the spectral fields the inverse FFT turns into the
 // surface (Tessendorf 2001, eqs. 43-45; conventions in src/ocean/spectrum.rs and cpu.rs):
 //   h(k,t) = h0(k) e^{iωt} + conj(h0(-k)) e^{-iωt}
-//   Dx = -i kx/k h, Dz = -i kz/k h, ∂h/∂x = i kx h, ∂h/∂z = i kz h,
-//   ∂Dx/∂x = kx²/k h, ∂Dz/∂z = kz²/k h, ∂Dx/∂z = kx kz/k h,
+//   Dx = i kx/k h, Dz = i kz/k h, ∂h/∂x = i kx h, ∂h/∂z = i kz h,
+//   ∂Dx/∂x = -kx²/k h, ∂Dz/∂z = -kz²/k h, ∂Dx/∂z = -kx kz/k h,
+// (the displacement's sign is the one that moves the water toward the crests: src/ocean/cpu.rs),
 // packed two real fields per complex array: (Dx + i h), (Dz + i ∂h/∂x), (∂h/∂z + i ∂Dx/∂x),
 // (∂Dz/∂z + i ∂Dx/∂z). Element [m][n] of cascade c has k = (2π(n - N/2), 2π(m - N/2)) / L_c.
 // Time: ω is quantized to whole multiples m of ω0 = 2π/T (Tessendorf 2001 §3.2, T =
@@ -45,13 +46,13 @@ void main() {
     vec2 h = cmul(a, e) + cmul(b, conj2(e));
 
     vec2 u = k_len > 0.0 ? k / k_len : vec2(0.0);
-    vec2 dx = -times_i(u.x * h);
-    vec2 dz = -times_i(u.y * h);
+    vec2 dx = times_i(u.x * h);
+    vec2 dz = times_i(u.y * h);
     vec2 sx = times_i(k.x * h);
     vec2 sz = times_i(k.y * h);
-    vec2 dxx = u.x * k.x * h;
-    vec2 dzz = u.y * k.y * h;
-    vec2 dxz = u.x * k.y * h;
+    vec2 dxx = -u.x * k.x * h;
+    vec2 dzz = -u.y * k.y * h;
+    vec2 dxz = -u.x * k.y * h;
 
     uint plane = n * n;
     uint at = id.y * n + id.x;

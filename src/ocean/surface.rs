@@ -169,10 +169,10 @@ impl Lattice for SpectralLattice {
         let (mut dx, mut h, mut dz) = (0.0, 0.0, 0.0);
         for (mode, ht) in self.modes[c].iter().zip(&self.current[c]) {
             let e = ht * self.roots[((mode.a * i + mode.b * j) & mask) as usize];
-            // h = Re e; D = Re(−i k̂ e) = k̂ Im e (cpu.rs).
+            // h = Re e; D = Re(i k̂ e) = −k̂ Im e (cpu.rs).
             h += e.re;
-            dx += mode.unit[0] * e.im;
-            dz += mode.unit[1] * e.im;
+            dx -= mode.unit[0] * e.im;
+            dz -= mode.unit[1] * e.im;
         }
         [self.choppiness * dx, h, self.choppiness * dz]
     }
