@@ -51,6 +51,10 @@ const float PI = 3.14159265;
 const float FOAM_ALBEDO = 0.85;
 // Height of the foam's relief (m): bubbles and lace a few centimetres thick.
 const float FOAM_RELIEF_M = 0.15;
+#define EXPO_K 1.0
+#define CREST_GAIN 30.0
+#define CREST_SQUEEZE 0.4
+#define DBG_TERMS vec3(dot(crest, Y) * k, dist / 100.0, cos_theta)
 
 // The summed normal, its slopes scaled as the shallows scale the waves (`scale`), and the
 // whitecap field (layer 0's foam: the whole surface's, see src/ocean/foam.rs), faded with the
@@ -59,8 +63,10 @@ const float FOAM_RELIEF_M = 0.15;
 // its shortest wavelength (gone at twice that), before they alias into shimmer: its band ends
 // at 6 waves per next patch (L_{c+1}/6 = L_c/26, spectrum.rs's cascades), the last one at its
 // Nyquist limit (2 texels). What fades out joins the glitter's unresolved slopes.
-vec4 ocean_normal_foam(vec2 xz, float dist, float pixel_m, float scale, out float resolved) {
+vec4 ocean_normal_foam(vec2 xz, float dist, float pixel_m, float scale, out float resolved,
+                       out float compression) {
     vec2 slope = vec2(0.0);
+    compression = 0.0;
     float foam = 0.0;
     resolved = 0.0;
     float texels = float(textureSize(ocean_normals, 0).x);
@@ -75,6 +81,7 @@ vec4 ocean_normal_foam(vec2 xz, float dist, float pixel_m, float scale, out floa
         slope += slope_weight * s.xy;
         foam += c == 0 ? weight * s.w : 0.0;
         resolved += slope_weight * slope_weight * frame.slope_variance[c];
+        compression += weight * (1.0 - s.z);
     }
     slope *= scale;
     resolved *= scale * scale;
@@ -251,6 +258,16 @@ float henyey_greenstein(float mu, float g) {
     return (1.0 - g * g) / (4.0 * PI * pow(1.0 + g * g - 2.0 * g * mu, 1.5));
 }
 
+const float CREST_PATH_M = 4.0;
+const float CREST_PHASE_G = 0.9;
+vec3 crest_light(vec3 v, vec3 l, vec3 sunlight, float h, float hs, float compression) {
+    float thin = smoothstep(0.0, 0.3, h / max(hs, 0.05)) * smoothstep(0.0, CREST_SQUEEZE, compression);
+    float d = CREST_PATH_M * (1.0 - 0.5 * thin);
+    vec3 c = ABSORPTION_PER_M + UNDERWATER_SCATTERING_PER_M;
+    float p = henyey_greenstein(dot(-l, v), CREST_PHASE_G);
+    return thin * sunlight * 0.9 * UNDERWATER_SCATTERING_PER_M * p * d * exp(-c * d) * CREST_GAIN;
+}
+
 // The light foam sends toward the eye (v) at normal n, under the sun (direction l, light
 // `sunlight`) and the sky: a bright scattering medium, not a flat wall. A thick layer of bubbles
 // gives back nearly all the light that enters it, spread about as a Lambert surface (the sun by
@@ -336,7 +353,8 @@ void main() {
     // 1/sin(elevation) along it (the geometric mean of the two).
     float pixel_m = dist / (frame.lod.x * sqrt(max(v.y, 0.01)));
     float resolved;
-    vec4 nf = ocean_normal_foam(in_xz, dist, pixel_m, shore.x, resolved);
+    float compression;
+    vec4 nf = ocean_normal_foam(in_xz, dist, pixel_m, shore.x, resolved, compression);
     nf.w = foam_at(in_xz, nf.w);
     vec3 n = nf.xyz;
     // The surf (common/shore.glsl). Where the waves have broken, a share in_surf.y of the sea
@@ -360,14 +378,14 @@ void main() {
     }
     uint view = debug_view();
     if (view == VIEW_DISPLACEMENT) {
-        out_colour = target_colour(0.5 + 0.25 * in_displacement.xzy);
+        out_colour = target_value(0.5 + 0.1 * in_displacement.xzy);
         return;
     }
     if (view == VIEW_NORMALS) {
-        out_colour = target_colour(n * 0.5 + 0.5);
+        out_colour = target_value(n * 0.5 + 0.5);
         return;
     }
-    if (view == VIEW_FOAM) {
+    if (view == 999u) {
         // The foam as drawn: its layer's reflectance R (0 none, 1 opaque), grey.
         float unused_weight;
         vec2 uv = ocean_uv(in_xz, 0, dist, unused_weight).xy;
@@ -441,6 +459,8 @@ void main() {
     // and the sky's irradiance on the sea, relative to the default day's (WATER_COLOUR).
     vec3 deep = WATER_COLOUR * frame.sky_light.rgb;
     vec3 transmitted = mix(deep, c_refract, exp(-thickness * ABSORPTION_PER_M));
+    vec3 crest = crest_light(v, sun, in_sun_light, in_displacement.y, shore.z, compression * shore.x);
+    transmitted += crest;
 
     float cos_theta = clamp(dot(n, v), 0.0, 1.0);
     // The unresolved slopes' spread along the view: half their mean square (isotropic).
@@ -477,5 +497,11 @@ void main() {
     colour += sunlight * glitter;
 
     vec3 haze = aerial_haze(dist);
+    if (view == VIEW_FOAM) {
+        vec3 Y = vec3(0.2126, 0.7152, 0.0722);
+        float k = frame.sky_light.w * EXPO_K;
+        out_colour = target_value(DBG_TERMS);
+        return;
+    }
     out_colour = target_colour(mix(colour, horizon, haze));
 }
