@@ -51,10 +51,6 @@ const float PI = 3.14159265;
 const float FOAM_ALBEDO = 0.85;
 // Height of the foam's relief (m): bubbles and lace a few centimetres thick.
 const float FOAM_RELIEF_M = 0.15;
-#define EXPO_K 1.0
-#define CREST_GAIN 30.0
-#define CREST_SQUEEZE 0.4
-#define DBG_TERMS vec3(dot(crest, Y) * k, dist / 100.0, cos_theta)
 
 // The summed normal, its slopes scaled as the shallows scale the waves (`scale`), and the
 // whitecap field (layer 0's foam: the whole surface's, see src/ocean/foam.rs), faded with the
@@ -63,6 +59,8 @@ const float FOAM_RELIEF_M = 0.15;
 // its shortest wavelength (gone at twice that), before they alias into shimmer: its band ends
 // at 6 waves per next patch (L_{c+1}/6 = L_c/26, spectrum.rs's cascades), the last one at its
 // Nyquist limit (2 texels). What fades out joins the glitter's unresolved slopes.
+// `compression`: how much the cascades squeeze the water together here, Σ (1 − J_c) (0 on
+// a flat sea, up to about 0.5 on the sharp crests; J_c each cascade's Jacobian).
 vec4 ocean_normal_foam(vec2 xz, float dist, float pixel_m, float scale, out float resolved,
                        out float compression) {
     vec2 slope = vec2(0.0);
@@ -258,14 +256,32 @@ float henyey_greenstein(float mu, float g) {
     return (1.0 - g * g) / (4.0 * PI * pow(1.0 + g * g - 2.0 * g * mu, 1.5));
 }
 
+// Light through the crests: a thin crest between the eye and the sun glows turquoise (the
+// signature of Sea of Thieves and Atlas, Grenier 2019). Sunlight enters the back of the crest,
+// scatters in it and leaves through the face toward the eye. Through a flat surface that
+// cannot happen: the sun's refracted ray and the eye's both dive about 40° into the water, so
+// they meet at about 80° where the water's forward-peaked phase function has almost nothing;
+// only a crest, high (`h` over the local Hs `hs`) and sharp (`compression`, Σ (1 − J)), is
+// thin enough for the light to cross it near its own direction. What crosses is the sunlight
+// times the water's transmission over the path, e^(−c·d): red absorbed first, so turquoise
+// against the deep water's blue; the path shortens as the crest thins (CREST_PATH_M down to
+// half of it). The lobe about the sun's direction is Henyey–Greenstein with g = 0.9 (near the
+// g ≈ 0.92 usually fitted to Petzold's measured ocean phase function); its strength
+// CREST_GLOW stands in for the multiple scattering a single-scattering slab leaves out and is
+// our choice, set so a backlit moderate sea's crests are 1.2 times as bright as its troughs at
+// equal normal (tests/sky.rs) without a swell's broad crests turning turquoise.
 const float CREST_PATH_M = 4.0;
 const float CREST_PHASE_G = 0.9;
+const float CREST_GLOW = 2.4;        // per metre of path: 60 × the water's 0.04/m scattering
+const float CREST_HEIGHT = 0.3;      // of the local Hs: fully high from there up
+const float CREST_COMPRESSION = 0.4; // Σ (1 − J): fully sharp from there up
 vec3 crest_light(vec3 v, vec3 l, vec3 sunlight, float h, float hs, float compression) {
-    float thin = smoothstep(0.0, 0.3, h / max(hs, 0.05)) * smoothstep(0.0, CREST_SQUEEZE, compression);
+    float thin = smoothstep(0.0, CREST_HEIGHT, h / max(hs, 0.05))
+               * smoothstep(0.0, CREST_COMPRESSION, compression);
     float d = CREST_PATH_M * (1.0 - 0.5 * thin);
-    vec3 c = ABSORPTION_PER_M + UNDERWATER_SCATTERING_PER_M;
-    float p = henyey_greenstein(dot(-l, v), CREST_PHASE_G);
-    return thin * sunlight * 0.9 * UNDERWATER_SCATTERING_PER_M * p * d * exp(-c * d) * CREST_GAIN;
+    vec3 extinction = ABSORPTION_PER_M + UNDERWATER_SCATTERING_PER_M;
+    float lobe = henyey_greenstein(dot(-l, v), CREST_PHASE_G);
+    return thin * sunlight * (1.0 - F0) * CREST_GLOW * lobe * d * exp(-extinction * d);
 }
 
 // The light foam sends toward the eye (v) at normal n, under the sun (direction l, light
@@ -378,14 +394,14 @@ void main() {
     }
     uint view = debug_view();
     if (view == VIEW_DISPLACEMENT) {
-        out_colour = target_value(0.5 + 0.1 * in_displacement.xzy);
+        out_colour = target_colour(0.5 + 0.25 * in_displacement.xzy);
         return;
     }
     if (view == VIEW_NORMALS) {
-        out_colour = target_value(n * 0.5 + 0.5);
+        out_colour = target_colour(n * 0.5 + 0.5);
         return;
     }
-    if (view == 999u) {
+    if (view == VIEW_FOAM) {
         // The foam as drawn: its layer's reflectance R (0 none, 1 opaque), grey.
         float unused_weight;
         vec2 uv = ocean_uv(in_xz, 0, dist, unused_weight).xy;
@@ -459,8 +475,9 @@ void main() {
     // and the sky's irradiance on the sea, relative to the default day's (WATER_COLOUR).
     vec3 deep = WATER_COLOUR * frame.sky_light.rgb;
     vec3 transmitted = mix(deep, c_refract, exp(-thickness * ABSORPTION_PER_M));
-    vec3 crest = crest_light(v, sun, in_sun_light, in_displacement.y, shore.z, compression * shore.x);
-    transmitted += crest;
+    // The light through the crests (crest_light), scaled as the shallows scale the waves.
+    transmitted += crest_light(v, sun, in_sun_light, in_displacement.y, shore.z,
+                               compression * shore.x);
 
     float cos_theta = clamp(dot(n, v), 0.0, 1.0);
     // The unresolved slopes' spread along the view: half their mean square (isotropic).
@@ -497,11 +514,5 @@ void main() {
     colour += sunlight * glitter;
 
     vec3 haze = aerial_haze(dist);
-    if (view == VIEW_FOAM) {
-        vec3 Y = vec3(0.2126, 0.7152, 0.0722);
-        float k = frame.sky_light.w * EXPO_K;
-        out_colour = target_value(DBG_TERMS);
-        return;
-    }
     out_colour = target_colour(mix(colour, horizon, haze));
 }
