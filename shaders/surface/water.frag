@@ -59,8 +59,11 @@ const float FOAM_RELIEF_M = 0.15;
 // its shortest wavelength (gone at twice that), before they alias into shimmer: its band ends
 // at 6 waves per next patch (L_{c+1}/6 = L_c/26, spectrum.rs's cascades), the last one at its
 // Nyquist limit (2 texels). What fades out joins the glitter's unresolved slopes.
-// `compression`: how much the cascades squeeze the water together here, Σ (1 − J_c) (0 on
-// a flat sea, up to about 0.5 on the sharp crests; J_c each cascade's Jacobian).
+// `compression`: how much the waves whose crests the light can cross squeeze the water
+// together here, Σ w_c (1 − J_c) (J_c each cascade's Jacobian, 0 on a flat sea): cascade 1
+// (waves of 3.5–15 m at the default 400 m patch, crests a few metres thick) in full, cascade
+// 0 (15–400 m) at half, the smaller ones not at all (their ripples hold too little water to
+// glow, and their compression drew the glow as a sparkling net).
 vec4 ocean_normal_foam(vec2 xz, float dist, float pixel_m, float scale, out float resolved,
                        out float compression) {
     vec2 slope = vec2(0.0);
@@ -79,7 +82,7 @@ vec4 ocean_normal_foam(vec2 xz, float dist, float pixel_m, float scale, out floa
         slope += slope_weight * s.xy;
         foam += c == 0 ? weight * s.w : 0.0;
         resolved += slope_weight * slope_weight * frame.slope_variance[c];
-        compression += weight * (1.0 - s.z);
+        compression += (c == 0 ? 0.5 : (c == 1 ? 1.0 : 0.0)) * weight * (1.0 - s.z);
     }
     slope *= scale;
     resolved *= scale * scale;
@@ -274,7 +277,7 @@ const float CREST_PATH_M = 4.0;
 const float CREST_PHASE_G = 0.9;
 const float CREST_GLOW = 2.4;        // per metre of path: 60 × the water's 0.04/m scattering
 const float CREST_HEIGHT = 0.3;      // of the local Hs: fully high from there up
-const float CREST_COMPRESSION = 0.4; // Σ (1 − J): fully sharp from there up
+const float CREST_COMPRESSION = 0.3; // Σ (1 − J): fully sharp from there up
 vec3 crest_light(vec3 v, vec3 l, vec3 sunlight, float h, float hs, float compression) {
     float thin = smoothstep(0.0, CREST_HEIGHT, h / max(hs, 0.05))
                * smoothstep(0.0, CREST_COMPRESSION, compression);
