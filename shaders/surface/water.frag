@@ -275,12 +275,20 @@ float henyey_greenstein(float mu, float g) {
 // equal normal (tests/sky.rs) without a swell's broad crests turning turquoise.
 const float CREST_PATH_M = 4.0;
 const float CREST_PHASE_G = 0.9;
-const float CREST_GLOW = 2.4;        // per metre of path: 60 × the water's 0.04/m scattering
+const float CREST_GLOW = 3.2;        // per metre of path: 80 × the water's 0.04/m scattering
 const float CREST_HEIGHT = 0.3;      // of the local Hs: fully high from there up
 const float CREST_COMPRESSION = 0.3; // Σ (1 − J): fully sharp from there up
+const float CREST_FACE_SLOPE = 0.577; // tan 30°: the faces of Stokes' sharpest crest (120°)
 vec3 crest_light(vec3 v, vec3 l, vec3 sunlight, float h, float hs, float compression) {
+    // The eye's ray must cross the crest sideways, out through its back: one that dips more
+    // steeply than the crest's faces slope enters its top and goes on into the wave's body,
+    // where the sun's refracted light meets it at about 80° again. Stokes' limiting wave has a
+    // 120° crest, so no crest is crossed by a ray dipping 30° or more; the fade to there
+    // stands in for the crests' spread of steepness.
+    float dip = v.y / max(length(v.xz), 1e-3);
+    float across = 1.0 - smoothstep(0.0, CREST_FACE_SLOPE, dip);
     float thin = smoothstep(0.0, CREST_HEIGHT, h / max(hs, 0.05))
-               * smoothstep(0.0, CREST_COMPRESSION, compression);
+               * smoothstep(0.0, CREST_COMPRESSION, compression) * across;
     float d = CREST_PATH_M * (1.0 - 0.5 * thin);
     vec3 extinction = ABSORPTION_PER_M + UNDERWATER_SCATTERING_PER_M;
     float lobe = henyey_greenstein(dot(-l, v), CREST_PHASE_G);
