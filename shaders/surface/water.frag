@@ -268,14 +268,18 @@ float henyey_greenstein(float mu, float g) {
 // thin enough for the light to cross it near its own direction. What crosses is the sunlight
 // times the water's transmission over the path, e^(−c·d): red absorbed first, so turquoise
 // against the deep water's blue; the path shortens as the crest thins (CREST_PATH_M down to
-// half of it). The lobe about the sun's direction is Henyey–Greenstein with g = 0.9 (near the
-// g ≈ 0.92 usually fitted to Petzold's measured ocean phase function); its strength
-// CREST_GLOW stands in for the multiple scattering a single-scattering slab leaves out and is
-// our choice, set so a backlit moderate sea's crests are 1.2 times as bright as its troughs at
-// equal normal (tests/sky.rs) without a swell's broad crests turning turquoise.
+// half of it). The lobe about the sun's direction is Henyey–Greenstein with g = 0.7, broader
+// than the water's own single scattering (g ≈ 0.92 is usually fitted to Petzold's measured
+// ocean phase function): the term stands in for the light a crest's surface, bubbles and
+// repeated scattering spread out, so its strength CREST_GLOW (25 times the water's 0.04/m
+// scattering) is our choice, set so a backlit moderate sea's crests are 1.2 times as bright as
+// its troughs at equal normal (tests/sky.rs) without a swell's broad crests turning
+// turquoise. With g = 0.9 and the strength the test asks for at its 25–50° from the sun, the
+// crests toward a sun on the horizon outshone its glitter (27 px a row far out over the row's
+// median + 60, where the glitter path is 7–8 px wide; tests/render.rs).
 const float CREST_PATH_M = 4.0;
-const float CREST_PHASE_G = 0.9;
-const float CREST_GLOW = 3.2;        // per metre of path: 80 × the water's 0.04/m scattering
+const float CREST_PHASE_G = 0.7;
+const float CREST_GLOW = 1.0;        // per metre of path
 const float CREST_HEIGHT = 0.3;      // of the local Hs: fully high from there up
 const float CREST_COMPRESSION = 0.3; // Σ (1 − J): fully sharp from there up
 const float CREST_FACE_SLOPE = 0.577; // tan 30°: the faces of Stokes' sharpest crest (120°)
