@@ -19,6 +19,7 @@
 #include "common/terrain.glsl"
 #include "common/shore.glsl"
 #include "common/underwater.glsl"
+#include "common/shadow.glsl"
 
 layout(location = 0) in vec3 in_rel_pos;
 layout(location = 1) in vec2 in_xz;
@@ -488,10 +489,18 @@ void main() {
     // over deep water; the depth fade belongs to the refracted light only (Beer-Lambert).
     // The light the deep water scatters back up follows the light that falls on it: the sun's
     // and the sky's irradiance on the sea, relative to the default day's (WATER_COLOUR).
-    vec3 deep = WATER_COLOUR * frame.sky_light.rgb;
+    // In a shadow (common/shadow.glsl: `water_shadow`) the sun's share of that irradiance is
+    // gone from the water body (y); the sun's other terms below take `sunlight`, the sun's light
+    // past the casters at the surface (x).
+    vec2 shadow = water_shadow(in_rel_pos + VIEW.eye.xyz);
+    vec3 sunlight = in_sun_light * shadow.x;
+    vec3 sun_on_sea = in_sun_light * max(sun.y, 0.0);
+    const vec3 LUMA = vec3(0.2126, 0.7152, 0.0722);
+    float sun_share = dot(sun_on_sea, LUMA) / max(dot(sun_on_sea + PI * in_sky_zenith, LUMA), 1e-6);
+    vec3 deep = WATER_COLOUR * frame.sky_light.rgb * (1.0 - sun_share * (1.0 - shadow.y));
     vec3 transmitted = mix(deep, c_refract, exp(-thickness * ABSORPTION_PER_M));
     // The light through the crests (crest_light), scaled as the shallows scale the waves.
-    transmitted += crest_light(v, sun, in_sun_light, in_displacement.y, shore.z,
+    transmitted += crest_light(v, sun, sunlight, in_displacement.y, shore.z,
                                compression * shore.x);
 
     float cos_theta = clamp(dot(n, v), 0.0, 1.0);
@@ -521,8 +530,7 @@ void main() {
     vec3 foam_n = normalize(n - FOAM_RELIEF_M * grad);
     // Looking straight down there is no horizon behind the foam: the sky above it.
     vec3 behind = mix(in_sky_zenith, horizon, clamp(2.0 * length(v.xz), 0.0, 1.0));
-    colour = mix(colour, foam_light(foam_n, v, sun, in_sun_light, behind, lace), opacity);
-    vec3 sunlight = in_sun_light;
+    colour = mix(colour, foam_light(foam_n, v, sun, sunlight, behind, lace), opacity);
     // c_h: the sun's glitter from the slopes the normal does not resolve (the sea's mean-square
     // slope, Cox & Munk 1954, less what the cascades drawn here carry), none on the foam.
     float glitter = sun_glitter(n, v, sun, unresolved) * (1.0 - opacity);

@@ -8,6 +8,7 @@
 #include "common/shore.glsl"
 #include "common/display.glsl"
 #include "common/underwater.glsl"
+#include "common/shadow.glsl"
 
 layout(location = 0) in vec3 in_rel_pos;
 layout(location = 1) in vec3 in_world;
@@ -71,7 +72,14 @@ void main() {
     }
     // Lambertian under the sun through the air and clouds, and the sky (common/frame.glsl).
     float lambert = max(dot(n, sun), 0.0);
-    vec3 light = sun_light() * lambert / 3.14159265 + sky_ambient(n);
+    // The sun's shadows (common/shadow.glsl); a point of the ground casts from the analytic
+    // surface, half a metre up (the drawn lattice sags below it between its vertices).
+    vec3 caster = in_world;
+    if (in_object < 0) {
+        caster.y = max(caster.y, terrain_height(caster.xz)) + 0.5;
+    }
+    float shadow = lambert > 0.0 ? sun_shadow(caster, in_object) : 1.0;
+    vec3 light = sun_light() * lambert * shadow / 3.14159265 + sky_ambient(n);
     vec3 colour = albedo * light;
     float dist = length(in_rel_pos);
     // The swash's reach: R₂ is at most 1.1·(0.35·0.5 + ½·√(0.563·0.25 + 0.004))·√(H₀L₀) =

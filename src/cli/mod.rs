@@ -327,6 +327,18 @@ pub struct Cli {
           value_parser = |s: &str| parse_in(s, 0.0, 1.0), help_heading = "Scene")]
     pub clouds: Option<f64>,
 
+    /// The sun's shadows: the island, the pillars and the buoy shade the ground, each other and
+    /// the water's sun terms (a ray cast toward the sun per pixel; README, Rendering).
+    /// [default: off at --quality low, on at medium and high]
+    #[arg(
+        long,
+        global = true,
+        value_enum,
+        value_name = "ON|OFF",
+        help_heading = "Scene"
+    )]
+    pub shadows: Option<Switch>,
+
     /// DU/DV map PNG (red = du, green = dv, 128 = no offset), tiled over the water, at most the
     /// device's largest 2D image (16384 on lavapipe); default: generated at start-up.
     #[arg(long, global = true, value_name = "FILE.png", help_heading = "Scene")]
@@ -460,6 +472,7 @@ impl Cli {
                 .clouds
                 .unwrap_or(self.preset.map_or(DEFAULT_SEA, sea_preset).cloud_cover)
                 as f32,
+            shadows: self.shadows.map_or(quality.shadows, |s| s == Switch::On),
             dudv: self.dudv.clone(),
             skybox: self.skybox.clone(),
             background: self.background,

@@ -120,6 +120,8 @@ pub struct SceneSettings {
     pub sun_dir: Vec3,
     /// `--clouds`: share of the sky under cloud, 0 (clear) to 1 (overcast).
     pub cloud_cover: f32,
+    /// `--shadows`: the sun's shadows (shaders/common/shadow.glsl).
+    pub shadows: bool,
     /// `--dudv FILE.png` instead of the generated map.
     pub dudv: Option<PathBuf>,
     /// `--skybox DIR` (six PNG faces) instead of the analytic sky.
@@ -172,6 +174,7 @@ impl Default for SceneSettings {
             layout: SceneLayout::default(),
             sun_dir: default_sun_dir(),
             cloud_cover: 0.0,
+            shadows: true,
             dudv: None,
             skybox: None,
             background: None,

@@ -522,6 +522,7 @@ impl Renderer {
                 sky_light: self.sky_light.1,
                 sun_scale: SUN_SCALE,
                 analytic_sky: s.skybox.is_none(),
+                shadows: s.shadows,
                 time_s: inputs.time_s,
                 size: (extent.width, extent.height),
                 aspect: output.extent.width as f32 / output.extent.height.max(1) as f32,

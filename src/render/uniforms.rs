@@ -205,7 +205,8 @@ pub struct FrameUniforms {
     /// x: radiance of the sun's disc above the atmosphere, drawn by the sky pass
     /// (shaders/sky/sky.frag), or 0 with `--skybox` (its faces hold their own sun); y: the sea's
     /// mean-square slope (`OceanBindings::mean_square_slope`); z: the sun's irradiance above
-    /// the atmosphere (`atmosphere::SUN_IRRADIANCE`); w: unused.
+    /// the atmosphere (`atmosphere::SUN_IRRADIANCE`); w: 1 with the sun's shadows
+    /// (`--shadows on`; shaders/common/shadow.glsl), else 0.
     pub light: [f32; 4],
     /// Mean-square slope of each cascade's waves (`SeaMoments::slope_variance`): what the
     /// normal images resolve of the sea's roughness.
@@ -329,6 +330,8 @@ pub struct FrameParams<'a> {
     pub sun_scale: f32,
     /// The sky is the analytic one (not `--skybox`): the sky pass draws the sun's disc.
     pub analytic_sky: bool,
+    /// `--shadows`: the sun's shadows (`light.w`).
+    pub shadows: bool,
     /// Simulation time (s).
     pub time_s: f64,
     /// Main target size (px).
@@ -432,7 +435,7 @@ impl FrameUniforms {
                 if p.analytic_sky { p.sun_scale } else { 0.0 },
                 p.ocean.mean_square_slope,
                 SUN_IRRADIANCE,
-                0.0,
+                f32::from(u8::from(p.shadows)),
             ],
             sun_light,
             underwater: {

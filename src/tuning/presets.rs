@@ -40,6 +40,9 @@ pub struct Quality {
     pub rtt_scale: f64,
     pub tess_edge_px: f64,
     pub terrain_grid: u32,
+    /// The sun's shadows (`--shadows`): off at low, where the island's ray march cost the
+    /// scene pass twice its time on lavapipe (README, Shadows).
+    pub shadows: bool,
 }
 
 pub fn quality_level(q: QualityArg) -> Quality {
@@ -55,6 +58,7 @@ pub fn quality_level(q: QualityArg) -> Quality {
         rtt_scale,
         tess_edge_px,
         terrain_grid,
+        shadows: q != QualityArg::Low,
     }
 }
 
