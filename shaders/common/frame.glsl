@@ -97,6 +97,17 @@ vec3 view_ray(vec2 ndc) {
 // shaders/sky/sky_cube.frag renders them with the inverse mapping).
 vec3 sky_lookup(vec3 dir) { return textureLod(sky_cube, dir, 0.0).rgb; }
 
+// The buoy's frame (terrain/objects.vert draws it, common/shadow.glsl casts its shadow): the
+// rotation taking +y to its axis u = frame.buoy.xyz (uy > −1), the shortest one (about y × u);
+// its columns are the images of x, y and z (Rodrigues' formula with cos = uy, sin·k = y × u).
+mat3 buoy_to_world() {
+    vec3 u = frame.buoy.xyz;
+    float s = 1.0 / (1.0 + u.y);
+    return mat3(vec3(1.0 - u.x * u.x * s, -u.x, -u.x * u.z * s),
+                u,
+                vec3(-u.x * u.z * s, -u.z, 1.0 - u.z * u.z * s));
+}
+
 // The sun's light on a surface facing it: through the air, and through the clouds (the sky
 // cube's alpha toward the sun; 1 for a --skybox).
 vec3 sun_light() { return frame.sun_light.rgb * textureLod(sky_cube, frame.sun_dir.xyz, 0.0).a; }

@@ -2,8 +2,9 @@
 // pillars and the buoy. The casters are all analytic (the island is terrain_height, the objects
 // are the cylinders of terrain/objects.vert), so the shadow is a ray cast toward the sun in the
 // fragment shader rather than a shadow map: no map to render, no resolution to run out of over
-// the island's 2 km, no acne from a depth bias, and the same answer in every pass (the main
-// view, the reflection, the refraction). Every pass that lights with the sun multiplies the
+// the island's 2 km, no acne from a depth bias, and the same answer in every pass drawn from
+// above the water (the main view, the reflection, the refraction; the view from under the
+// water, water.frag's `from_below`, has no shadows yet). Every pass that lights with the sun multiplies the
 // sun's light by it: the terrain and the objects (terrain.frag) and the water's sun terms
 // (water.frag). `frame.light.w` is 0 with `--shadows off`.
 //
@@ -19,10 +20,11 @@
 const int TERRAIN_SHADOW_STEPS = 32;
 // The sun's angular radius, SUN_ANGULAR_RADIUS of common/sky.glsl (Allen: 0.533° across).
 const float SUN_SHADOW_RADIUS = 0.00465;
-// The island rises above the level sea within about 1.02 of its radius (terrain_height with
-// the ridges' largest +45 %); the march covers 1.25 radii, so the drowned slope below a point
-// in the shallows can shade it too.
-const float SHADOW_ISLAND_R = 1.25;
+// The island rises above the level sea within r_land of its radius, where terrain_height's
+// hill with the ridges' largest +45 % meets the shelf's depth s: (s + PEAK_M)·1.45·e^(−1.6 r²)
+// = s (1.02 radii for the 18 m shelf, 1.27 for 6 m); the march covers SHADOW_ISLAND_MARGIN
+// radii more, so the drowned slope below a point in the shallows can shade it too.
+const float SHADOW_ISLAND_MARGIN = 0.25;
 // The objects' shape, as terrain/objects.vert draws them.
 const float SHADOW_PILLAR_FOOT_M = 2.0; // below the sea floor
 
@@ -33,8 +35,11 @@ float disc_share(float a, float radius) {
 }
 
 // The ray p + t·l (t > 0) against a capped cylinder along y (in its own frame) of radius r
-// from `bottom` to `top`: the share of the sun left, by how far the ray passes outside the
-// cylinder (its closest approach in xz less r) over the distance there.
+// from `bottom` to `top`: the share of the sun left, by the largest of three margins (each an
+// angle seen from p, < 0 when the ray is blocked that way): how far the ray passes outside
+// the circle (its closest approach in xz less r, over the distance there), how far over the
+// top it is where it enters the circle, and how far under the bottom where it leaves it (the
+// ray rises toward the sun: lowest at the entry, highest at the exit).
 float cylinder_share(vec3 p, vec3 l, float r, float bottom, float top, float sun_radius) {
     vec2 d = l.xz;
     float a = dot(d, d);
@@ -42,20 +47,21 @@ float cylinder_share(vec3 p, vec3 l, float r, float bottom, float top, float sun
         // Straight up: under the top or not.
         return length(p.xz) < r && p.y < top ? 0.0 : 1.0;
     }
-    // Closest approach of the ray's xz to the axis.
+    // Closest approach of the ray's xz to the axis (l is a unit vector: t is the distance).
     float tc = -dot(p.xz, d) / a;
     if (tc <= 0.0) {
         return 1.0; // the cylinder lies behind the point
     }
-    float miss = length(p.xz + tc * d) - r;
-    // The height of the ray over the closest approach: it must cross the cylinder's span.
-    // (l is a unit vector: tc is the distance there.)
-    float y = p.y + tc * l.y;
-    // Over the top: the height over it across the ray (cos of the sun's elevation, √a).
-    float over = (y - top) * sqrt(a) / tc;
-    float side = miss / tc;
-    float share = disc_share(max(side, over), sun_radius);
-    return y < bottom ? 1.0 : share;
+    float closest = length(p.xz + tc * d);
+    float side = (closest - r) / tc;
+    // The chord through the circle, in t (0 where the ray misses it).
+    float half_chord = sqrt(max(r * r - closest * closest, 0.0) / a);
+    float t_in = max(tc - half_chord, 1e-3);
+    float t_out = tc + half_chord;
+    // Heights across the ray: times cos of the sun's elevation, √a.
+    float over = (p.y + t_in * l.y - top) * sqrt(a) / t_in;
+    float under = (bottom - p.y - t_out * l.y) * sqrt(a) / t_out;
+    return disc_share(max(side, max(over, under)), sun_radius);
 }
 
 // The share of the sun seen from world point `p` past the pillars and the buoy, their parts
@@ -70,14 +76,9 @@ float objects_share(vec3 p, vec3 l, int skip, float cap) {
         }
         if (i == 0) {
             // The buoy: tilted along its axis frame.buoy.xyz about its waterline centre; the
-            // ray goes into its frame (about the axis × y by the axis's tilt).
-            vec3 axis = frame.buoy.xyz;
+            // ray goes into its frame (the inverse of a rotation is its transpose).
             vec3 centre = vec3(obj.x, frame.buoy.w, obj.y);
-            float s = 1.0 / (1.0 + axis.y);
-            mat3 to_world = mat3(vec3(1.0 - axis.x * axis.x * s, -axis.x, -axis.x * axis.z * s),
-                                 axis,
-                                 vec3(-axis.x * axis.z * s, -axis.z, 1.0 - axis.z * axis.z * s));
-            mat3 to_local = transpose(to_world);
+            mat3 to_local = transpose(buoy_to_world());
             share = min(share, cylinder_share(to_local * (p - centre), to_local * l, obj.z,
                                               -BUOY_DRAFT_M, min(obj.w, cap - frame.buoy.w),
                                               SUN_SHADOW_RADIUS));
@@ -93,7 +94,9 @@ float objects_share(vec3 p, vec3 l, int skip, float cap) {
 // The share of the sun seen from world point `p` past the island: the ray marched where it
 // crosses the island's circle below its highest possible ground.
 float island_share(vec3 p, vec3 l) {
-    float radius = SHADOW_ISLAND_R * frame.terrain.w;
+    float shelf = max(frame.terrain.z, 0.5);
+    float land_r = sqrt(max(log((shelf + PEAK_M) * 1.45 / shelf) / 1.6, 0.0));
+    float radius = (land_r + SHADOW_ISLAND_MARGIN) * frame.terrain.w;
     float highest = (frame.terrain.z + PEAK_M) * 1.45 - frame.terrain.z;
     float t_top = (highest - p.y) / l.y;
     vec2 o = p.xz - frame.terrain.xy;

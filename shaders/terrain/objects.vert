@@ -16,15 +16,6 @@ layout(location = 3) flat out int out_object;
 const uint SEGMENTS = 20u;
 const float TAU = 6.28318530718;
 
-// The rotation taking +y to the unit vector u (uy > -1), the shortest one (about y × u): its
-// columns are the images of x, y and z (Rodrigues' formula with cos = uy, sin·k = y × u).
-mat3 rotation_from_up(vec3 u) {
-    float s = 1.0 / (1.0 + u.y);
-    return mat3(vec3(1.0 - u.x * u.x * s, -u.x, -u.x * u.z * s),
-                u,
-                vec3(-u.x * u.z * s, -u.z, 1.0 - u.z * u.z * s));
-}
-
 void main() {
     vec4 obj = frame.objects[gl_InstanceIndex];
     bool buoy = gl_InstanceIndex == 0;
@@ -50,7 +41,7 @@ void main() {
         local = vec3(cos(a) * r, obj.w, sin(a) * r);
         normal = vec3(0.0, 1.0, 0.0);
     }
-    mat3 rotation = buoy ? rotation_from_up(frame.buoy.xyz) : mat3(1.0);
+    mat3 rotation = buoy ? buoy_to_world() : mat3(1.0);
     vec3 origin = vec3(obj.x, buoy ? frame.buoy.w : 0.0, obj.y);
     vec3 world = origin + rotation * local;
     normal = rotation * normal;
