@@ -9,14 +9,16 @@
 //! of sight meets a caster or land, or whose floor another caster shades, are left out. With
 //! the sun, the shadow's mean luma over the ring's must be at most the scene's bound and at
 //! most that bound times the same ratio with
-//! `--shadows off`, which must be 1 ± 0.05 (so it is the shadow, not the place, that is
-//! darker). Under an overcast (`--clouds 1`: no sun) the shadows must change nothing: the
-//! ratio with and without them equal within 1 %.
+//! `--shadows off`, which must be 1 ± 0.1 (so it is the shadow, not the place, that is
+//! darker; the caustics, common/caustics.glsl, make the sunlit floor's mean vary by some
+//! per cent between a small region and its ring). Under an overcast (`--clouds 1`: no sun)
+//! the shadows must change nothing: the ratio with and without them equal within 1 %.
 //!
-//! Measured on lavapipe, shadow/ring with the sun: pillar 0.136, buoy 0.307, island 0.553
-//! (without shadows 0.998, 1.003, 0.983). The bounds (0.2, 0.4, 0.65) lie between those and
-//! what the same pictures give against a twin that forgets the refraction (0.288, 0.678,
-//! 0.721): a shadow in the wrong place fails.
+//! Measured on lavapipe, shadow/ring with the sun: pillar 0.117, buoy 0.298, island 0.433
+//! (without shadows 1.020, 1.069, 1.087). The bounds (0.2, 0.4, 0.65) lie between those and
+//! what the same pictures gave, before the caustics and the refracted sun's Lambert term,
+//! against a twin that forgets the refraction (0.288, 0.678, 0.721): a shadow in the wrong
+//! place fails.
 
 mod common;
 
@@ -279,8 +281,8 @@ fn shadow_ratios(
 
 fn assert_shadow(name: &str, (r, pixels): ([f64; 4], usize), at_most: f64) {
     assert!(
-        (r[1] - 1.0).abs() <= 0.05,
-        "{name}: without shadows the shadow's region is {:.3} of its ring (expected 1 ± 0.05)",
+        (r[1] - 1.0).abs() <= 0.1,
+        "{name}: without shadows the shadow's region is {:.3} of its ring (expected 1 ± 0.1)",
         r[1]
     );
     assert!(

@@ -42,6 +42,7 @@ layout(set = 0, binding = 0, std140) uniform FrameUniforms {
                          // mean-square slope (Cox & Munk 1954); z: the sun's irradiance above
                          // the air
     vec4 slope_variance; // mean-square slope of cascade c's waves (Σ k²E), c = 0..3
+    vec4 curvature_variance; // mean square of the Laplacian of cascade c's height (Σ k⁴E)
     vec4 sun_light;      // rgb: the sun's irradiance at the sea through the clear air (times
                          // sun_visibility(): what the clouds let through); w: cloud cover
     vec4 sky_light;      // rgb: the irradiance on the sea over the default day's; w: the

@@ -24,3 +24,11 @@ vec3 underwater_fog(vec3 colour, vec3 dir, float dist) {
     vec3 extinction = ABSORPTION_PER_M + UNDERWATER_SCATTERING_PER_M;
     return mix(water_inscatter(dir), colour, exp(-dist * extinction));
 }
+
+// The share of the sun's light the level sea lets in (1 − Schlick's Fresnel at the sun's
+// incidence in the air; F0 = 0.02, water's).
+float sun_transmission(vec3 l) {
+    float m = 1.0 - clamp(l.y, 0.0, 1.0);
+    float m2 = m * m;
+    return 1.0 - (0.02 + 0.98 * m2 * m2 * m);
+}

@@ -24,6 +24,14 @@ layout(constant_id = 0) const int CASCADES = 3;
 // comes from the sampler). Same result as the hardware's bilinear filter, to float rounding.
 layout(constant_id = 1) const bool OCEAN_MANUAL_FILTER = false;
 
+// The shortest waves cascade c's normal image draws (m; `texels` per side): two texels, and
+// for every cascade but the finest no shorter than its patch / 26, where the next cascade's
+// waves take over. The slope and caustic fades compare a pixel's footprint with it.
+float cascade_shortest_m(int c, float texels) {
+    float patch_m = frame.patch_m[c];
+    return c == CASCADES - 1 ? 2.0 * patch_m / texels : max(patch_m / 26.0, 2.0 * patch_m / texels);
+}
+
 vec4 ocean_texture(sampler2DArray images, vec3 uv) {
     if (!OCEAN_MANUAL_FILTER) {
         return textureLod(images, uv, 0.0);

@@ -76,10 +76,7 @@ vec4 ocean_normal_foam(vec2 xz, float dist, float pixel_m, float scale, out floa
         float weight;
         vec3 uv = ocean_uv(xz, c, dist, weight);
         vec4 s = ocean_texture(ocean_normals, uv);
-        float patch_m = frame.patch_m[c];
-        float shortest = c == CASCADES - 1 ? 2.0 * patch_m / texels
-                                           : max(patch_m / 26.0, 2.0 * patch_m / texels);
-        float slope_weight = weight * clamp(2.0 - pixel_m / shortest, 0.0, 1.0);
+        float slope_weight = weight * clamp(2.0 - pixel_m / cascade_shortest_m(c, texels), 0.0, 1.0);
         slope += slope_weight * s.xy;
         foam += c == 0 ? weight * s.w : 0.0;
         resolved += slope_weight * slope_weight * frame.slope_variance[c];

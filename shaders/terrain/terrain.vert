@@ -9,8 +9,9 @@
 #include "common/frame.glsl"
 #include "common/terrain.glsl"
 
-// Grid quads per side: specialized by TerrainPass (--terrain-grid, src/render/passes/terrain.rs).
-layout(constant_id = 0) const int TERRAIN_QUADS = 160;
+// Grid quads per side: specialized by TerrainPass (--terrain-grid, src/render/passes/terrain.rs;
+// constants 0 and 1 are common/water.glsl's, which terrain.frag includes for the caustics).
+layout(constant_id = 3) const int TERRAIN_QUADS = 160;
 const float TERRAIN_EXTENT = 2.4;    // island radii per unit of lattice coordinate at the centre
 const float TERRAIN_FAR_M = 20000.0; // the lattice's half-side (m): the water grid's FAR_M
 

@@ -7,8 +7,6 @@
 //!    reflection  island + objects + sky, mirrored camera, clipped below the water
 //!                                                        writes reflection colour + depth
 //!                then the colour's layers 1.., each the one before halved in height
-//!    refraction  island + objects below the water        writes refraction colour + depth
-//!    scene       island + objects (main camera)          writes main colour + depth
 //!  compute     waits for the graphics timeline at f − 1 (frame f − 2 last sampled slot f % 2),
 //!              signals the compute timeline with the frame's value
 //!    evolve, fft, assemble (or the Gerstner kernel)      writes the slot's simulation images
@@ -16,6 +14,10 @@
 //!  graphics 2  waits for the compute timeline at the frame's value (vertex, tessellation
 //!              evaluation and fragment stages), signals the frame timeline (and the
 //!              swapchain's `ready` semaphore); a window's image waits for `acquired`
+//!    refraction  island + objects below the water, with the caustics (they sample the
+//!                simulation's normal images)      writes refraction colour + depth
+//!    scene       island + objects (main camera; caustics from under the water)
+//!                                                        writes main colour + depth
 //!    water       tessellated patches; samples reflection, refraction (colour and depth) and,
 //!                through the compute wait, the simulation images   writes main colour + depth
 //!    sky         where nothing else was drawn                        writes main colour
@@ -138,7 +140,8 @@ pub fn record_frame(
         ..*inputs
     };
 
-    // ── graphics 1: the passes that read no simulation output ──────────────────────────────
+    // ── graphics 1: the passes that read no simulation output (the reflection's terrain
+    // shader has no caustics) ──────────────────────────────────────────────────────────────
     let foam_scene;
     {
         let rec = frame.recorder(ctx, Submission::Scene);
@@ -161,37 +164,17 @@ pub fn record_frame(
         // Each pass: its rendering scope's barriers (from what its draws' shaders read), then
         // its timestamps around the drawing.
         let (view, reflection) = (ViewIndex::Reflection, &t.reflection);
-        let [island, objects] = r.terrain.draws(&set, view);
+        let [island, objects] = r.terrain.draws(&set, view, false);
         let draws = [island, objects, r.sky.draw(&set, view)];
         let scope = drawn_anew(&rec, names::REFLECTION, reflection, Load::DontCare, &draws);
         profiler.pass(&rec, names::REFLECTION, || {
             // The sky, last, writes every pixel the terrain left.
             scope.record(|| {
-                r.terrain.record(&rec, &set, view);
+                r.terrain.record(&rec, &set, view, false);
                 r.sky.record(&rec, &set, view);
             });
             // Its blurred layers, for the water to blur it by the slopes it does not resolve.
             rec.halve_down_layers(&t.reflection.colour);
-        });
-        let deep = Load::Clear(vk::ClearValue {
-            color: vk::ClearColorValue {
-                float32: DEEP_WATER,
-            },
-        });
-        let view = ViewIndex::Refraction;
-        let draws = r.terrain.draws(&set, view);
-        let scope = drawn_anew(&rec, names::REFRACTION, &t.refraction, deep, &draws);
-        profiler.pass(&rec, names::REFRACTION, || {
-            scope.record(|| r.terrain.record(&rec, &set, view))
-        });
-        // Scene, water and sky are three rendering scopes, so each pass's timestamps cover its
-        // own rasterisation (a CPU driver may defer drawing to the end of a scope). The sky goes
-        // last and fills only what terrain and water left: no covered pixel is shaded twice.
-        let view = ViewIndex::Main;
-        let draws = r.terrain.draws(&set, view);
-        let scope = drawn_anew(&rec, names::SCENE, &t.main, Load::DontCare, &draws);
-        profiler.pass(&rec, names::SCENE, || {
-            scope.record(|| r.terrain.record(&rec, &set, view))
         });
         profiler.pause(&rec);
         rec.end_label();
@@ -225,12 +208,34 @@ pub fn record_frame(
         let water_sets = r.water.sets(set[0], frame.slot);
         let texture_sets = [set[0], &r.water.textures().set];
         let t = &r.targets;
+        // The refraction and the scene: their terrain is lit by the caustics, which sample the
+        // simulation's images (terrain_caustics.frag; the scene's only from under the water).
+        let underwater = inputs.camera_depth_m(camera.y) > 0.0;
+        let deep = Load::Clear(vk::ClearValue {
+            color: vk::ClearColorValue {
+                float32: DEEP_WATER,
+            },
+        });
+        let view = ViewIndex::Refraction;
+        let draws = r.terrain.draws(&set, view, underwater);
+        let scope = drawn_anew(&rec, names::REFRACTION, &t.refraction, deep, &draws);
+        profiler.pass(&rec, names::REFRACTION, || {
+            scope.record(|| r.terrain.record(&rec, &set, view, underwater))
+        });
+        // Scene, water and sky are three rendering scopes, so each pass's timestamps cover its
+        // own rasterisation (a CPU driver may defer drawing to the end of a scope). The sky goes
+        // last and fills only what terrain and water left: no covered pixel is shaded twice.
+        let view = ViewIndex::Main;
+        let draws = r.terrain.draws(&set, view, underwater);
+        let scope = drawn_anew(&rec, names::SCENE, &t.main, Load::DontCare, &draws);
+        profiler.pass(&rec, names::SCENE, || {
+            scope.record(|| r.terrain.record(&rec, &set, view, underwater))
+        });
         let keep = |image| Target::new(image, Load::Keep);
         let main = [keep(&t.main.colour)];
         // Its barriers: the reflection, refraction and DU/DV textures and the sky cube at the
         // stages the water's shaders sample them in (the sky cube in tessellation evaluation
         // too); the simulation images are ordered by the compute timeline's wait.
-        let underwater = inputs.camera_depth_m(camera.y) > 0.0;
         let draw = r.water.draw(&water_sets, r.settings.view, underwater);
         let scope = rec.rendering(names::WATER, &main, Some(keep(&t.main.depth)), &[draw]);
         profiler.begin_pass(&rec, names::WATER);

@@ -312,11 +312,17 @@ impl Renderer {
             repeat: &repeat_sampler,
         };
         let sky = SkyPass::new(ctx, &frame_set_layout, targets.display_format())?;
+        let water_kind = WaterKind {
+            geometry: Geometry::resolve(settings.geometry),
+            cascades: ocean.cascades,
+            manual_filter: !ocean_linear,
+        };
         let terrain = TerrainPass::new(
             ctx,
             &frame_set_layout,
             settings.terrain_grid,
             targets.display_format(),
+            water_kind,
         )?;
         let water = WaterPass::new(
             ctx,
@@ -324,11 +330,7 @@ impl Renderer {
             &targets,
             &dudv,
             &samplers,
-            WaterKind {
-                geometry: Geometry::resolve(settings.geometry),
-                cascades: ocean.cascades,
-                manual_filter: !ocean_linear,
-            },
+            water_kind,
         )?;
         let spray = ocean
             .spray
@@ -401,7 +403,15 @@ impl Renderer {
         let water = self.water.sets(frame[0], 0);
         for view in [ViewIndex::Main, ViewIndex::Reflection] {
             check_bindings(names::SKY, &[self.sky.draw(&frame, view)])?;
-            check_bindings(names::SCENE, &self.terrain.draws(&frame, view))?;
+        }
+        for view in [
+            ViewIndex::Main,
+            ViewIndex::Reflection,
+            ViewIndex::Refraction,
+        ] {
+            for underwater in [false, true] {
+                check_bindings(names::SCENE, &self.terrain.draws(&frame, view, underwater))?;
+            }
         }
         let draws: Vec<Bindings> = self
             .water

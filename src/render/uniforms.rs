@@ -211,13 +211,16 @@ pub struct FrameUniforms {
     /// Mean-square slope of each cascade's waves (`SeaMoments::slope_variance`): what the
     /// normal images resolve of the sea's roughness.
     pub slope_variance: [f32; 4],
+    /// Mean square of the Laplacian of each cascade's height (`SeaMoments::curvature_variance`):
+    /// how deep its waves focus the sun (shaders/common/caustics.glsl).
+    pub curvature_variance: [f32; 4],
     /// rgb: the sun's irradiance at the sea on a surface facing it, through the clear air
     /// (`Sky::sun_light`; the sky cube's alpha says what the clouds let through); w: the cloud
     /// cover (0–1).
     pub sun_light: [f32; 4],
     /// rgb: the sun's and sky's irradiance on the sea over the default day's
     /// (`Sky::global_irradiance`, `reference_light`): deep water's light; w: the display's
-    /// exposure (`Sky::exposure`).
+    /// exposure (`Sky::exposure`, times `underwater_adaptation` under the water).
     pub sky_light: [f32; 4],
     /// x: 1 when the camera is under the water (below `FrameInputs::camera_surface_m`), else 0;
     /// y: its depth below the surface there (m, ≥ 0); zw: unused.
@@ -359,12 +362,27 @@ pub fn sky_uniforms(sky: &Sky) -> ([f32; 4], [f32; 4]) {
     )
 }
 
+/// The exposure's factor for an eye `depth` m under the water (≤ 0: above it): the eye, and a
+/// camera's automatic exposure, adapt to the daylight at their depth, fully, as a diver's eyes
+/// do over the minutes of a dive: 1 over the luminance (Rec. 709 weights) that is left of a
+/// grey daylight after `depth` m of each channel's absorption (`ABSORPTION_PER_M`; capped at
+/// 30 m). At 8 m the red is gone and the green halved: 2.6.
+pub fn underwater_adaptation(depth: f64) -> f32 {
+    let d = depth.clamp(0.0, 30.0);
+    let weights = [0.2126, 0.7152, 0.0722];
+    let left: f64 = (0..3)
+        .map(|c| weights[c] * (-f64::from(crate::shared::ABSORPTION_PER_M[c]) * d).exp())
+        .sum();
+    (1.0 / left) as f32
+}
+
 impl FrameUniforms {
     pub fn new(camera: &Camera, p: &FrameParams) -> Self {
         let (w, h) = (p.size.0.max(1) as f32, p.size.1.max(1) as f32);
         let water = WaterFrame::around([camera.position.x as f64, camera.position.z as f64]);
         let focal_px = camera.focal_px(p.aspect, h);
         let (sun_light, sky_light) = p.sky_light;
+        let depth = p.inputs.camera_depth_m(camera.position.y);
         FrameUniforms {
             views: frame_views(
                 camera,
@@ -438,13 +456,16 @@ impl FrameUniforms {
                 f32::from(u8::from(p.shadows)),
             ],
             sun_light,
-            underwater: {
-                let depth = p.inputs.camera_depth_m(camera.position.y);
-                [f32::from(depth > 0.0), depth.max(0.0) as f32, 0.0, 0.0]
-            },
-            sky_light,
+            underwater: [f32::from(depth > 0.0), depth.max(0.0) as f32, 0.0, 0.0],
+            sky_light: [
+                sky_light[0],
+                sky_light[1],
+                sky_light[2],
+                sky_light[3] * underwater_adaptation(depth),
+            ],
             foam_levels: foam_levels(&p.inputs.foam_levels, &water),
             slope_variance: p.ocean.sea_moments.slope_variance.map(|v| v as f32),
+            curvature_variance: p.ocean.sea_moments.curvature_variance.map(|v| v as f32),
             open_sea: {
                 let floor = p.scene.deep_floor_m;
                 [

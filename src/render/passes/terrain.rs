@@ -9,6 +9,7 @@ use std::sync::Arc;
 
 use ash::vk;
 
+use super::water::WaterKind;
 use super::{
     bind_scene, lattice_triangles, scene_layout, scene_pipeline, Depth, Mesh, PerTarget,
     SceneTarget,
@@ -30,21 +31,29 @@ pub struct TerrainPass {
     /// runs on one CPU thread, so this matters in every view). The main view's cells are one
     /// lattice step wide, the HDR views' (reflection, refraction) two.
     meshes: PerTarget<Mesh>,
-    /// Island and objects into HDR (reflection, refraction) and into the main target.
-    pipelines: PerTarget<[Pipeline; 2]>,
+    /// Island and objects with the caustics (terrain_caustics.frag): into HDR (refraction)
+    /// and into the main target (from under the water). They sample the simulation's images.
+    caustics: PerTarget<[Pipeline; 2]>,
+    /// Island and objects without them (terrain.frag): the reflection, which reads nothing the
+    /// simulation wrote, so it draws before the simulation is waited for (graphics 1), and the
+    /// main view from above the water, where the drowned terrain lies under the water's
+    /// surface (the caustic shader's untaken branch cost lavapipe 1.4 ms there at low).
+    plain: PerTarget<[Pipeline; 2]>,
 }
 
 impl TerrainPass {
     /// `quads`: grid quads per side of the island's lattice; `display_format`: the main
-    /// target's.
+    /// target's; `ocean`: how terrain.frag samples the ocean images for the caustics (its
+    /// cascades and filter; the geometry is the water's own).
     pub fn new(
         ctx: &Arc<Context>,
         frame_layout: &DescriptorSetLayout,
         quads: u32,
         display_format: vk::Format,
+        ocean: WaterKind,
     ) -> GpuResult<TerrainPass> {
         let layout = scene_layout(ctx, "terrain layout", frame_layout, &[])?;
-        let pipeline = |name: &str, vert: &[u8], target| {
+        let pipeline = |name: &str, vert: &[u8], frag: &[u8], target| {
             scene_pipeline(
                 ctx,
                 &layout,
@@ -52,32 +61,46 @@ impl TerrainPass {
                     name,
                     stages: &[
                         (vk::ShaderStageFlags::VERTEX, vert),
-                        (
-                            vk::ShaderStageFlags::FRAGMENT,
-                            shaders::TERRAIN_TERRAIN_FRAG,
-                        ),
+                        (vk::ShaderStageFlags::FRAGMENT, frag),
                     ],
-                    constants: &[quads],
+                    // common/water.glsl's CASCADES and OCEAN_MANUAL_FILTER, water.frag's
+                    // UNDERWATER_VIEW (unused here), terrain.vert's TERRAIN_QUADS.
+                    constants: &[ocean.cascades, ocean.manual_filter as u32, 0, quads],
                     ..Default::default()
                 },
                 Depth::TestWrite,
                 target,
             )
         };
-        let pipelines = PerTarget::new(display_format, |target| {
-            let label = target.label();
+        let pair = |label: &str, frag: &[u8], target| -> GpuResult<[Pipeline; 2]> {
             Ok([
                 pipeline(
                     &format!("terrain ({label})"),
                     shaders::TERRAIN_TERRAIN_VERT,
+                    frag,
                     target,
                 )?,
                 pipeline(
                     &format!("objects ({label})"),
                     shaders::TERRAIN_OBJECTS_VERT,
+                    frag,
                     target,
                 )?,
             ])
+        };
+        let caustics = PerTarget::new(display_format, |target| {
+            let label = match target {
+                SceneTarget::Hdr => "refraction",
+                SceneTarget::Display(_) => "main view, under the water",
+            };
+            pair(label, shaders::TERRAIN_TERRAIN_CAUSTICS_FRAG, target)
+        })?;
+        let plain = PerTarget::new(display_format, |target| {
+            let label = match target {
+                SceneTarget::Hdr => "reflection",
+                SceneTarget::Display(_) => "main view",
+            };
+            pair(label, shaders::TERRAIN_TERRAIN_FRAG, target)
         })?;
         let meshes = PerTarget::new(display_format, |target| {
             let step = match target {
@@ -87,22 +110,37 @@ impl TerrainPass {
             let name = format!("terrain indices ({})", target.label());
             Mesh::new(ctx, &name, &lattice_triangles(quads, step))
         })?;
-        Ok(TerrainPass { meshes, pipelines })
+        Ok(TerrainPass {
+            meshes,
+            caustics,
+            plain,
+        })
     }
 
     /// What `record` binds for `view`: the island's and the objects' pipelines with `sets`
-    /// (the frame set).
-    pub fn draws<'a>(&'a self, sets: &'a [&'a BoundSet], view: ViewIndex) -> [Bindings<'a>; 2] {
-        self.pipelines
-            .for_view(view)
+    /// (the frame set); the caustics in the refraction, and in the main view when the camera
+    /// is `underwater`.
+    pub fn draws<'a>(
+        &'a self,
+        sets: &'a [&'a BoundSet],
+        view: ViewIndex,
+        underwater: bool,
+    ) -> [Bindings<'a>; 2] {
+        let pipelines = match view {
+            ViewIndex::Refraction => &self.caustics,
+            ViewIndex::Main if underwater => &self.caustics,
+            _ => &self.plain,
+        }
+        .for_view(view);
+        pipelines
             .each_ref()
             .map(|pipeline| Bindings { pipeline, sets })
     }
 
     /// Draws the island and the objects inside a scene rendering scope that declared
-    /// `draws(sets, view)`.
-    pub fn record(&self, rec: &Recorder, sets: &[&BoundSet], view: ViewIndex) {
-        let [terrain, objects] = self.draws(sets, view);
+    /// `draws(sets, view, underwater)`.
+    pub fn record(&self, rec: &Recorder, sets: &[&BoundSet], view: ViewIndex, underwater: bool) {
+        let [terrain, objects] = self.draws(sets, view, underwater);
         let mesh = self.meshes.for_view(view);
         bind_scene(rec, &terrain, view);
         rec.bind_index_buffer(&mesh.buffer);

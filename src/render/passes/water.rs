@@ -87,8 +87,8 @@ impl WaterTextures {
         dudv: &Image,
         samplers: &WaterSamplers,
     ) -> GpuResult<BoundSet> {
-        // Each tracked: the passes that sample them wait for their writers (graphics 1's
-        // reflection and refraction passes, the DU/DV map's upload).
+        // Each tracked: the passes that sample them wait for their writers (the reflection
+        // pass in graphics 1, the refraction pass in graphics 2, the DU/DV map's upload).
         let t = Order::Tracked;
         BoundSet::new(
             ctx,

@@ -1,0 +1,127 @@
+// Caustics (issue 34): the sun's light on a point under the water, gathered and spread by the
+// simulated waves above it (no texture). The sun's ray refracted at the surface point x, where
+// the slope is s(x) = ∇h (the normal images' xy), reaches the depth d at
+//     X(x) = x + d·q(s(x)),
+// q the refracted ray's horizontal run per metre of descent (Snell's law). The light through
+// a small patch of surface lands on the patch's image, so the irradiance there is the level
+// sea's times the area ratio of the refracted grid,
+//     1 / |det ∂X/∂x| = 1 / |det(I + d·Q·H)|,   Q = ∂q/∂s,  H = ∂s/∂x (the height's Hessian).
+// A point p of the floor takes the ratio at the surface point whose ray lands on it, x = p −
+// d·q(s(x)), found by fixed-point steps from the level sea's answer (they contract until the
+// rays first cross, |d·Q·H| < 1; past that focus p gathers light from several x and this takes
+// the one the steps reach). Before the focus the map is one-to-one and the ratio's mean over
+// the floor is 1: the light is moved, not made.
+//
+// Left out: the surface's height and horizontal displacement (the ray starts at the rest
+// position, at the mean level: centimetres on a calm sea) and the change of the surface's
+// transmission with its slope.
+//
+// Needs common/frame.glsl, common/water.glsl (CASCADES, ocean_texture) and common/shadow.glsl
+// (refracted_sun) before it.
+
+// Water's refractive index (as water.frag's N_WATER).
+const float CAUSTIC_N_WATER = 1.333;
+// The sun's disc is 2·0.00465 rad across in the air (common/sky.glsl), 1/1.333 of it under the
+// water near the vertical: a point d deep gets its light over an angle 0.007 wide, so a bundle
+// of rays b across (the width the Hessian below is taken over) never narrows below d·0.007 m,
+// and its area ratio has the floor d·0.007 / b. Deep floors get soft caustics, shallow ones
+// sharp lines, as in a pool.
+const float CAUSTIC_SUN_SPREAD = 0.007;
+// The brightest a caustic gets, where the floor above does not bound it (the sun's image at
+// a focus, blurred by the pixel).
+const float CAUSTIC_MAX = 12.0;
+// A wave of curvature κ focuses the sun about 1/((1 − 1/n)·κ) = 4/κ m down (a thin lens in
+// water). Some focal lengths deeper the rays from many surface points cross at every point of
+// the floor and the sun's disc blurs their images together: that wave's own pattern washes
+// out, and the longer waves, which focus deeper, draw the network. So each cascade's
+// curvature enters at most CAUSTIC_FOCI times its RMS focal depth: its Hessian is scaled by
+// min(1, CAUSTIC_FOCI / F), F = d·(1 − 1/n)·κ_rms, κ_rms = √(Σk⁴E) (frame.curvature_variance),
+// and taken by central differences F / CAUSTIC_FOCI texels wide (at least one): a low-pass that
+// keeps the cascade's longer waves, which focus deeper. Our choice (1.0): the network's lines
+// are the first foci of the waves that focus near the floor. Without it the shortest waves,
+// far past their foci, broke the floor into a speckle of dark rims around bright blobs (one
+// branch of many crossing rays, taken at random).
+const float CAUSTIC_FOCI = 1.0;
+// Slope step of Q's central differences.
+const float CAUSTIC_DS = 0.02;
+
+// The refracted sun's horizontal run per metre of descent below a surface of slope s (the sun
+// toward l, l.y > 0).
+vec2 caustic_run(vec2 s, vec3 l) {
+    vec3 n = normalize(vec3(-s.x, 1.0, -s.y));
+    vec3 t = refract(-l, n, 1.0 / CAUSTIC_N_WATER);
+    return t.xz / max(-t.y, 1e-3);
+}
+
+// The surface's slope at `x` (relative to the water grid's centre) and its Hessian ∂s/∂x, each
+// cascade low-passed as CAUSTIC_FOCI says (the slope: the mean of the four samples its
+// central differences take) and faded as water.frag fades its slopes where a pixel (`pixel_m`
+// across, `dist` from the eye) cannot resolve its shortest waves: there its caustics would
+// alias, so they average to the level sea's 1. `bundle_m`: the narrowest difference taken.
+void caustic_surface(vec2 x, float depth, float dist, float pixel_m, out vec2 s, out mat2 hess,
+                     out float bundle_m, out float focus) {
+    float texels = float(textureSize(ocean_normals, 0).x);
+    s = vec2(0.0);
+    hess = mat2(0.0);
+    bundle_m = 1e9;
+    focus = 0.0;
+    for (int c = 0; c < CASCADES; ++c) {
+        float weight;
+        vec3 uv = ocean_uv(x, c, dist, weight);
+        float patch_m = frame.patch_m[c];
+        float foci = depth * (1.0 - 1.0 / CAUSTIC_N_WATER) * sqrt(frame.curvature_variance[c]);
+        float widen = max(1.0, foci / CAUSTIC_FOCI);
+        float resolved = weight * clamp(2.0 - pixel_m / cascade_shortest_m(c, texels), 0.0, 1.0)
+                         * min(1.0, CAUSTIC_FOCI / max(foci, 1e-6));
+        vec2 step_uv = vec2(widen / texels, 0.0);
+        vec2 sx0 = ocean_texture(ocean_normals, uv - step_uv.xyy).xy;
+        vec2 sx1 = ocean_texture(ocean_normals, uv + step_uv.xyy).xy;
+        vec2 sz0 = ocean_texture(ocean_normals, uv - step_uv.yxy).xy;
+        vec2 sz1 = ocean_texture(ocean_normals, uv + step_uv.yxy).xy;
+        float step_m = widen * patch_m / texels;
+        s += resolved * 0.25 * (sx0 + sx1 + sz0 + sz1);
+        hess += resolved / (2.0 * step_m) * mat2(sx1 - sx0, sz1 - sz0);
+        bundle_m = resolved > 0.01 ? min(bundle_m, 2.0 * step_m) : bundle_m;
+        // The cascade's RMS focus number as it enters: its band below the stencil's cutoff
+        // holds about 1/widen of its curvature (Σk⁴E grows as k² for a k⁻⁴ spectrum).
+        float f = resolved * foci / widen;
+        focus += f * f;
+    }
+    focus = sqrt(focus);
+}
+
+// The mean of 1/max(|det(I + M)|, 0.1) over the surface, M = −(1 − 1/n)·d·H with H an
+// isotropic Gaussian Hessian of RMS Laplacian κ, at f = (1 − 1/n)·d·κ = 0, 0.25, …, 2 (Monte
+// Carlo, 10⁶ samples; h_xx, h_zz of variance 3κ²/8 and covariance κ²/8, h_xz of variance κ²/8).
+// The fixed-point step does not reach the exact preimage past the first foci, so the ratio is
+// taken nearly uniformly over the surface, where the focusing patches weigh more than on the
+// floor: the raw ratio's mean was 1.97 on the calm shelf 16 m down. Divided by this, the
+// caustics move the light and do not make it.
+const float CAUSTIC_MEAN[9] = float[](1.000, 1.071, 1.460, 2.250, 2.712, 2.770, 2.619, 2.394, 2.161);
+float caustic_mean(float f) {
+    float i = clamp(f / 0.25, 0.0, 7.999);
+    int k = int(i);
+    return mix(CAUSTIC_MEAN[k], CAUSTIC_MEAN[k + 1], i - float(k));
+}
+
+// The sun's irradiance on the floor at `xz` (relative to the water grid's centre), `depth` m
+// under the mean level, over the level sea's: the area ratio above, at the surface point one
+// fixed-point step from the level sea's answer finds (with the same low-passed slopes, so the
+// step does not scatter neighbouring pixels). `dist`: its distance from the eye; `pixel_m`:
+// the floor's footprint in a pixel there.
+float caustic(vec2 xz, float depth, float dist, float pixel_m) {
+    vec3 l = frame.sun_dir.xyz;
+    vec2 s;
+    mat2 hess;
+    float bundle_m;
+    float focus;
+    caustic_surface(xz - depth * caustic_run(vec2(0.0), l), depth, dist, pixel_m, s, hess, bundle_m,
+                    focus);
+    caustic_surface(xz - depth * caustic_run(s, l), depth, dist, pixel_m, s, hess, bundle_m, focus);
+    mat2 dq = mat2(caustic_run(s + vec2(CAUSTIC_DS, 0.0), l) - caustic_run(s - vec2(CAUSTIC_DS, 0.0), l),
+                   caustic_run(s + vec2(0.0, CAUSTIC_DS), l) - caustic_run(s - vec2(0.0, CAUSTIC_DS), l))
+              / (2.0 * CAUSTIC_DS);
+    float det = abs(determinant(mat2(1.0) + depth * dq * hess));
+    float spread = depth * CAUSTIC_SUN_SPREAD / bundle_m;
+    return 1.0 / (max(det, max(spread, 1.0 / CAUSTIC_MAX)) * caustic_mean(focus));
+}
