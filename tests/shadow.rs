@@ -9,13 +9,14 @@
 //! of sight meets a caster or land, or whose floor another caster shades, are left out. With
 //! the sun, the shadow's mean luma over the ring's must be at most the scene's bound and at
 //! most that bound times the same ratio with
-//! `--shadows off`, which must be 1 ± 0.1 (so it is the shadow, not the place, that is
-//! darker; the caustics, common/caustics.glsl, make the sunlit floor's mean vary by some
-//! per cent between a small region and its ring). Under an overcast (`--clouds 1`: no sun)
-//! the shadows must change nothing: the ratio with and without them equal within 1 %.
+//! `--shadows off`, which must be 1 ± 0.05, the island's 1 ± 0.1 (so it is the shadow, not the place, that is
+//! darker; drawn with `--caustics off`, whose light pattern would make a small region's sunlit
+//! mean differ from its ring's by up to 9 %). Under an overcast (`--clouds 1`: no sun) the
+//! shadows must change nothing: the ratio with and without them equal within 1 %.
 //!
-//! Measured on lavapipe, shadow/ring with the sun: pillar 0.117, buoy 0.298, island 0.433
-//! (without shadows 1.020, 1.069, 1.087). The bounds (0.2, 0.4, 0.65) lie between those and
+//! Measured on lavapipe, shadow/ring with the sun: pillar 0.114, buoy 0.279, island 0.440
+//! (without shadows 1.006, 1.003, 1.079; the island's region lies up its drowned slope from its
+//! ring, 1.099 of it under the overcast, and is allowed 1 ± 0.1). The bounds (0.2, 0.4, 0.65) lie between those and
 //! what the same pictures gave, before the caustics and the refracted sun's Lambert term,
 //! against a twin that forgets the refraction (0.288, 0.678, 0.721): a shadow in the wrong
 //! place fails.
@@ -246,6 +247,10 @@ fn shadow_ratios(
             &buoy,
             "--sea-floor",
             &floor,
+            // The caustics (tested in tests/underwater.rs) would make a small region's
+            // sunlit mean differ from its ring's by up to 9 %.
+            "--caustics",
+            "off",
         ];
         args.extend_from_slice(extra);
         let y = luma(&common::shot(
@@ -279,10 +284,11 @@ fn shadow_ratios(
     (ratios, core.len())
 }
 
-fn assert_shadow(name: &str, (r, pixels): ([f64; 4], usize), at_most: f64) {
+/// `place`: how far from 1 the shadow's region may be of its ring without shadows.
+fn assert_shadow(name: &str, (r, pixels): ([f64; 4], usize), at_most: f64, place: f64) {
     assert!(
-        (r[1] - 1.0).abs() <= 0.1,
-        "{name}: without shadows the shadow's region is {:.3} of its ring (expected 1 ± 0.1)",
+        (r[1] - 1.0).abs() <= place,
+        "{name}: without shadows the shadow's region is {:.3} of its ring (expected 1 ± {place})",
         r[1]
     );
     assert!(
@@ -311,7 +317,7 @@ fn a_pillar_shades_the_sea() {
         Caster::Object(1),
         (1.0, 18.0),
     );
-    assert_shadow("pillar", r, 0.2);
+    assert_shadow("pillar", r, 0.2, 0.05);
 }
 
 #[test]
@@ -328,7 +334,7 @@ fn the_buoy_shades_the_sea() {
         Caster::Object(0),
         (0.3, 6.0),
     );
-    assert_shadow("buoy", r, 0.4);
+    assert_shadow("buoy", r, 0.4, 0.05);
 }
 
 #[test]
@@ -342,5 +348,8 @@ fn the_island_shades_the_sea() {
         Caster::Island,
         (2.0, 18.0),
     );
-    assert_shadow("island", r, 0.65);
+    // The region lies up the island's drowned slope from its ring, in shallower water: under
+    // the overcast it is 1.099 of the ring (shadows or not), with the sun 1.079 (0.983 before
+    // the sun under the water was refracted: a coincidence of the grazing sun's Lambert term).
+    assert_shadow("island", r, 0.65, 0.1);
 }

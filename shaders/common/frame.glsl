@@ -47,7 +47,8 @@ layout(set = 0, binding = 0, std140) uniform FrameUniforms {
                          // sun_visibility(): what the clouds let through); w: cloud cover
     vec4 sky_light;      // rgb: the irradiance on the sea over the default day's; w: the
                          // display's exposure (the eye's adaptation to the light)
-    vec4 underwater;     // x: 1 when the camera is under the water; y: its depth there (m)
+    vec4 underwater;     // x: 1 when the camera is under the water; y: its depth there (m);
+                         // z: 1 with the caustics (--caustics on)
     vec4 foam_levels[FOAM_MAX_LEVELS]; // the foam near the camera, level l: xy its image
                          // coordinates of the water grid's centre, z per metre; w the number
                          // of levels (0: the lattice's foam only)

@@ -98,8 +98,8 @@ void main() {
     float sun_share = lambert * shadow;
 #ifdef TERRAIN_CAUSTICS
     // The refraction view, or the main view from under the water (above it, the main view's
-    // drowned terrain lies under the water's surface).
-    bool seen_drowned = pass.view != 0u || camera_underwater();
+    // drowned terrain lies under the water's surface); not with --caustics off.
+    bool seen_drowned = (pass.view != 0u || camera_underwater()) && frame.underwater.z > 0.5;
     if (below > 0.0 && sun_share > 0.0 && seen_drowned) {
         // The point relative to the water grid's centre (camera-relative, as the water's).
         vec2 xz = in_rel_pos.xz + VIEW.eye.xz - frame.views[0].eye.xz + frame.water.xy;

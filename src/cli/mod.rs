@@ -339,6 +339,17 @@ pub struct Cli {
     )]
     pub shadows: Option<Switch>,
 
+    /// Caustics: the sun focused on the sea floor by the waves, in the shallows seen from above
+    /// and from under the water (README, Rendering, Caustics). [default: on]
+    #[arg(
+        long,
+        global = true,
+        value_enum,
+        value_name = "ON|OFF",
+        help_heading = "Scene"
+    )]
+    pub caustics: Option<Switch>,
+
     /// DU/DV map PNG (red = du, green = dv, 128 = no offset), tiled over the water, at most the
     /// device's largest 2D image (16384 on lavapipe); default: generated at start-up.
     #[arg(long, global = true, value_name = "FILE.png", help_heading = "Scene")]
@@ -473,6 +484,7 @@ impl Cli {
                 .unwrap_or(self.preset.map_or(DEFAULT_SEA, sea_preset).cloud_cover)
                 as f32,
             shadows: self.shadows.map_or(quality.shadows, |s| s == Switch::On),
+            caustics: self.caustics != Some(Switch::Off),
             dudv: self.dudv.clone(),
             skybox: self.skybox.clone(),
             background: self.background,

@@ -122,6 +122,8 @@ pub struct SceneSettings {
     pub cloud_cover: f32,
     /// `--shadows`: the sun's shadows (shaders/common/shadow.glsl).
     pub shadows: bool,
+    /// `--caustics`: the sun focused on the sea floor (shaders/common/caustics.glsl).
+    pub caustics: bool,
     /// `--dudv FILE.png` instead of the generated map.
     pub dudv: Option<PathBuf>,
     /// `--skybox DIR` (six PNG faces) instead of the analytic sky.
@@ -175,6 +177,7 @@ impl Default for SceneSettings {
             sun_dir: default_sun_dir(),
             cloud_cover: 0.0,
             shadows: true,
+            caustics: true,
             dudv: None,
             skybox: None,
             background: None,

@@ -533,6 +533,7 @@ impl Renderer {
                 sun_scale: SUN_SCALE,
                 analytic_sky: s.skybox.is_none(),
                 shadows: s.shadows,
+                caustics: s.caustics,
                 time_s: inputs.time_s,
                 size: (extent.width, extent.height),
                 aspect: output.extent.width as f32 / output.extent.height.max(1) as f32,

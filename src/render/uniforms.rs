@@ -223,7 +223,8 @@ pub struct FrameUniforms {
     /// exposure (`Sky::exposure`, times `underwater_adaptation` under the water).
     pub sky_light: [f32; 4],
     /// x: 1 when the camera is under the water (below `FrameInputs::camera_surface_m`), else 0;
-    /// y: its depth below the surface there (m, ≥ 0); zw: unused.
+    /// y: its depth below the surface there (m, ≥ 0); z: 1 with the caustics (`--caustics on`;
+    /// shaders/common/caustics.glsl), else 0; w: unused.
     pub underwater: [f32; 4],
     /// The foam's levels (`foam_levels`): xy the level's image coordinates of the water grid's
     /// centre, z its image coordinates per metre (1 / its side), w the number of levels (0:
@@ -335,6 +336,8 @@ pub struct FrameParams<'a> {
     pub analytic_sky: bool,
     /// `--shadows`: the sun's shadows (`light.w`).
     pub shadows: bool,
+    /// `--caustics`: the sun focused on the sea floor (`underwater.z`).
+    pub caustics: bool,
     /// Simulation time (s).
     pub time_s: f64,
     /// Main target size (px).
@@ -383,6 +386,8 @@ impl FrameUniforms {
         let focal_px = camera.focal_px(p.aspect, h);
         let (sun_light, sky_light) = p.sky_light;
         let depth = p.inputs.camera_depth_m(camera.position.y);
+        let caustics = f32::from(u8::from(p.caustics));
+        let exposure = sky_light[3] * underwater_adaptation(depth);
         FrameUniforms {
             views: frame_views(
                 camera,
@@ -456,13 +461,8 @@ impl FrameUniforms {
                 f32::from(u8::from(p.shadows)),
             ],
             sun_light,
-            underwater: [f32::from(depth > 0.0), depth.max(0.0) as f32, 0.0, 0.0],
-            sky_light: [
-                sky_light[0],
-                sky_light[1],
-                sky_light[2],
-                sky_light[3] * underwater_adaptation(depth),
-            ],
+            underwater: [f32::from(depth > 0.0), depth.max(0.0) as f32, caustics, 0.0],
+            sky_light: [sky_light[0], sky_light[1], sky_light[2], exposure],
             foam_levels: foam_levels(&p.inputs.foam_levels, &water),
             slope_variance: p.ocean.sea_moments.slope_variance.map(|v| v as f32),
             curvature_variance: p.ocean.sea_moments.curvature_variance.map(|v| v as f32),
