@@ -7,20 +7,16 @@
 // sea's times the area ratio of the refracted grid,
 //     1 / |det ∂X/∂x| = 1 / |det(I + d·Q·H)|,   Q = ∂q/∂s,  H = ∂s/∂x (the height's Hessian).
 // A point p of the floor takes the ratio at the surface point whose ray lands on it, x = p −
-// d·q(s(x)), found by fixed-point steps from the level sea's answer (they contract until the
-// rays first cross, |d·Q·H| < 1; past that focus p gathers light from several x and this takes
-// the one the steps reach). Before the focus the map is one-to-one and the ratio's mean over
-// the floor is 1: the light is moved, not made.
+// d·q(s(x)), approximated by one fixed-point step from the level sea's answer (the steps
+// contract only until the rays first cross, |d·Q·H| < 1; past that focus p gathers light from
+// several x and this takes one). So the ratio is sampled nearly uniformly over the surface,
+// and it is divided by its mean there (caustic_mean) to keep the floor's mean light.
 //
 // Left out: the surface's height and horizontal displacement (the ray starts at the rest
 // position, at the mean level: centimetres on a calm sea) and the change of the surface's
 // transmission with its slope.
 //
-// Needs common/frame.glsl, common/water.glsl (CASCADES, ocean_texture) and common/shadow.glsl
-// (refracted_sun) before it.
-
-// Water's refractive index (as water.frag's N_WATER).
-const float CAUSTIC_N_WATER = 1.333;
+// Needs common/frame.glsl and common/water.glsl (CASCADES, N_WATER, ocean_texture) before it.
 // The sun's disc is 2·0.00465 rad across in the air (common/sky.glsl), 1/1.333 of it under the
 // water near the vertical: a point d deep gets its light over an angle 0.007 wide, so a bundle
 // of rays b across (the width the Hessian below is taken over) never narrows below d·0.007 m,
@@ -49,7 +45,7 @@ const float CAUSTIC_DS = 0.02;
 // toward l, l.y > 0).
 vec2 caustic_run(vec2 s, vec3 l) {
     vec3 n = normalize(vec3(-s.x, 1.0, -s.y));
-    vec3 t = refract(-l, n, 1.0 / CAUSTIC_N_WATER);
+    vec3 t = refract(-l, n, 1.0 / N_WATER);
     return t.xz / max(-t.y, 1e-3);
 }
 
@@ -69,7 +65,7 @@ void caustic_surface(vec2 x, float depth, float dist, float pixel_m, out vec2 s,
         float weight;
         vec3 uv = ocean_uv(x, c, dist, weight);
         float patch_m = frame.patch_m[c];
-        float foci = depth * (1.0 - 1.0 / CAUSTIC_N_WATER) * sqrt(frame.curvature_variance[c]);
+        float foci = depth * (1.0 - 1.0 / N_WATER) * sqrt(frame.curvature_variance[c]);
         float widen = max(1.0, foci / CAUSTIC_FOCI);
         float resolved = weight * clamp(2.0 - pixel_m / cascade_shortest_m(c, texels), 0.0, 1.0)
                          * min(1.0, CAUSTIC_FOCI / max(foci, 1e-6));

@@ -16,6 +16,9 @@ vec2 lerp2(vec2 x, vec2 y, float t) { return x * (1.0 - t) + y * t; }
 // Camera position relative to the grid centre: xz from frame.water, y the camera's height.
 vec3 water_eye() { return vec3(frame.water.x, frame.views[0].eye.y, frame.water.y); }
 
+// Water's refractive index (water.frag's Fresnel and view from below, common/caustics.glsl).
+const float N_WATER = 1.333;
+
 // Cascades in the ocean images: specialized by WaterPass (src/render/passes/water.rs).
 layout(constant_id = 0) const int CASCADES = 3;
 

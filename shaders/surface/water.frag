@@ -42,7 +42,6 @@ layout(set = 1, binding = 3) uniform sampler2D dudv_map;
 
 // WATER_COLOUR (c_o: deep water, seen through nothing) and ABSORPTION_PER_M (red absorbed
 // first) come from src/shared.rs.
-const float N_WATER = 1.333;
 const float F0 = 0.02;               // ((n - 1) / (n + 1))^2
 const float DUDV_STRENGTH = 0.012;   // screen-space offset at full strength
 const float SLOPE_STRENGTH = 0.05;   // screen-space offset per unit slope
