@@ -7,6 +7,8 @@
 pub const SKY_CUBE: &str = "sky cube";
 /// The mirrored scene above the water, into the reflection texture.
 pub const REFLECTION: &str = "reflection";
+/// From under the water: the caustics' means along the camera's rays, for the light shafts.
+pub const SHAFTS: &str = "light shafts";
 /// The scene below the water, into the refraction texture.
 pub const REFRACTION: &str = "refraction";
 /// The terrain and objects into the main target.

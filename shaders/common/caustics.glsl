@@ -101,23 +101,76 @@ float caustic_mean(float f) {
 }
 
 // The sun's irradiance on the floor at `xz` (relative to the water grid's centre), `depth` m
-// under the mean level, over the level sea's: the area ratio above, at the surface point one
-// fixed-point step from the level sea's answer finds (with the same low-passed slopes, so the
-// step does not scatter neighbouring pixels). `dist`: its distance from the eye; `pixel_m`:
-// the floor's footprint in a pixel there.
-float caustic(vec2 xz, float depth, float dist, float pixel_m) {
+// under the mean level, over the level sea's: the area ratio above at the surface point whose
+// refracted ray lands there, found from the level sea's answer by `steps` − 1 fixed-point steps
+// (with the same low-passed slopes, so a step does not scatter neighbouring pixels). `dist`:
+// its distance from the eye; `pixel_m`: the floor's footprint in a pixel there.
+float caustic_ratio(vec2 xz, float depth, float dist, float pixel_m, int steps) {
     vec3 l = frame.sun_dir.xyz;
-    vec2 s;
+    vec2 s = vec2(0.0);
     mat2 hess;
     float bundle_m;
     float focus;
-    caustic_surface(xz - depth * caustic_run(vec2(0.0), l), depth, dist, pixel_m, s, hess, bundle_m,
-                    focus);
-    caustic_surface(xz - depth * caustic_run(s, l), depth, dist, pixel_m, s, hess, bundle_m, focus);
+    for (int i = 0; i < steps; ++i) {
+        caustic_surface(xz - depth * caustic_run(s, l), depth, dist, pixel_m, s, hess, bundle_m,
+                        focus);
+    }
     mat2 dq = mat2(caustic_run(s + vec2(CAUSTIC_DS, 0.0), l) - caustic_run(s - vec2(CAUSTIC_DS, 0.0), l),
                    caustic_run(s + vec2(0.0, CAUSTIC_DS), l) - caustic_run(s - vec2(0.0, CAUSTIC_DS), l))
               / (2.0 * CAUSTIC_DS);
     float det = abs(determinant(mat2(1.0) + depth * dq * hess));
     float spread = depth * CAUSTIC_SUN_SPREAD / bundle_m;
     return 1.0 / (max(det, max(spread, 1.0 / CAUSTIC_MAX)) * caustic_mean(focus));
+}
+
+// The floor's: one fixed-point step.
+float caustic(vec2 xz, float depth, float dist, float pixel_m) {
+    return caustic_ratio(xz, depth, dist, pixel_m, 2);
+}
+
+// Light shafts: the sun's single scattering along the ray from an eye under the water
+// (common/underwater.glsl's sun_scatter) with the caustics' focusing at each point: the
+// shafts are the caustic network's bright lines drawn out along the refracted sun.
+// shaders/underwater/shafts.frag marches the main camera's rays at a fixed low resolution
+// (src/render/passes/shafts.rs) before the scene is drawn, through the first SHAFT_REACH_M
+// metres in SHAFT_STEPS stretches, each taking the area ratio at a point `jitter` (0..1, per
+// texel) along it, and keeps the ratio's mean, weighted by the light each stretch sends the eye,
+// over the first quarter, half, three quarters and all of that reach (`shaft_means`). The scene
+// shaders take the mean up to their own distance (`sun_shafts`). Past the reach the water has
+// dimmed the light to e^-(a+b)·SHAFT_REACH_M (a fifth of the blue) and a level sea's is
+// enough. A sample stands for its stretch, whose extent across the sun's rays (its length
+// times the sine of its angle to them) is its footprint: the ratio is low-passed to that, so
+// along the sun the shafts keep the caustics' detail and across it they do not alias. The ratio
+// comes from the level sea's surface point (no fixed-point step: soft shafts need less than
+// the floor) and is capped at SHAFT_MAX_RATIO, a sharp focus being a thin sheet the stretch
+// mostly misses (our choice: without it single samples speckle).
+const int SHAFT_STEPS = 12;
+const float SHAFT_MAX_RATIO = 3.0;
+
+vec4 shaft_means(vec3 dir, float jitter) {
+    float stretch = SHAFT_REACH_M / float(SHAFT_STEPS);
+    float along = dot(dir, refracted_sun(frame.sun_dir.xyz));
+    float across = stretch * sqrt(max(1.0 - along * along, 0.0));
+    vec4 means = vec4(1.0);
+    float light = 0.0;
+    float gathered = 0.0;
+    for (int i = 0; i < SHAFT_STEPS; ++i) {
+        float s0 = stretch * float(i);
+        float s = s0 + stretch * jitter;
+        float depth = frame.underwater.y - s * dir.y;
+        // The green's share (the channel the eye weighs most).
+        float w = sun_scatter(dir, s0, s0 + stretch).g;
+        float ratio = 1.0;
+        if (depth > 0.0) {
+            float pixel_m = max(across, s / frame.lod.x);
+            ratio = min(caustic_ratio(frame.water.xy + s * dir.xz, depth, s, pixel_m, 1),
+                        SHAFT_MAX_RATIO);
+        }
+        light += ratio * w;
+        gathered += w;
+        if ((i + 1) % (SHAFT_STEPS / 4) == 0) {
+            means[(i + 1) / (SHAFT_STEPS / 4) - 1] = gathered > 0.0 ? light / gathered : 1.0;
+        }
+    }
+    return means;
 }

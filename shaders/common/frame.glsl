@@ -47,8 +47,10 @@ layout(set = 0, binding = 0, std140) uniform FrameUniforms {
                          // sun_visibility(): what the clouds let through); w: cloud cover
     vec4 sky_light;      // rgb: the irradiance on the sea over the default day's; w: the
                          // display's exposure (the eye's adaptation to the light)
-    vec4 underwater;     // x: 1 when the camera is under the water; y: its depth there (m);
-                         // z: 1 with the caustics (--caustics on)
+    vec4 underwater;     // x: 1 when the camera's near plane is all under the water; y: the
+                         // camera's depth (m, >= 0); z: 1 with the caustics (--caustics on)
+    vec4 waterline;      // the surface at the camera: xy its slope; z its height over the eye
+                         // (m); w: 1 when it crosses the near plane (the picture splits)
     vec4 foam_levels[FOAM_MAX_LEVELS]; // the foam near the camera, level l: xy its image
                          // coordinates of the water grid's centre, z per metre; w the number
                          // of levels (0: the lattice's foam only)

@@ -15,7 +15,8 @@
 // The island's edge is found by marching the ray (TERRAIN_SHADOW_STEPS samples where it
 // crosses the island), its step too coarse for the sun's own penumbra there, so the ramp is
 // widened to the angle one step subtends at that distance (blurrier, not banded).
-// Needs common/frame.glsl and common/terrain.glsl included before it (no include guards).
+// Needs common/frame.glsl, common/terrain.glsl and common/underwater.glsl (refracted_sun) included
+// before it (no include guards).
 
 const int TERRAIN_SHADOW_STEPS = 32;
 // The sun's angular radius, SUN_ANGULAR_RADIUS of common/sky.glsl (Allen: 0.533° across).
@@ -126,13 +127,6 @@ float island_share(vec3 p, vec3 l) {
         share = min(share, disc_share(margin, max(SUN_SHADOW_RADIUS, step_m * l.y / t)));
     }
     return share;
-}
-
-// The sun's direction under the water: refracted at a level surface (Snell, n = 1.333).
-vec3 refracted_sun(vec3 l) {
-    float sin_t = length(l.xz) / 1.333;
-    vec2 toward = length(l.xz) > 1e-4 ? normalize(l.xz) : vec2(0.0);
-    return vec3(toward.x * sin_t, sqrt(1.0 - sin_t * sin_t), toward.y * sin_t);
 }
 
 // The share of the sun seen from world point `p` (on the object `skip`, −1 for none). Under

@@ -96,10 +96,13 @@ void main() {
     }
     float shadow = lambert > 0.0 ? sun_shadow(caster, in_object) : 1.0;
     float sun_share = lambert * shadow;
+    // The light without the caustics: their local mean (they move light, common/caustics.glsl),
+    // what the water's forward scattering leaves of them far from an eye under the water.
+    float sun_mean = sun_share;
 #ifdef TERRAIN_CAUSTICS
     // The refraction view, or the main view from under the water (above it, the main view's
     // drowned terrain lies under the water's surface); not with --caustics off.
-    bool seen_drowned = (pass.view != 0u || camera_underwater()) && frame.underwater.z > 0.5;
+    bool seen_drowned = (pass.view != 0u || pixel_underwater()) && frame.underwater.z > 0.5;
     if (below > 0.0 && sun_share > 0.0 && seen_drowned) {
         // The point relative to the water grid's centre (camera-relative, as the water's).
         vec2 xz = in_rel_pos.xz + VIEW.eye.xz - frame.views[0].eye.xz + frame.water.xy;
@@ -108,19 +111,30 @@ void main() {
         sun_share *= mix(1.0, caustic(xz, below, dist, pixel_m), drowned);
     }
 #endif
-    vec3 light = sun_light() * sun_share / 3.14159265 + sky_ambient(n);
+    vec3 ambient = sky_ambient(n);
+    vec3 light = sun_light() * sun_share / 3.14159265 + ambient;
     vec3 colour = albedo * light;
+    vec3 blurred = albedo * (sun_light() * sun_mean / 3.14159265 + ambient);
     // The swash's reach: R₂ is at most 1.1·(0.35·0.5 + ½·√(0.563·0.25 + 0.004))·√(H₀L₀) =
     // 0.402·√(H₀L₀) on the steepest beach beach() allows (a branch: most pixels skip it).
     float omega = max(frame.shore.y, 1e-3);
     float reach = 0.41 * sqrt(frame.shore.x * SHORE_TAU * SHORE_G / (omega * omega));
     if (in_object < 0 && in_world.y > -0.2 && in_world.y < reach) {
         colour = beach(colour, light, n, -in_rel_pos / dist);
+        blurred = colour; // within 0.2 m of the surface: no caustics to blur
     }
     // Below the water: light attenuated on its way down (Beer-Lambert, depth below the surface).
-    colour *= exp(-below * ABSORPTION_PER_M);
-    if (camera_underwater() && pass.view == 0u) {
-        out_colour = target_colour(underwater_fog(colour, in_rel_pos / dist, dist));
+    vec3 down = exp(-below * ABSORPTION_PER_M);
+    colour *= down;
+    if (pass.view == 0u && pixel_underwater()) {
+        vec3 dir = in_rel_pos / dist;
+        vec3 seen = underwater_fog(colour, blurred * down, dir, dist);
+#ifdef TERRAIN_CAUSTICS
+        seen += sun_shafts(dir, dist);
+#else
+        seen += sun_scatter(dir, 0.0, dist);
+#endif
+        out_colour = target_colour(seen);
         return;
     }
     vec3 horizon = sky_lookup(normalize(vec3(in_rel_pos.x, 0.0, in_rel_pos.z) + vec3(0.0, 0.02, 0.0)));

@@ -20,9 +20,10 @@ void main() {
         return;
     }
     vec3 dir = view_ray(in_ndc);
-    if (camera_underwater() && pass.view == 0u) {
-        // Under the water nothing is endless but the water itself.
-        out_colour = target_colour(water_inscatter(dir));
+    if (pass.view == 0u && pixel_underwater()) {
+        // Under the water nothing is endless but the water itself, and the sun's light it
+        // scatters (the light shafts).
+        out_colour = target_colour(water_inscatter(dir) + sun_shafts(dir, 1e4));
         return;
     }
     float disc = pass.view == 0u ? sun_disc(dir, frame.sun_dir.xyz, 1.0 / frame.lod.x) : 0.0;

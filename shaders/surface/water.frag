@@ -20,6 +20,7 @@
 #include "common/shore.glsl"
 #include "common/underwater.glsl"
 #include "common/shadow.glsl"
+#include "common/caustics.glsl"
 
 layout(location = 0) in vec3 in_rel_pos;
 layout(location = 1) in vec2 in_xz;
@@ -30,8 +31,10 @@ layout(location = 5) flat in vec3 in_sky_zenith; // and the sky's radiance at th
 layout(location = 6) in vec4 in_surf; // water_vertex.glsl: the bores' phase, share, gradient
 layout(location = 0) out vec4 out_colour;
 
-// The pipeline that draws the surface from under the water (src/render/passes/water.rs).
-layout(constant_id = 2) const bool UNDERWATER_VIEW = false;
+// Which side the main view sees the surface from (src/render/passes/water.rs, `WaterSide`):
+// 0 above, 1 below (the pipeline that draws it from under the water), 2 either, pixel by
+// pixel, where the surface crosses the near plane (the picture splits at the waterline).
+layout(constant_id = 2) const int UNDERWATER_VIEW = 0;
 
 // Layer 0: the reflection as drawn; layer l: blurred over 2^l rows in its top H / 2^l rows
 // (Recorder::halve_down_layers).
@@ -356,9 +359,10 @@ float sea_fresnel(float c, float sigma_v) {
 // The surface seen from under the water (the camera's below it): within Snell's window,
 // arcsin(1/1.333) = 48.6° of the normal, the sky refracted through it (Snell, written out),
 // less what the surface reflects back down (Schlick's Fresnel at the angle in the air); outside
-// it total internal reflection, a mirror of the water below. Then the water between. Only the
-// pipeline for a camera under the water (UNDERWATER_VIEW) keeps this: as a branch not taken,
-// lavapipe still paid about 6 ms a frame for it at --quality low.
+// it total internal reflection, a mirror of the water below. Then the water between, with the
+// sun's light it scatters toward the eye (the light shafts, common/caustics.glsl). Only the
+// pipelines for a camera under the water or at the waterline (UNDERWATER_VIEW 1, 2) keep
+// this: as a branch not taken, lavapipe still paid about 6 ms a frame for it at --quality low.
 vec3 from_below(vec3 n, vec3 v, float dist) {
     vec3 ray = -v; // from the eye up to the surface
     float c = max(dot(ray, n), 0.0); // cosine of the angle in the water
@@ -368,7 +372,7 @@ vec3 from_below(vec3 n, vec3 v, float dist) {
     vec3 through = N_WATER * ray + (ca - N_WATER * c) * n;
     vec3 below = water_inscatter(vec3(ray.x, -ray.y, ray.z));
     vec3 colour = mix(sky_lookup(through), below, f);
-    return underwater_fog(colour, ray, dist);
+    return underwater_fog(colour, colour, ray, dist) + sun_shafts(ray, dist);
 }
 
 void main() {
@@ -427,7 +431,7 @@ void main() {
         return;
     }
     vec3 sun = frame.sun_dir.xyz;
-    if (UNDERWATER_VIEW) {
+    if (UNDERWATER_VIEW == 1 || (UNDERWATER_VIEW == 2 && pixel_underwater())) {
         out_colour = target_colour(from_below(n, v, dist));
         return;
     }

@@ -340,7 +340,8 @@ pub struct Cli {
     pub shadows: Option<Switch>,
 
     /// Caustics: the sun focused on the sea floor by the waves, in the shallows seen from above
-    /// and from under the water (README, Rendering, Caustics). [default: on]
+    /// and from under the water, and the light shafts under the water (README, Rendering,
+    /// Caustics; Under the water). [default: on]
     #[arg(
         long,
         global = true,

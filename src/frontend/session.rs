@@ -150,6 +150,9 @@ impl Session {
                 eye.z as f64,
                 inputs.time_s,
             ),
+            camera_slope: self
+                .buoy
+                .surface_slope_at(eye.x as f64, eye.z as f64, inputs.time_s),
             ..*inputs
         };
         let index = self.frames.submitted();

@@ -94,6 +94,18 @@ impl Buoy {
         self.surface.height_at(x, z, t)
     }
 
+    /// The surface's slope (∂h/∂x, ∂h/∂z) at the world point (x, z) at time `t` (s): central
+    /// differences 0.25 m apart, the scale of the camera's near plane (the waterline's tilt,
+    /// `FrameInputs::camera_slope`).
+    pub fn surface_slope_at(&mut self, x: f64, z: f64, t: f64) -> [f64; 2] {
+        let d = 0.25;
+        let mut along = |dx: f64, dz: f64| {
+            (self.surface.height_at(x + dx, z + dz, t) - self.surface.height_at(x - dx, z - dz, t))
+                / (2.0 * d)
+        };
+        [along(d, 0.0), along(0.0, d)]
+    }
+
     /// The pose at time `t` (s).
     pub fn pose(&mut self, t: f64) -> BuoyPose {
         let [x, z] = self.xz;

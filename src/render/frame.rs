@@ -14,6 +14,8 @@
 //!  graphics 2  waits for the compute timeline at the frame's value (vertex, tessellation
 //!              evaluation and fragment stages), signals the frame timeline (and the
 //!              swapchain's `ready` semaphore); a window's image waits for `acquired`
+//!    light shafts  from under the water or at the waterline (caustics on): the caustics'
+//!                means along the camera's rays at 256x144   writes the light shafts image
 //!    refraction  island + objects below the water, with the caustics (they sample the
 //!                simulation's normal images)      writes refraction colour + depth
 //!    scene       island + objects (main camera; caustics from under the water)
@@ -41,7 +43,7 @@ use egui::epaint::ClippedPrimitive;
 use super::passes::TexturesViewPass;
 use super::renderer::{OutputTarget, Renderer};
 use super::targets::ColourDepth;
-use super::uniforms::ViewIndex;
+use super::uniforms::{ViewIndex, WaterSide};
 use super::{FrameInputs, ViewMode};
 use crate::gpu::egui::EguiPainter;
 use crate::gpu::selftest::SyncHazard;
@@ -210,12 +212,25 @@ pub fn record_frame(
         let t = &r.targets;
         // The refraction and the scene: their terrain is lit by the caustics, which sample the
         // simulation's images (terrain_caustics.frag; the scene's only from under the water).
-        let underwater = inputs.camera_depth_m(camera.y) > 0.0;
+        // Where the near plane lies against the water: under it, or split at the waterline,
+        // the main view draws the terrain with the caustics and the shafts are needed.
+        let side = inputs.water_side(r.camera(), output.aspect());
+        let underwater = side != WaterSide::Above;
         let deep = Load::Clear(vk::ClearValue {
             color: vk::ClearColorValue {
                 float32: DEEP_WATER,
             },
         });
+        // From under the water: the light shafts' means, which the scene, the water and the
+        // sky sample (the caustics: the simulation's normal images).
+        if underwater && r.settings.caustics {
+            let target = [Target::new(&r.shafts.image, Load::DontCare)];
+            let draw = r.shafts.draw(&set);
+            let scope = rec.rendering(names::SHAFTS, &target, None, &[draw]);
+            profiler.pass(&rec, names::SHAFTS, || {
+                scope.record(|| r.shafts.record(&rec, &set))
+            });
+        }
         let view = ViewIndex::Refraction;
         let draws = r.terrain.draws(&set, view, underwater);
         let scope = drawn_anew(&rec, names::REFRACTION, &t.refraction, deep, &draws);
@@ -236,14 +251,14 @@ pub fn record_frame(
         // Its barriers: the reflection, refraction and DU/DV textures and the sky cube at the
         // stages the water's shaders sample them in (the sky cube in tessellation evaluation
         // too); the simulation images are ordered by the compute timeline's wait.
-        let draw = r.water.draw(&water_sets, r.settings.view, underwater);
+        let draw = r.water.draw(&water_sets, r.settings.view, side);
         let scope = rec.rendering(names::WATER, &main, Some(keep(&t.main.depth)), &[draw]);
         profiler.begin_pass(&rec, names::WATER);
         scope.record(|| {
             // Patches, tessellation-evaluation invocations, triangles and fragments.
             profiler.statistics(&rec, || {
                 r.water
-                    .record(&rec, &water_sets, r.settings.view, underwater, frame.slot)
+                    .record(&rec, &water_sets, r.settings.view, side, frame.slot)
             });
         });
         profiler.end_pass(&rec);

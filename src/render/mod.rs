@@ -122,7 +122,8 @@ pub struct SceneSettings {
     pub cloud_cover: f32,
     /// `--shadows`: the sun's shadows (shaders/common/shadow.glsl).
     pub shadows: bool,
-    /// `--caustics`: the sun focused on the sea floor (shaders/common/caustics.glsl).
+    /// `--caustics`: the sun focused on the sea floor, and the light shafts
+    /// (shaders/common/caustics.glsl).
     pub caustics: bool,
     /// `--dudv FILE.png` instead of the generated map.
     pub dudv: Option<PathBuf>,

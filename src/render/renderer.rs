@@ -13,7 +13,8 @@ use super::camera::Camera;
 use super::passes::output::OutputPass;
 use super::passes::water::{TileView, WaterKind, WaterSamplers};
 use super::passes::{
-    AntiAliasingPass, SkyCube, SkyPass, SprayPass, TerrainPass, TexturesViewPass, WaterPass,
+    AntiAliasingPass, ShaftsPass, SkyCube, SkyPass, SprayPass, TerrainPass, TexturesViewPass,
+    WaterPass,
 };
 use super::scene::{dudv_size, generate_dudv, load_dudv, DUDV_SIDE};
 use super::targets::Targets;
@@ -46,6 +47,11 @@ pub struct OutputTarget<'a> {
 }
 
 impl<'a> OutputTarget<'a> {
+    /// Its width over its height (the camera's aspect).
+    pub fn aspect(&self) -> f32 {
+        self.extent.width as f32 / self.extent.height.max(1) as f32
+    }
+
     /// `transfer_dst`: the image has TRANSFER_DST usage.
     pub fn new(image: Output<'a>, transfer_dst: bool) -> OutputTarget<'a> {
         OutputTarget {
@@ -151,6 +157,8 @@ pub struct Renderer {
     pub(super) sky: SkyPass,
     /// The island and the objects, in each view.
     pub(super) terrain: TerrainPass,
+    /// The light shafts' means, drawn before the scene when the camera is under the water.
+    pub(super) shafts: ShaftsPass,
     /// The ocean (tessellated or clipmap) and its textures set.
     pub(super) water: WaterPass,
     /// The spray's puffs over the main view (`--spray on`, FFT waves).
@@ -197,13 +205,14 @@ impl Renderer {
         let sampled = vk::DescriptorType::COMBINED_IMAGE_SAMPLER;
         let frame_set_layout = DescriptorSetLayout::new(
             ctx,
-            "frame set layout (uniforms, ocean images, sky cube, foam)",
+            "frame set layout (uniforms, ocean images, sky cube, foam, light shafts)",
             &[
                 (0, vk::DescriptorType::UNIFORM_BUFFER, graphics),
                 (1, sampled, graphics),
                 (2, sampled, graphics),
                 (3, sampled, graphics),
                 (4, sampled, graphics),
+                (5, sampled, graphics),
             ],
         )?;
         let repeat = vk::SamplerAddressMode::REPEAT;
@@ -225,8 +234,15 @@ impl Renderer {
                 repeat,
             )?
         };
+        let water_kind = WaterKind {
+            geometry: Geometry::resolve(settings.geometry),
+            cascades: ocean.cascades,
+            manual_filter: !ocean_linear,
+        };
         let sky_sampler = Sampler::linear(ctx, "sky cube sampler", clamp)?;
         let foam_sampler = Sampler::linear(ctx, "foam sampler (clamp)", clamp)?;
+        let shafts = ShaftsPass::new(ctx, &frame_set_layout, water_kind)?;
+        let shafts_sampler = Sampler::linear(ctx, "light shafts sampler (clamp)", clamp)?;
         let sky_cube = match &settings.skybox {
             Some(dir) => SkyCube::load(ctx, dir)?,
             None => SkyCube::analytic(ctx)?,
@@ -264,6 +280,10 @@ impl Renderer {
                         Bind::Sampled(&sky_cube.image, &sky_sampler, Order::Tracked),
                     ),
                     (4, Bind::Sampled(&ocean.foam[slot], &foam_sampler, wait)),
+                    (
+                        5,
+                        Bind::Sampled(&shafts.image, &shafts_sampler, Order::Tracked),
+                    ),
                 ],
             )?;
             frame_uniforms.push((buffer, set));
@@ -312,11 +332,6 @@ impl Renderer {
             repeat: &repeat_sampler,
         };
         let sky = SkyPass::new(ctx, &frame_set_layout, targets.display_format())?;
-        let water_kind = WaterKind {
-            geometry: Geometry::resolve(settings.geometry),
-            cascades: ocean.cascades,
-            manual_filter: !ocean_linear,
-        };
         let terrain = TerrainPass::new(
             ctx,
             &frame_set_layout,
@@ -380,6 +395,7 @@ impl Renderer {
             repeat_sampler,
             sky,
             terrain,
+            shafts,
             water,
             spray,
             textures_view,
@@ -413,6 +429,7 @@ impl Renderer {
                 check_bindings(names::SCENE, &self.terrain.draws(&frame, view, underwater))?;
             }
         }
+        check_bindings(names::SHAFTS, &[self.shafts.draw(&frame)])?;
         let draws: Vec<Bindings> = self
             .water
             .pipelines()
@@ -536,7 +553,7 @@ impl Renderer {
                 caustics: s.caustics,
                 time_s: inputs.time_s,
                 size: (extent.width, extent.height),
-                aspect: output.extent.width as f32 / output.extent.height.max(1) as f32,
+                aspect: output.aspect(),
                 ocean: &self.ocean,
                 inputs,
                 view_mode: s.view,
@@ -549,7 +566,7 @@ impl Renderer {
         self.frame_uniforms[slot]
             .0
             .write(bytemuck::bytes_of(&uniforms));
-        let aspect = output.extent.width as f32 / output.extent.height.max(1) as f32;
+        let aspect = output.aspect();
         self.water.prepare(
             slot,
             &TileView {

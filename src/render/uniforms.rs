@@ -27,6 +27,10 @@ pub struct FrameInputs {
     /// Height of the surface above the camera's (x, z) at `time_s` (m; the session fills it
     /// in): below it the camera is under water.
     pub camera_surface_m: f64,
+    /// The surface's slope there (∂h/∂x, ∂h/∂z; the session fills it in): with
+    /// `camera_surface_m`, the tangent plane the near plane is split against at the waterline
+    /// (`water_side`).
+    pub camera_slope: [f64; 2],
     /// Where the foam's levels lie this frame (`Simulation::foam_levels`; none for Gerstner).
     pub foam_levels: FoamLevels,
 }
@@ -38,6 +42,42 @@ impl FrameInputs {
     pub fn camera_depth_m(&self, eye_y: f32) -> f64 {
         self.camera_surface_m - eye_y as f64
     }
+
+    /// Which side of the water `camera`'s near plane (at `aspect`) lies on: its four corners
+    /// against the surface's tangent plane at the camera (the near plane is 0.1 m away and
+    /// about as wide; the waves are metres long).
+    pub fn water_side(&self, camera: &Camera, aspect: f32) -> WaterSide {
+        let inverse = camera.view_proj(aspect).inverse();
+        let over = self.camera_depth_m(camera.position.y);
+        let below = [(-1.0, -1.0), (1.0, -1.0), (-1.0, 1.0), (1.0, 1.0)]
+            .into_iter()
+            .filter(|&(x, y)| {
+                // Reversed-Z: the near plane is at depth 1 (camera-relative positions).
+                let p = inverse * Vec4::new(x, y, 1.0, 1.0);
+                let q = p.truncate() / p.w;
+                let [sx, sz] = self.camera_slope;
+                (q.y as f64) < over + sx * q.x as f64 + sz * q.z as f64
+            })
+            .count();
+        match below {
+            0 => WaterSide::Above,
+            4 => WaterSide::Below,
+            _ => WaterSide::Split,
+        }
+    }
+}
+
+/// Where the camera's near plane lies against the water (`FrameInputs::water_side`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum WaterSide {
+    /// All of it above the surface: the view from above.
+    Above,
+    /// All of it below: the view from under the water.
+    Below,
+    /// The surface crosses it: each pixel takes the side of its point on the near plane
+    /// (`pixel_underwater` in shaders/common/underwater.glsl), so the picture splits at the
+    /// waterline.
+    Split,
 }
 
 /// What the scene passes sample of the ocean simulation.
@@ -222,10 +262,13 @@ pub struct FrameUniforms {
     /// (`Sky::global_irradiance`, `reference_light`): deep water's light; w: the display's
     /// exposure (`Sky::exposure`, times `underwater_adaptation` under the water).
     pub sky_light: [f32; 4],
-    /// x: 1 when the camera is under the water (below `FrameInputs::camera_surface_m`), else 0;
-    /// y: its depth below the surface there (m, ≥ 0); z: 1 with the caustics (`--caustics on`;
-    /// shaders/common/caustics.glsl), else 0; w: unused.
+    /// x: 1 when the camera's near plane is all under the water (`WaterSide::Below`), else
+    /// 0; y: the camera's depth below the surface (m, ≥ 0); z: 1 with the caustics
+    /// (`--caustics on`; shaders/common/caustics.glsl), else 0; w: unused.
     pub underwater: [f32; 4],
+    /// The surface at the camera (`FrameInputs`): xy its slope, z its height over the eye (m);
+    /// w: 1 when it crosses the near plane (`WaterSide::Split`), else 0.
+    pub waterline: [f32; 4],
     /// The foam's levels (`foam_levels`): xy the level's image coordinates of the water grid's
     /// centre, z its image coordinates per metre (1 / its side), w the number of levels (0:
     /// the lattice's foam only).
@@ -336,7 +379,7 @@ pub struct FrameParams<'a> {
     pub analytic_sky: bool,
     /// `--shadows`: the sun's shadows (`light.w`).
     pub shadows: bool,
-    /// `--caustics`: the sun focused on the sea floor (`underwater.z`).
+    /// `--caustics`: the sun focused on the sea floor, and the light shafts (`underwater.z`).
     pub caustics: bool,
     /// Simulation time (s).
     pub time_s: f64,
@@ -379,6 +422,28 @@ pub fn underwater_adaptation(depth: f64) -> f32 {
     (1.0 / left) as f32
 }
 
+/// `FrameUniforms::underwater` and `waterline`: where the camera's near plane lies against the
+/// water and the surface's tangent plane at the camera.
+fn water_side_uniforms(camera: &Camera, p: &FrameParams) -> ([f32; 4], [f32; 4]) {
+    let depth = p.inputs.camera_depth_m(camera.position.y);
+    let side = p.inputs.water_side(camera, p.aspect);
+    let [sx, sz] = p.inputs.camera_slope;
+    (
+        [
+            f32::from(side == WaterSide::Below),
+            depth.max(0.0) as f32,
+            f32::from(u8::from(p.caustics)),
+            0.0,
+        ],
+        [
+            sx as f32,
+            sz as f32,
+            depth as f32,
+            f32::from(side == WaterSide::Split),
+        ],
+    )
+}
+
 impl FrameUniforms {
     pub fn new(camera: &Camera, p: &FrameParams) -> Self {
         let (w, h) = (p.size.0.max(1) as f32, p.size.1.max(1) as f32);
@@ -386,7 +451,7 @@ impl FrameUniforms {
         let focal_px = camera.focal_px(p.aspect, h);
         let (sun_light, sky_light) = p.sky_light;
         let depth = p.inputs.camera_depth_m(camera.position.y);
-        let caustics = f32::from(u8::from(p.caustics));
+        let (underwater, waterline) = water_side_uniforms(camera, p);
         let exposure = sky_light[3] * underwater_adaptation(depth);
         FrameUniforms {
             views: frame_views(
@@ -461,7 +526,8 @@ impl FrameUniforms {
                 f32::from(u8::from(p.shadows)),
             ],
             sun_light,
-            underwater: [f32::from(depth > 0.0), depth.max(0.0) as f32, caustics, 0.0],
+            underwater,
+            waterline,
             sky_light: [sky_light[0], sky_light[1], sky_light[2], exposure],
             foam_levels: foam_levels(&p.inputs.foam_levels, &water),
             slope_variance: p.ocean.sea_moments.slope_variance.map(|v| v as f32),

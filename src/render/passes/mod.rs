@@ -12,6 +12,7 @@
 
 pub mod anti_aliasing;
 pub mod output;
+pub mod shafts;
 pub mod sky;
 pub mod spray;
 pub mod terrain;
@@ -23,6 +24,7 @@ use std::sync::Arc;
 use ash::vk;
 
 pub use anti_aliasing::AntiAliasingPass;
+pub use shafts::ShaftsPass;
 pub use sky::{SkyCube, SkyPass};
 pub use spray::SprayPass;
 pub use terrain::TerrainPass;

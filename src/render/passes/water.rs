@@ -27,7 +27,7 @@ use crate::gpu::{
 use crate::render::camera::Camera;
 use crate::render::clipmap;
 use crate::render::targets::Targets;
-use crate::render::uniforms::{ViewIndex, WaterFrame, WATER_LEVEL_M};
+use crate::render::uniforms::{ViewIndex, WaterFrame, WaterSide, WATER_LEVEL_M};
 use crate::render::{Geometry, ViewMode};
 use crate::shaders;
 
@@ -128,10 +128,12 @@ pub struct WaterPass {
     /// The geometry the pipelines draw.
     geometry: Geometry,
     fill: Pipeline,
-    /// The surface seen from under the water (the camera below it): its own pipeline
-    /// (specialization constant 2 of water.frag), because lavapipe pays for a branch it does
-    /// not take (6 ms a frame at --quality low when one shader held both views).
+    /// The surface seen from under the water (the camera's near plane below it): its own
+    /// pipeline (specialization constant 2 of water.frag), because lavapipe pays for a branch
+    /// it does not take (6 ms a frame at --quality low when one shader held both views).
     from_below: Pipeline,
+    /// The surface from either side, pixel by pixel, when it crosses the near plane.
+    waterline: Pipeline,
     /// Line rendering (`--view wireframe`), when the device has fillModeNonSolid.
     wireframe: Option<Pipeline>,
     textures: WaterTextures,
@@ -328,7 +330,8 @@ impl WaterPass {
             Geometry::Tessellated => (vk::PrimitiveTopology::PATCH_LIST, 4),
             Geometry::Clipmap => (vk::PrimitiveTopology::TRIANGLE_LIST, 0),
         };
-        let pipeline = |name: &str, polygon_mode, underwater: bool| {
+        // `side`: water.frag's UNDERWATER_VIEW (0 above, 1 below, 2 split at the waterline).
+        let pipeline = |name: &str, polygon_mode, side: u32| {
             scene_pipeline(
                 ctx,
                 &layout,
@@ -338,17 +341,18 @@ impl WaterPass {
                     topology,
                     patch_control_points,
                     polygon_mode,
-                    constants: &[cascades, manual_filter as u32, underwater as u32],
+                    constants: &[cascades, manual_filter as u32, side],
                     ..Default::default()
                 },
                 Depth::TestWrite,
                 target,
             )
         };
-        let fill = pipeline("water", vk::PolygonMode::FILL, false)?;
-        let from_below = pipeline("water from below", vk::PolygonMode::FILL, true)?;
+        let fill = pipeline("water", vk::PolygonMode::FILL, 0)?;
+        let from_below = pipeline("water from below", vk::PolygonMode::FILL, 1)?;
+        let waterline = pipeline("water at the waterline", vk::PolygonMode::FILL, 2)?;
         let wireframe = if ctx.info.fill_mode_non_solid {
-            Some(pipeline("water wireframe", vk::PolygonMode::LINE, false)?)
+            Some(pipeline("water wireframe", vk::PolygonMode::LINE, 0)?)
         } else {
             None
         };
@@ -356,6 +360,7 @@ impl WaterPass {
             geometry,
             fill,
             from_below,
+            waterline,
             wireframe,
             textures,
             clipmap,
@@ -400,7 +405,7 @@ impl WaterPass {
 
     /// Its pipelines (the renderer checks their bindings at creation).
     pub fn pipelines(&self) -> impl Iterator<Item = &Pipeline> {
-        [&self.fill, &self.from_below]
+        [&self.fill, &self.from_below, &self.waterline]
             .into_iter()
             .chain(self.wireframe.as_ref())
     }
@@ -411,33 +416,34 @@ impl WaterPass {
     }
 
     /// What `record` binds: the pipeline for `view` (lines for `ViewMode::Wireframe` where the
-    /// device draws lines, from below when the camera is `underwater`, filled otherwise) with
-    /// `sets` ([`WaterPass::sets`]).
+    /// device draws lines, else filled, as seen from the camera's `side`) with `sets`
+    /// ([`WaterPass::sets`]).
     pub fn draw<'a>(
         &'a self,
         sets: &'a [&'a BoundSet],
         view: ViewMode,
-        underwater: bool,
+        side: WaterSide,
     ) -> Bindings<'a> {
-        let pipeline = match (&self.wireframe, view) {
-            (Some(lines), ViewMode::Wireframe) => lines,
-            _ if underwater => &self.from_below,
-            _ => &self.fill,
+        let pipeline = match (&self.wireframe, view, side) {
+            (Some(lines), ViewMode::Wireframe, _) => lines,
+            (_, _, WaterSide::Above) => &self.fill,
+            (_, _, WaterSide::Below) => &self.from_below,
+            (_, _, WaterSide::Split) => &self.waterline,
         };
         Bindings { pipeline, sets }
     }
 
     /// Draws the ocean inside the main rendering scope, which declared
-    /// `draw(sets, view, underwater)`; `slot`: the frame's (the clipmap's tile list).
+    /// `draw(sets, view, side)`; `slot`: the frame's (the clipmap's tile list).
     pub fn record(
         &self,
         rec: &Recorder,
         sets: &[&BoundSet],
         view: ViewMode,
-        underwater: bool,
+        side: WaterSide,
         slot: usize,
     ) {
-        bind_scene(rec, &self.draw(sets, view, underwater), ViewIndex::Main);
+        bind_scene(rec, &self.draw(sets, view, side), ViewIndex::Main);
         match &self.clipmap {
             // One instance per row of patches (see water.vert).
             None => rec.draw(PATCHES * 4, PATCHES),

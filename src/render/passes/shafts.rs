@@ -1,0 +1,108 @@
+//! Light shafts under the water (issue 34; shaders/underwater/shafts.frag,
+//! common/caustics.glsl): the sun's light the water scatters toward the eye, focused into
+//! shafts by the waves. Marching the caustics along every pixel's ray costs lavapipe about
+//! 190 ms a frame at `--quality low` (16 area ratios a pixel, each 12 slope samples), so this
+//! pass marches the main camera's rays at a fixed `SHAFTS_EXTENT` before the scene is drawn and
+//! keeps, per texel, the caustics' mean along four lengths of the ray; the scene's shaders
+//! under the water sample it (linearly: the shafts are soft) and take the mean up to their own
+//! distance: 21 ms at low. It runs only with the camera under the water (or half in it:
+//! `WaterSide`) and the caustics on; the image is cleared to 1 (a level sea's ratio) when it is
+//! made, so what samples it is never undefined.
+
+use std::sync::Arc;
+
+use ash::vk;
+
+use super::water::WaterKind;
+use super::{bind_scene, scene_layout, scene_pipeline, Depth, SceneTarget};
+use crate::gpu::oneshot::run_once;
+use crate::gpu::{
+    Bindings, BoundSet, Context, DescriptorSetLayout, GpuResult, GraphicsDesc, Image, ImageDesc,
+    Load, Pipeline, Recorder, Target,
+};
+use crate::render::targets::HDR_FORMAT;
+use crate::render::uniforms::ViewIndex;
+use crate::shaders;
+
+/// The shaft image's size (texels), whatever the window's: the shafts are soft, and at
+/// `--quality low`'s 640x360 main target this is a texel per 2x2 pixels.
+pub const SHAFTS_EXTENT: vk::Extent2D = vk::Extent2D {
+    width: 256,
+    height: 144,
+};
+
+pub struct ShaftsPass {
+    /// Per texel: the caustics' mean area ratio over the first quarter, half, three quarters
+    /// and all of the march (RGBA16F; the frame set's binding 5).
+    pub image: Image,
+    pipeline: Pipeline,
+}
+
+impl ShaftsPass {
+    /// `ocean`: how the shader samples the ocean images (as the terrain's caustics do).
+    pub fn new(
+        ctx: &Arc<Context>,
+        frame_layout: &DescriptorSetLayout,
+        ocean: WaterKind,
+    ) -> GpuResult<ShaftsPass> {
+        let image = Image::new(
+            ctx,
+            &ImageDesc {
+                name: "light shafts",
+                extent: SHAFTS_EXTENT,
+                format: HDR_FORMAT,
+                usage: vk::ImageUsageFlags::COLOR_ATTACHMENT | vk::ImageUsageFlags::SAMPLED,
+                layers: 1,
+                array_view: false,
+                shared: false,
+                cube: false,
+            },
+        )?;
+        let layout = scene_layout(ctx, "light shafts layout", frame_layout, &[])?;
+        let pipeline = scene_pipeline(
+            ctx,
+            &layout,
+            GraphicsDesc {
+                name: "light shafts",
+                stages: &[
+                    (
+                        vk::ShaderStageFlags::VERTEX,
+                        shaders::COMMON_FULLSCREEN_VERT,
+                    ),
+                    (
+                        vk::ShaderStageFlags::FRAGMENT,
+                        shaders::UNDERWATER_SHAFTS_FRAG,
+                    ),
+                ],
+                // common/water.glsl's CASCADES and OCEAN_MANUAL_FILTER.
+                constants: &[ocean.cascades, ocean.manual_filter as u32],
+                ..Default::default()
+            },
+            Depth::None,
+            SceneTarget::Hdr,
+        )?;
+        let level = Load::Clear(vk::ClearValue {
+            color: vk::ClearColorValue { float32: [1.0; 4] },
+        });
+        run_once(ctx, "light shafts cleared", |rec| {
+            let target = [Target::new(&image, level)];
+            rec.rendering("light shafts cleared", &target, None, &[])
+                .record(|| {});
+        })?;
+        Ok(ShaftsPass { image, pipeline })
+    }
+
+    /// What `record` binds: the pipeline with `sets` (the frame set).
+    pub fn draw<'a>(&'a self, sets: &'a [&'a BoundSet]) -> Bindings<'a> {
+        Bindings {
+            pipeline: &self.pipeline,
+            sets,
+        }
+    }
+
+    /// Draws the means, inside a rendering scope into `image` that declared `draw(sets)`.
+    pub fn record(&self, rec: &Recorder, sets: &[&BoundSet]) {
+        bind_scene(rec, &self.draw(sets), ViewIndex::Main);
+        rec.draw(3, 1);
+    }
+}
