@@ -2,8 +2,10 @@
 //! straight down at the sand, the sun focused by the simulated waves draws a network of bright
 //! lines on the floor that moves with the waves (shaders/common/caustics.glsl), and an overcast
 //! draws none; the floor is seen through the water, dimmed by its absorption, its detail by
-//! its scattering (shaders/common/underwater.glsl); and looking up toward the sun, the light
-//! the water scatters comes in shafts that radiate from the sun and move.
+//! its scattering (shaders/common/underwater.glsl); looking up toward the sun, the light the
+//! water scatters comes in shafts that radiate from the sun and move; outside Snell's window
+//! the surface mirrors the floor; a camera half in the water splits the picture at the
+//! waterline.
 //!
 //! Measured on lavapipe (640x360, --quality low): over the 18 m shelf (the floor 10 m from the
 //! eye) luma high-pass std (the picture less its 15 px box mean) 10.1 in the sun, 0.11 under
@@ -59,11 +61,11 @@ fn mean_change(a: &[f64], b: &[f64]) -> f64 {
     a.iter().zip(b).map(|(p, q)| (p - q).abs()).sum::<f64>() / a.len() as f64
 }
 
-/// Standard deviation of `v` less its mean over the (2r + 1)² box around each pixel (the box
-/// clamped at the picture's edges), over the pixels at least r from an edge.
-fn high_pass_std(v: &[f64], r: usize) -> f64 {
+/// Standard deviation of `v` (`rows` rows of W) less its mean over the (2r + 1)² box around
+/// each pixel, over the pixels at least r from an edge.
+fn high_pass_std_of(v: &[f64], rows: usize, r: usize) -> f64 {
     let mut residual = Vec::new();
-    for y in r..H - r {
+    for y in r..rows - r {
         for x in r..W - r {
             let mut sum = 0.0;
             for yy in y - r..=y + r {
@@ -74,6 +76,11 @@ fn high_pass_std(v: &[f64], r: usize) -> f64 {
         }
     }
     common::std_dev(&residual)
+}
+
+/// `high_pass_std_of` a whole picture.
+fn high_pass_std(v: &[f64], r: usize) -> f64 {
+    high_pass_std_of(v, H, r)
 }
 
 #[test]
@@ -332,5 +339,57 @@ fn a_camera_half_in_the_water_splits_the_picture_at_the_waterline() {
     assert!(
         jump >= 20.0 && (H / 3..2 * H / 3).contains(&line),
         "no sharp waterline in the middle third: row {line}, {jump:.1} levels"
+    );
+}
+
+/// 1.5 m down at (x, z), looking level toward `look_at` (x, z): luma.
+fn level_view(tag: &str, camera: [i32; 2], look_at: [i32; 2]) -> Vec<f64> {
+    let camera = format!("--camera={},-1.5,{}", camera[0], camera[1]);
+    let look = format!("--look-at={},0,{}", look_at[0], look_at[1]);
+    luma(&shot(
+        &format!("underwater-mirror-{tag}"),
+        (W as u32, H as u32),
+        &["--time", "5", "--preset", "calm", &camera, &look],
+        &[],
+    ))
+}
+
+/// The 15 px high-pass std and the mean of `v`'s rows `rows`.
+fn band(v: &[f64], rows: std::ops::Range<usize>) -> (f64, f64) {
+    let part = &v[rows.start * W..rows.end * W];
+    let mean = part.iter().sum::<f64>() / part.len() as f64;
+    (high_pass_std_of(part, rows.len(), 7), mean)
+}
+
+/// Outside Snell's window the surface mirrors what lies below it (total internal reflection;
+/// shaders/surface/water.frag, mirrored_floor): looking level from 1.5 m down over the sandy
+/// shallows, the picture's top third (the underside, 10–30° up) shows the floor with its
+/// caustics, as textured as the floor itself (15 px high-pass std ≥ 4, measured 14.1 against
+/// the floor's 12.4; the water's own colour alone gave 0.22) and about as bright (its mean
+/// luma within 15 % of the bottom third's, the floor: 82.5 against 79.8; 51.6 before); over the
+/// open sea, where no floor lies within the mirror's 40 m, it stays the water's even colour
+/// (std ≤ 1.5, measured 0.22).
+#[test]
+fn outside_snells_window_the_surface_mirrors_the_floor() {
+    let shallows = level_view("shallows", [-140, -860], [-180, -860]);
+    let open_sea = level_view("open-sea", [0, 0], [-40, 0]);
+    let (mirror_std, mirror_mean) = band(&shallows, 0..H / 3);
+    let (floor_std, floor_mean) = band(&shallows, 2 * H / 3..H);
+    let (open_std, _) = band(&open_sea, 0..H / 3);
+    eprintln!(
+        "the underside over the shallows: std {mirror_std:.2}, mean {mirror_mean:.1} (the floor: \
+         {floor_std:.2}, {floor_mean:.1}); over the open sea: std {open_std:.2}"
+    );
+    assert!(
+        mirror_std >= 4.0,
+        "the mirror shows no floor: std {mirror_std:.2}"
+    );
+    assert!(
+        (mirror_mean / floor_mean - 1.0).abs() <= 0.15,
+        "the mirror's mean {mirror_mean:.1} against the floor's {floor_mean:.1}"
+    );
+    assert!(
+        open_std <= 1.5,
+        "the open sea's underside is textured: {open_std:.2}"
     );
 }

@@ -356,21 +356,78 @@ float sea_fresnel(float c, float sigma_v) {
     return F0 + (1.0 - F0) * mean;
 }
 
+// The sea floor (the island's terrain) that the surface point `p` (relative to the eye) mirrors
+// along the ray `r` going down, seen through the water between: the ray marched in
+// MIRROR_STEPS to at most MIRROR_REACH_M (where a + b leaves e^-4 of the blue) and the crossing
+// refined by halving; the floor lit as terrain_lit.glsl lights it, without its shadows (the
+// refracted sun focused by the caustics, the sky, the light's absorption on the way down).
+// Where the ray meets no floor: the water's own light.
+const int MIRROR_STEPS = 8;
+const float MIRROR_REACH_M = 40.0;
+const float MIRROR_BLUR = 32.0;
+vec3 mirrored_floor(vec3 p, vec3 r) {
+    vec3 start = frame.views[0].eye.xyz + p;
+    float step_m = MIRROR_REACH_M / float(MIRROR_STEPS);
+    float hit = -1.0;
+    for (int i = 1; i <= MIRROR_STEPS && hit < 0.0; ++i) {
+        vec3 q = start + r * (step_m * float(i));
+        if (q.y < terrain_height(q.xz)) {
+            float lo = step_m * float(i - 1);
+            float hi = step_m * float(i);
+            for (int k = 0; k < 4; ++k) {
+                float mid = 0.5 * (lo + hi);
+                vec3 m = start + r * mid;
+                if (m.y < terrain_height(m.xz)) {
+                    hi = mid;
+                } else {
+                    lo = mid;
+                }
+            }
+            hit = hi;
+        }
+    }
+    if (hit < 0.0) {
+        return water_inscatter(r);
+    }
+    vec3 q = start + r * hit;
+    float e = 0.5;
+    float h = terrain_height(q.xz);
+    vec3 n = normalize(vec3(h - terrain_height(q.xz + vec2(e, 0.0)), e,
+                            h - terrain_height(q.xz + vec2(0.0, e))));
+    vec3 sun = frame.sun_dir.xyz;
+    float lambert = max(dot(n, refracted_sun(sun)), 0.0) * sun_transmission(sun);
+    float depth = max(water_level() - q.y, 0.0);
+    if (frame.underwater.z > 0.5 && lambert > 0.0) {
+        // The caustics (--caustics on), over a pixel's footprint at the mirrored distance,
+        // from the level sea's surface point (no fixed-point step: a wavy mirror blurs them).
+        float seen_m = length(p) + hit;
+        vec2 xz = q.xz - frame.views[0].eye.xz + frame.water.xy;
+        lambert *= caustic_ratio(xz, depth, seen_m, seen_m / frame.lod.x, 1);
+    }
+    vec3 light = sun_light() * lambert / 3.14159265 + sky_ambient(n);
+    vec3 colour = terrain_albedo(q.y, n.y) * light * exp(-depth * ABSORPTION_PER_M);
+    return underwater_fog(colour, colour, r, hit);
+}
+
 // The surface seen from under the water (the camera's below it): within Snell's window,
 // arcsin(1/1.333) = 48.6° of the normal, the sky refracted through it (Snell, written out),
 // less what the surface reflects back down (Schlick's Fresnel at the angle in the air); outside
-// it total internal reflection, a mirror of the water below. Then the water between, with the
+// it total internal reflection, a mirror of the water below: the sea floor where it lies within
+// reach (mirrored_floor). Then the water between, with the
 // sun's light it scatters toward the eye (the light shafts, common/caustics.glsl). Only the
 // pipelines for a camera under the water or at the waterline (UNDERWATER_VIEW 1, 2) keep
 // this: as a branch not taken, lavapipe still paid about 6 ms a frame for it at --quality low.
-vec3 from_below(vec3 n, vec3 v, float dist) {
+vec3 from_below(vec3 n, vec3 smooth_n, vec3 v, float dist) {
     vec3 ray = -v; // from the eye up to the surface
     float c = max(dot(ray, n), 0.0); // cosine of the angle in the water
     float s2 = N_WATER * N_WATER * (1.0 - c * c); // sin² of the angle in the air
     float ca = sqrt(max(1.0 - s2, 0.0));
     float f = s2 >= 1.0 ? 1.0 : schlick(ca);
     vec3 through = N_WATER * ray + (ca - N_WATER * c) * n;
-    vec3 below = water_inscatter(vec3(ray.x, -ray.y, ray.z));
+    // Inside the window the mirror's few per cent of the floor are left to the water's colour.
+    vec3 mirrored = reflect(ray, smooth_n);
+    mirrored.y = min(mirrored.y, -0.01);
+    vec3 below = f > 0.1 ? mirrored_floor(-v * dist, normalize(mirrored)) : water_inscatter(mirrored);
     vec3 colour = mix(sky_lookup(through), below, f);
     return underwater_fog(colour, colour, ray, dist) + sun_shafts(ray, dist);
 }
@@ -432,7 +489,15 @@ void main() {
     }
     vec3 sun = frame.sun_dir.xyz;
     if (UNDERWATER_VIEW == 1 || (UNDERWATER_VIEW == 2 && pixel_underwater())) {
-        out_colour = target_colour(from_below(n, v, dist));
+        // The mirror's rays travel on, metres, to the floor, so a slope's error moves their
+        // image far: they take the slopes a MIRROR_BLUR times wider footprint resolves (our
+        // choice, 32: at 1 the floor's image broke into sparkles pixel by pixel at --quality
+        // high, at 8 it still did far off; a pixel sees the mean of its many facets' images).
+        float unused_resolved;
+        float unused_compression;
+        vec3 smooth_n = ocean_normal_foam(in_xz, dist, MIRROR_BLUR * pixel_m, shore.x,
+                                          unused_resolved, unused_compression).xyz;
+        out_colour = target_colour(from_below(n, smooth_n, v, dist));
         return;
     }
 
