@@ -11,6 +11,7 @@
 #include "common/display.glsl"
 #include "common/underwater.glsl"
 #include "common/shadow.glsl"
+#include "common/terrain_material.glsl"
 #ifdef TERRAIN_CAUSTICS
 #include "common/water.glsl"
 #include "common/caustics.glsl"
@@ -62,7 +63,13 @@ vec3 beach(vec3 colour, vec3 light, vec3 n, vec3 v) {
 void main() {
     vec3 n = normalize(in_normal);
     vec3 sun = frame.sun_dir.xyz;
+    float dist = length(in_rel_pos);
+    // A pixel's footprint on the ground along the view, where it is longest (the detail's
+    // noise fades by it: by the footprint across, grazing views streaked along the view).
+    float facing = abs(dot(n, in_rel_pos)) / dist;
+    float footprint_m = dist / (frame.lod.x * max(facing, 0.05));
     vec3 albedo;
+    float occlusion = 1.0;
     if (in_object >= 0) {
         if (in_object == 0) {
             // Buoy: red and white bands 0.7 m high along its axis from its waterline (it floats:
@@ -71,12 +78,11 @@ void main() {
             float along = dot(in_world - waterline, frame.buoy.xyz);
             albedo = fract(along / 1.4) < 0.5 ? vec3(0.75, 0.08, 0.05) : vec3(0.85);
         } else {
-            albedo = vec3(0.45, 0.42, 0.38);
+            albedo = pillar_albedo(in_world, frame.objects[in_object].xy, footprint_m);
         }
     } else {
-        albedo = terrain_albedo(in_world.y, n.y);
+        island_surface(in_world, n, footprint_m, albedo, n, occlusion);
     }
-    float dist = length(in_rel_pos);
     // Lambertian under the sun through the air and clouds, and the sky (common/frame.glsl).
     // Under the water the sun comes down refracted (steeper), less what the surface reflects,
     // and focused by the waves (common/caustics.glsl); over the first half metre the two
@@ -106,12 +112,11 @@ void main() {
     if (below > 0.0 && sun_share > 0.0 && seen_drowned) {
         // The point relative to the water grid's centre (camera-relative, as the water's).
         vec2 xz = in_rel_pos.xz + VIEW.eye.xz - frame.views[0].eye.xz + frame.water.xy;
-        float facing = abs(dot(n, in_rel_pos)) / dist;
         float pixel_m = dist / (frame.lod.x * sqrt(max(facing, 0.01)));
         sun_share *= mix(1.0, caustic(xz, below, dist, pixel_m), drowned);
     }
 #endif
-    vec3 ambient = sky_ambient(n);
+    vec3 ambient = sky_ambient(n) * occlusion;
     vec3 light = sun_light() * sun_share / 3.14159265 + ambient;
     vec3 colour = albedo * light;
     vec3 blurred = albedo * (sun_light() * sun_mean / 3.14159265 + ambient);
