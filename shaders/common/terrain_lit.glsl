@@ -17,6 +17,11 @@
 #include "common/caustics.glsl"
 #endif
 
+// The island's and the pillars' materials (common/terrain_material.glsl); off in the refraction
+// view (src/render/passes/terrain.rs), which sees the sea floor, even without them, and paid
+// 0.7 ms a frame for them at --quality low on lavapipe (which runs untaken branches).
+layout(constant_id = 2) const bool TERRAIN_MATERIALS = true;
+
 layout(location = 0) in vec3 in_rel_pos;
 layout(location = 1) in vec3 in_world;
 layout(location = 2) in vec3 in_normal;
@@ -77,11 +82,15 @@ void main() {
             vec3 waterline = vec3(frame.objects[0].x, frame.buoy.w, frame.objects[0].y);
             float along = dot(in_world - waterline, frame.buoy.xyz);
             albedo = fract(along / 1.4) < 0.5 ? vec3(0.75, 0.08, 0.05) : vec3(0.85);
-        } else {
+        } else if (TERRAIN_MATERIALS) {
             albedo = pillar_albedo(in_world, frame.objects[in_object].xy, footprint_m);
+        } else {
+            albedo = vec3(0.45, 0.42, 0.38);
         }
-    } else {
+    } else if (TERRAIN_MATERIALS) {
         island_surface(in_world, n, footprint_m, albedo, n, occlusion);
+    } else {
+        albedo = terrain_albedo(in_world.y, n.y);
     }
     // Lambertian under the sun through the air and clouds, and the sky (common/frame.glsl).
     // Under the water the sun comes down refracted (steeper), less what the surface reflects,

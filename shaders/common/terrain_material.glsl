@@ -72,6 +72,14 @@ vec3 noise_fbm(vec2 xz, float wavelength_m, int octaves, float pixel_m) {
 //   is the caustics'.
 void island_surface(vec3 p, vec3 n, float pixel_m, out vec3 albedo, out vec3 normal,
                     out float occlusion) {
+    normal = n;
+    occlusion = 1.0;
+    if (p.y < -1.5) {
+        // The sea floor: even (as below, where `drowned` is 1), and most of the refraction
+        // view's pixels (the noise there cost lavapipe 1 ms a frame at low).
+        albedo = terrain_albedo(p.y, n.y);
+        return;
+    }
     vec3 patches = noise_fbm(p.xz, 60.0, 3, pixel_m);
     vec3 detail = noise_fbm(p.xz, 4.0, 4, pixel_m);
     float flat_n = n.y;
@@ -89,8 +97,7 @@ void island_surface(vec3 p, vec3 n, float pixel_m, out vec3 albedo, out vec3 nor
     stone *= 1.0 - 0.45 * smoothstep(0.15, 0.45, -detail.x);
     vec3 sand = base * (0.92 + 0.1 * detail.x);
     float drowned = smoothstep(-0.5, -1.5, p.y);
-    sand = mix(sand, base, drowned);
-    albedo = beach * sand + grass * green + rock * stone;
+    albedo = mix(beach * sand + grass * green + rock * stone, terrain_albedo(p.y, n.y), drowned);
     float bump_m = mix(mix(0.03, 0.08, grass), 0.4, rock) * (1.0 - drowned);
     vec2 slope = bump_m * detail.yz;
     normal = normalize(n - vec3(slope.x, 0.0, slope.y) + n * dot(n.xz, slope));

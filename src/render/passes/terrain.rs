@@ -53,7 +53,8 @@ impl TerrainPass {
         ocean: WaterKind,
     ) -> GpuResult<TerrainPass> {
         let layout = scene_layout(ctx, "terrain layout", frame_layout, &[])?;
-        let pipeline = |name: &str, vert: &[u8], frag: &[u8], target| {
+        // `materials`: common/terrain_lit.glsl's TERRAIN_MATERIALS.
+        let pipeline = |name: &str, vert: &[u8], frag: &[u8], target, materials: bool| {
             scene_pipeline(
                 ctx,
                 &layout,
@@ -63,28 +64,36 @@ impl TerrainPass {
                         (vk::ShaderStageFlags::VERTEX, vert),
                         (vk::ShaderStageFlags::FRAGMENT, frag),
                     ],
-                    // common/water.glsl's CASCADES and OCEAN_MANUAL_FILTER, water.frag's
-                    // UNDERWATER_VIEW (unused here), terrain.vert's TERRAIN_QUADS.
-                    constants: &[ocean.cascades, ocean.manual_filter as u32, 0, quads],
+                    // common/water.glsl's CASCADES and OCEAN_MANUAL_FILTER,
+                    // common/terrain_lit.glsl's TERRAIN_MATERIALS, terrain.vert's
+                    // TERRAIN_QUADS.
+                    constants: &[
+                        ocean.cascades,
+                        ocean.manual_filter as u32,
+                        materials as u32,
+                        quads,
+                    ],
                     ..Default::default()
                 },
                 Depth::TestWrite,
                 target,
             )
         };
-        let pair = |label: &str, frag: &[u8], target| -> GpuResult<[Pipeline; 2]> {
+        let pair = |label: &str, frag: &[u8], target, materials| -> GpuResult<[Pipeline; 2]> {
             Ok([
                 pipeline(
                     &format!("terrain ({label})"),
                     shaders::TERRAIN_TERRAIN_VERT,
                     frag,
                     target,
+                    materials,
                 )?,
                 pipeline(
                     &format!("objects ({label})"),
                     shaders::TERRAIN_OBJECTS_VERT,
                     frag,
                     target,
+                    materials,
                 )?,
             ])
         };
@@ -93,14 +102,21 @@ impl TerrainPass {
                 SceneTarget::Hdr => "refraction",
                 SceneTarget::Display(_) => "main view, under the water",
             };
-            pair(label, shaders::TERRAIN_TERRAIN_CAUSTICS_FRAG, target)
+            // The refraction view leaves the materials out: it sees the sea floor.
+            let materials = matches!(target, SceneTarget::Display(_));
+            pair(
+                label,
+                shaders::TERRAIN_TERRAIN_CAUSTICS_FRAG,
+                target,
+                materials,
+            )
         })?;
         let plain = PerTarget::new(display_format, |target| {
             let label = match target {
                 SceneTarget::Hdr => "reflection",
                 SceneTarget::Display(_) => "main view",
             };
-            pair(label, shaders::TERRAIN_TERRAIN_FRAG, target)
+            pair(label, shaders::TERRAIN_TERRAIN_FRAG, target, true)
         })?;
         let meshes = PerTarget::new(display_format, |target| {
             let step = match target {
