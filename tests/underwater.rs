@@ -8,7 +8,7 @@
 //! waterline.
 //!
 //! Measured on lavapipe (640x360, --quality low): over the 18 m shelf (the floor 10 m from the
-//! eye) luma high-pass std (the picture less its 15 px box mean) 10.1 in the sun, 0.11 under
+//! eye) luma high-pass std (the picture less its 15 px box mean) 10.1 in the sun, 0.12 under
 //! the overcast; mean luma change over 0.1 s 13.8; the floor's mean luma 59.6; over a 12 m
 //! shelf (the floor 4 m away) 76.0. The mean light with the caustics over the same build
 //! without them (`--caustics off`; linear luma): 0.94 at low, 1.20 at high (README,
@@ -195,7 +195,7 @@ fn correlation(a: &[f64], b: &[f64]) -> f64 {
 /// caustics drawn out along the refracted sun (common/caustics.glsl's shaft_means,
 /// src/render/passes/shafts.rs). Taken as the picture less the same with `--caustics off`
 /// (the glow of a level sea, the same surface): on circles about the sun it varies (angular
-/// std ≥ 3 grey levels, measured 6.3), in streaks along the radius (the correlation of two
+/// std ≥ 3 grey levels, measured 6.2), in streaks along the radius (the correlation of two
 /// circles 20 px apart ≥ 0.8, measured 0.95, while two points 20 px apart along a circle
 /// correlate ≤ 0.6, measured 0.39), and they move (mean change over 0.5 s ≥ 2 levels, measured
 /// 6.6). Under an overcast there is no sun and no shaft (the difference is nothing).

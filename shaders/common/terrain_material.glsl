@@ -96,7 +96,7 @@ void island_surface(vec3 p, vec3 n, float pixel_m, out vec3 albedo, out vec3 nor
     vec3 stone = mix(vec3(0.27, 0.25, 0.23), vec3(0.44, 0.41, 0.37), strata);
     stone *= 1.0 - 0.45 * smoothstep(0.15, 0.45, -detail.x);
     vec3 sand = base * (0.92 + 0.1 * detail.x);
-    float drowned = smoothstep(-0.5, -1.5, p.y);
+    float drowned = 1.0 - smoothstep(-1.5, -0.5, p.y);
     albedo = mix(beach * sand + grass * green + rock * stone, terrain_albedo(p.y, n.y), drowned);
     float bump_m = mix(mix(0.03, 0.08, grass), 0.4, rock) * (1.0 - drowned);
     vec2 slope = bump_m * detail.yz;
@@ -106,16 +106,25 @@ void island_surface(vec3 p, vec3 n, float pixel_m, out vec3 albedo, out vec3 nor
     occlusion = mix(clamp(1.0 - 0.25 * (around - terrain_height(p.xz)), 0.5, 1.0), 1.0, drowned);
 }
 
+// A noise on a pillar's side at `r` (from its axis, x z) and height `y` (stretched `stretch`
+// times along the axis): two noises on the planes along its axis, each weighted by how
+// squarely the side faces it (an angle around the axis would jump where it wraps: a seam).
+float pillar_noise(vec2 r, float y, float wavelength_m, int octaves, float pixel_m) {
+    float across_x = noise_fbm(vec2(r.y, y), wavelength_m, octaves, pixel_m).x;
+    float across_z = noise_fbm(vec2(r.x + 31.0, y), wavelength_m, octaves, pixel_m).x;
+    vec2 w = abs(r) / max(abs(r.x) + abs(r.y), 1e-6);
+    return w.x * across_x + w.y * across_z;
+}
+
 // A pillar's concrete at world point `p`, its axis at `centre` (x, z): grey, streaked along
 // its height by the rain (a noise stretched 20 times along the axis); from the water up to
-// 1–1.6 m, where the waves wash it, a band of dark algae, and above it a metre of concrete
+// 1.1–1.5 m, where the waves wash it, a band of dark algae, and above it a metre of concrete
 // the spray keeps damp (darker).
 vec3 pillar_albedo(vec3 p, vec2 centre, float pixel_m) {
     vec2 r = p.xz - centre;
-    float around = atan(r.y, r.x) * length(r); // metres along the circumference
-    float streaks = noise_fbm(vec2(around, p.y / 20.0), 1.5, 3, pixel_m).x;
+    float streaks = pillar_noise(r, p.y / 20.0, 1.5, 3, pixel_m);
     vec3 concrete = vec3(0.46, 0.45, 0.42) * (0.82 + 0.3 * streaks);
-    float line = 1.3 + 0.3 * noise_fbm(vec2(around, 0.0), 2.0, 2, pixel_m).x;
+    float line = 1.3 + 0.3 * pillar_noise(r, 0.0, 2.0, 2, pixel_m);
     float above = p.y - water_level();
     concrete *= mix(0.7, 1.0, smoothstep(line, line + 1.0, above));
     float algae = 1.0 - smoothstep(line - 0.3, line, above);

@@ -1,5 +1,6 @@
-// The view from under the water (when the camera is below the surface at its x, z: frame
-// .underwater, src/render/uniforms.rs). Light crossing the water is absorbed (ABSORPTION_PER_M,
+// The view from under the water (when the camera's near plane is below the surface, or the
+// pixel's point on it where the surface crosses it: frame.underwater, frame.waterline,
+// src/render/uniforms.rs). Light crossing the water is absorbed (ABSORPTION_PER_M,
 // red first) and scattered (UNDERWATER_SCATTERING_PER_M); what the water scatters toward the eye
 // (`water_inscatter`) is its own colour, the deep colour seen from above (WATER_COLOUR under the
 // sky's light), brighter toward the surface, darker toward the deep and with depth.
@@ -112,10 +113,10 @@ vec3 sun_shafts(vec3 dir, float dist) {
         // Four bilinear taps half a texel apart: a 3x3 tent over the march's per-texel jitter.
         vec2 uv = gl_FragCoord.xy * frame.viewport.zw;
         vec2 half_texel = 0.5 / vec2(textureSize(shaft_image, 0));
-        vec4 means = 0.25 * (texture(shaft_image, uv + half_texel)
-                             + texture(shaft_image, uv - half_texel)
-                             + texture(shaft_image, uv + vec2(half_texel.x, -half_texel.y))
-                             + texture(shaft_image, uv + vec2(-half_texel.x, half_texel.y)));
+        vec4 means = 0.25 * (textureLod(shaft_image, uv + half_texel, 0.0)
+                             + textureLod(shaft_image, uv - half_texel, 0.0)
+                             + textureLod(shaft_image, uv + vec2(half_texel.x, -half_texel.y), 0.0)
+                             + textureLod(shaft_image, uv + vec2(-half_texel.x, half_texel.y), 0.0));
         float q = clamp(reach / (0.25 * SHAFT_REACH_M), 1.0, 4.0) - 1.0;
         int k = min(int(q), 2);
         mean = mix(means[k], means[k + 1], q - float(k));

@@ -488,7 +488,13 @@ void main() {
         return;
     }
     vec3 sun = frame.sun_dir.xyz;
-    if (UNDERWATER_VIEW == 1 || (UNDERWATER_VIEW == 2 && pixel_underwater())) {
+    // From under the water: the pipeline for it returns here; at the waterline the pixels that
+    // see from below keep going with the rest (a branch per pixel there: the foam's relief
+    // below takes screen-space derivatives, which need every pixel of a quad to run them) and
+    // take this colour at the end.
+    bool from_under = UNDERWATER_VIEW == 1 || (UNDERWATER_VIEW == 2 && pixel_underwater());
+    vec3 under_colour = vec3(0.0);
+    if (from_under) {
         // The mirror's rays travel on, metres, to the floor, so a slope's error moves their
         // image far: they take the slopes a MIRROR_BLUR times wider footprint resolves (our
         // choice, 32: at 1 the floor's image broke into sparkles pixel by pixel at --quality
@@ -497,8 +503,11 @@ void main() {
         float unused_compression;
         vec3 smooth_n = ocean_normal_foam(in_xz, dist, MIRROR_BLUR * pixel_m, shore.x,
                                           unused_resolved, unused_compression).xyz;
-        out_colour = target_colour(from_below(n, smooth_n, v, dist));
-        return;
+        under_colour = from_below(n, smooth_n, v, dist);
+        if (UNDERWATER_VIEW == 1) {
+            out_colour = target_colour(under_colour);
+            return;
+        }
     }
 
     // Distortion (seed 001 eq. 4-5): DU/DV sampled twice, scrolling in opposite directions
@@ -602,5 +611,5 @@ void main() {
     colour += sunlight * glitter;
 
     vec3 haze = aerial_haze(dist);
-    out_colour = target_colour(mix(colour, horizon, haze));
+    out_colour = target_colour(from_under ? under_colour : mix(colour, horizon, haze));
 }

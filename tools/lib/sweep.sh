@@ -5,7 +5,9 @@
 # --validation and whatever else it checks): every --view, both --waves models, each water
 # --geometry of SWEEP_GEOMETRIES (default: both; tools/swiftshader: clipmap, the device has no
 # tessellation) and every --quality headless at 160x90 for 3 frames, the storm at medium (the
-# spray flies, lands and adds to the foam levels: about 9,000 puffs, 100 landing a frame), and
+# spray flies, lands and adds to the foam levels: about 9,000 puffs, 100 landing a frame), the
+# view from under the water over the shallows (the light shafts' pass, the floor mirrored
+# outside Snell's window) and from a camera half in the water (the waterline's pipeline), and
 # bench fft at sizes 64 and 128.
 sweep_runs() {
     local fn=$1 view waves geometry quality
@@ -23,5 +25,7 @@ sweep_runs() {
         "$fn" "${small[@]}" --quality "$quality"
     done
     "$fn" "${small[@]}" --preset storm --quality medium
+    "$fn" "${small[@]}" --preset calm --camera=-140,-3,-860 --look-at=-150,3,-860
+    "$fn" "${small[@]}" --preset calm --wind-speed 1 --camera=-102,0,-582 --look-at=-60,0,-600
     "$fn" bench fft --sizes 64,128 --runs 3
 }

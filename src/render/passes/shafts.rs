@@ -1,7 +1,7 @@
 //! Light shafts under the water (issue 34; shaders/underwater/shafts.frag,
 //! common/caustics.glsl): the sun's light the water scatters toward the eye, focused into
 //! shafts by the waves. Marching the caustics along every pixel's ray costs lavapipe about
-//! 190 ms a frame at `--quality low` (16 area ratios a pixel, each 12 slope samples), so this
+//! 190 ms a frame at `--quality low` (12 area ratios a pixel, each 24 slope samples), so this
 //! pass marches the main camera's rays at a fixed `SHAFTS_EXTENT` before the scene is drawn and
 //! keeps, per texel, the caustics' mean along four lengths of the ray; the scene's shaders
 //! under the water sample it (linearly: the shafts are soft) and take the mean up to their own
@@ -25,7 +25,7 @@ use crate::render::uniforms::ViewIndex;
 use crate::shaders;
 
 /// The shaft image's size (texels), whatever the window's: the shafts are soft, and at
-/// `--quality low`'s 640x360 main target this is a texel per 2x2 pixels.
+/// `--quality low`'s 640x360 main target this is a texel per 2.5x2.5 pixels.
 pub const SHAFTS_EXTENT: vk::Extent2D = vk::Extent2D {
     width: 256,
     height: 144,
