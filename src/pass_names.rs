@@ -35,6 +35,8 @@ pub const OCEAN_ASSEMBLE: &str = "ocean assemble";
 pub const OCEAN_FOAM: &str = "ocean foam";
 /// FFT model with `--spray on`: the spray's particles moved, landed and born (after the foam).
 pub const OCEAN_SPRAY: &str = "ocean spray";
+/// Height queries (`Simulation::ask`): the surface above up to 4096 points, for the host.
+pub const OCEAN_QUERIES: &str = "ocean height queries";
 /// The spray's particles drawn over the scene (after the sky).
 pub const SPRAY: &str = "spray";
 /// Gerstner model: the wave sum written into the displacement and normal images.

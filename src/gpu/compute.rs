@@ -8,6 +8,7 @@ use std::sync::Arc;
 
 use ash::vk;
 
+use super::buffer::Buffer;
 use super::command::Recorder;
 use super::context::Context;
 use super::error::{GpuResult, VkResultExt};
@@ -138,6 +139,25 @@ impl ComputeQueue {
             self.ctx.wait_timeline(self.timeline, self.last_value)?;
         }
         Ok(())
+    }
+
+    /// The bytes of the host-visible `buffer` as the submission that signalled `value` left
+    /// them, if the compute timeline has reached `value` (no wait; `None` if not yet). That
+    /// submission must have ended with `Use::HostRead` of the buffer (the barrier that makes its
+    /// writes available to the host), and no later submitted work may write it: the caller's
+    /// ring of buffers keeps those (`ocean::simulation::queries`).
+    pub fn read_if_done(&self, buffer: &Buffer, value: u64) -> GpuResult<Option<Vec<u8>>> {
+        // SAFETY: the semaphore is a live timeline semaphore of this device.
+        let done = unsafe { self.ctx.device.get_semaphore_counter_value(self.timeline) }
+            .vk("vkGetSemaphoreCounterValue")?;
+        if done < value {
+            return Ok(None);
+        }
+        // gpu-allocator maps host-visible memory HOST_COHERENT: nothing to invalidate.
+        let bytes = buffer
+            .mapped()
+            .unwrap_or_else(|| panic!("read_if_done of a buffer that is not host-visible"));
+        Ok(Some(bytes.to_vec()))
     }
 
     /// The wait a graphics submission adds to sample this frame's compute results.

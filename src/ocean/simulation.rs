@@ -19,12 +19,15 @@ use ash::vk;
 mod fft_model;
 mod foam_sim;
 mod gerstner_model;
+mod queries;
 mod readback;
 mod spray_sim;
 
 use fft_model::FftModel;
 pub use foam_sim::FOAM_FORMAT;
 use gerstner_model::GerstnerModel;
+pub use queries::{Answers, SurfaceAnswer, MAX_QUERIES};
+use queries::{HeightQueries, SlotPlace};
 pub use spray_sim::{SprayBuffers, COUNTS_BYTES, DRAW_ARGS_OFFSET, LIVE_INDEX, PARTICLE_BYTES};
 
 use super::foam::{self, FoamLevels, FoamScene};
@@ -84,7 +87,7 @@ impl SlotUniforms {
 /// Moves the simulation images into GENERAL, where they stay for good, and zeroes them (no foam
 /// before the first frame). Recorded at the start of the first compute submission, on the queue
 /// that writes them, so the graphics queue first sees them through the compute timeline.
-fn record_images_init(rec: &Recorder, images: &[&Image]) {
+fn record_images_init(rec: &Recorder, images: &[Image]) {
     for img in images {
         rec.clear_image(img);
     }
@@ -312,6 +315,10 @@ pub struct Simulation {
     last_time_s: Option<f64>,
     /// The camera's world xz at the last `place_window` (m).
     camera_xz: [f64; 2],
+    /// Height queries (`ask`), made at the first.
+    queries: Option<HeightQueries>,
+    /// Per slot: where its images lie and the time they are for (`None`: not written yet).
+    slot_places: [Option<SlotPlace>; FRAMES_IN_FLIGHT],
     /// Bound on how far the surface moves from its rest position (m): culling margin.
     pub max_displacement_m: f64,
     /// The rendered sea's significant height and mean frequency (the shore's shoaling and
@@ -434,6 +441,8 @@ impl Simulation {
             after_warmup: false,
             last_time_s: None,
             camera_xz: [0.0; 2],
+            queries: None,
+            slot_places: [None; FRAMES_IN_FLIGHT],
         })
     }
 
@@ -509,11 +518,12 @@ impl Simulation {
             window_m: self.settings.patch_size_m,
         };
         let first = !self.initialized;
-        let init: Vec<&Image> = if first {
+        let init: Vec<Image> = if first {
             self.displacement
                 .iter()
                 .chain(&self.normals)
                 .chain(&self.foam)
+                .cloned()
                 .collect()
         } else {
             Vec::new()
@@ -539,7 +549,9 @@ impl Simulation {
             self.queue.wait_for_last()?;
         }
         self.model.prepare(&frame);
+        let queries = self.prepare_queries(&warmup, slot, value, time_s, scene)?;
         let model = &*self.model;
+        let query_pass = self.queries.as_ref().zip(queries);
         self.queue.submit(slot, value, wait_graphics, |rec| {
             let mut timer = timing;
             if let Some((profiler, frame)) = timer.as_mut() {
@@ -556,6 +568,11 @@ impl Simulation {
                 rec.end_label();
             }
             model.record(rec, &mut timer, &frame);
+            if let Some((pass, dispatch)) = &query_pass {
+                scope(&mut timer, rec, names::OCEAN_QUERIES, || {
+                    pass.record(rec, dispatch)
+                });
+            }
             if let Some((profiler, _)) = timer.as_mut() {
                 profiler.end_frame(rec);
             }

@@ -1,0 +1,123 @@
+#version 460
+// Height queries (src/ocean/simulation/queries.rs): for each asked world point (x, z), the
+// surface above it as the water draws it from this slot's images, and how fast it rises.
+//
+// The water displaces a rest point (α, β) by the sum over cascades of the images, bilinear
+// between texels, scaled by the shore's factor at the rest point (common/water_vertex.glsl).
+// The point that lands on (x, z) is found by fixed-point iteration, α ← α + x − X(α, β), as
+// `SurfaceQuery::rest_position` does on the CPU (it converges where the surface does not fold,
+// J > 0). Texels are read exactly (imageLoad, fp32 weights): hardware filtering weighs with
+// as few as 8 bits, millimetres on a steep crest, and the answers are meant to match the CPU's
+// to well under that. Not included: the surf's bores near the shore (as on the CPU).
+//
+// The vertical velocity is the rate at the fixed point (x, z): the height found the same way in
+// the previous slot's images (the frame before, at place.z = 1/Δt; 0 when there is none),
+// differenced.
+#include "shared.glsl"
+layout(local_size_x = 64) in;
+
+// The placement and the scene's fields of the frame uniforms (as shaders/common/frame.glsl has
+// them) that common/terrain.glsl and common/shore.glsl read.
+layout(std140, set = 0, binding = 0) uniform Placement {
+    // Per cascade: the anchor's texel coordinate (node units, reduced on the CPU in f64) in this
+    // slot's images (xy) and in the previous slot's (zw).
+    vec4 base[4];
+    vec4 texels_per_m; // per cascade: 1 / node spacing
+    vec4 place;        // xy: the anchor's world xz (m); z: 1/Δt to the previous slot (0: none); w: water level (m)
+    vec4 terrain;      // island x, z, shelf depth, island radius
+    vec4 shore;        // the sea's Hs, mean ω, c_g at the simulated depth
+    vec4 open_sea;     // the open sea's floor depth, K_s there
+} frame;
+#include "common/terrain.glsl"
+#include "common/shore.glsl"
+
+// The points, relative to the anchor (m).
+layout(std430, set = 0, binding = 1) readonly buffer Points { vec2 points[]; };
+// Two per point: (λD_x, h, λD_z, ∂h/∂t) of the surface above it; (normal, residual of the
+// inversion in m: over a millimetre where the surface folds).
+layout(std430, set = 0, binding = 2) writeonly buffer Answers { vec4 answers[]; };
+layout(set = 0, binding = 3, rgba32f) uniform readonly image2DArray displacement;
+layout(set = 0, binding = 4, rgba32f) uniform readonly image2DArray normals;
+layout(set = 0, binding = 5, rgba32f) uniform readonly image2DArray previous;
+layout(push_constant) uniform Params {
+    uint count;    // points asked
+    uint cascades;
+    uint periodic; // 1: the FFT's tiling cascades; 0: the Gerstner window (clamped)
+    uint shore;    // 1: the waves scaled over the island's shallows; 0: no island (scale 1)
+} params;
+
+// Iterations of the inversion (the CPU's bound) and the step below which it stops (m).
+const int INVERT_STEPS = 16;
+const float INVERT_DONE_M = 1e-5;
+
+ivec2 texel(ivec2 t, int n) {
+    return params.periodic == 1u ? ((t % n) + n) % n : clamp(t, ivec2(0), ivec2(n - 1));
+}
+
+// Texel t of cascade c of image `which` (0: displacement, 1: normals, 2: previous displacement).
+vec4 load(int which, ivec2 t, int c) {
+    int n = imageSize(displacement).x;
+    ivec3 p = ivec3(texel(t, n), c);
+    if (which == 0) return imageLoad(displacement, p);
+    if (which == 1) return imageLoad(normals, p);
+    return imageLoad(previous, p);
+}
+
+// Image `which` at the rest point `rest` (m from the anchor), bilinear, summed over cascades.
+vec4 sum_at(int which, vec2 rest) {
+    vec4 sum = vec4(0.0);
+    for (int c = 0; c < int(params.cascades); ++c) {
+        vec2 base = which == 2 ? frame.base[c].zw : frame.base[c].xy;
+        vec2 u = base + rest * frame.texels_per_m[c];
+        vec2 f = floor(u);
+        vec2 w = u - f;
+        ivec2 i = ivec2(f);
+        vec4 a = load(which, i, c);
+        vec4 b = load(which, i + ivec2(1, 0), c);
+        vec4 d = load(which, i + ivec2(0, 1), c);
+        vec4 e = load(which, i + ivec2(1, 1), c);
+        sum += mix(mix(a, b, w.x), mix(d, e, w.x), w.y);
+    }
+    return sum;
+}
+
+// What the depth under the rest point makes of the waves (`shore_scale` on the CPU).
+float shore_scale(vec2 rest) {
+    if (params.shore == 0u) return 1.0;
+    vec2 world = frame.place.xy + rest;
+    float depth = frame.place.w - terrain_height(world);
+    return shore_waves_at(shore_shoaling(depth), depth).x;
+}
+
+// The rest point carried to `p` in image `which` (0 or 2), and its scaled displacement there.
+vec3 invert(int which, vec2 p, out vec2 rest) {
+    rest = p;
+    for (int k = 0; k < INVERT_STEPS; ++k) {
+        vec3 d = shore_scale(rest) * sum_at(which, rest).xyz;
+        vec2 e = p - (rest + d.xz);
+        rest += e;
+        if (max(abs(e.x), abs(e.y)) < INVERT_DONE_M) break;
+    }
+    // The displacement at the final rest point (the one the answer describes).
+    return shore_scale(rest) * sum_at(which, rest).xyz;
+}
+
+void main() {
+    uint i = gl_GlobalInvocationID.x;
+    if (i >= params.count) return;
+    vec2 p = points[i];
+    vec2 rest;
+    vec3 d = invert(0, p, rest);
+    float residual = length(p - (rest + d.xz));
+    float scale = shore_scale(rest);
+    vec2 slope = scale * sum_at(1, rest).xy;
+    vec3 normal = normalize(vec3(-slope.x, 1.0, -slope.y));
+    float rate = 0.0;
+    if (frame.place.z > 0.0) {
+        vec2 before_rest;
+        vec3 before = invert(2, p, before_rest);
+        rate = (d.y - before.y) * frame.place.z;
+    }
+    answers[2 * i] = vec4(d, rate);
+    answers[2 * i + 1] = vec4(normal, residual);
+}
