@@ -122,6 +122,10 @@ shared_constants! {
     BUOY_RADIUS_M: f32 = 0.8;
     BUOY_DRAFT_M: f32 = 1.2;
     BUOY_FREEBOARD_M: f32 = 3.5;
+    /// Most floating bodies (`--bodies`, src/ocean/bodies.rs): the bodies' uniform block
+    /// (shaders/terrain/bodies.vert) holds three vec4 each, 12 KiB of the 16 KiB every device
+    /// allows a uniform buffer.
+    MAX_BODIES: u32 = 256;
     /// The foam near the camera (src/ocean/foam.rs `FoamLevels`, shaders/ocean/foam.comp): most
     /// clipmap levels, and the period of the windrows' pattern in mean spacings (their noise
     /// repeats after it, so positions reduced by it on the CPU stay continuous).

@@ -75,7 +75,13 @@ void main() {
     float footprint_m = dist / (frame.lod.x * max(facing, 0.05));
     vec3 albedo;
     float occlusion = 1.0;
-    if (in_object >= 0) {
+    if (in_object >= 4) {
+        // The floating bodies (terrain/bodies.vert): a weathered wooden crate, a white boat,
+        // a yellow buoy.
+        const vec3 BODY_ALBEDO[3] = vec3[](vec3(0.42, 0.27, 0.13), vec3(0.80, 0.80, 0.78),
+                                           vec3(0.85, 0.62, 0.06));
+        albedo = BODY_ALBEDO[min(in_object - 4, 2)];
+    } else if (in_object >= 0) {
         if (in_object == 0) {
             // Buoy: red and white bands 0.7 m high along its axis from its waterline (it floats:
             // objects.vert), so the bands move with it.

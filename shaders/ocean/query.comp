@@ -46,9 +46,10 @@ layout(push_constant) uniform Params {
     uint shore;    // 1: the waves scaled over the island's shallows; 0: no island (scale 1)
 } params;
 
-// Iterations of the inversion (the CPU's bound) and the step below which it stops (m).
+// Iterations of the inversion (the CPU's bound) and the step below which it stops (m; fp32
+// resolves about 4 µm at 50 m from the anchor).
 const int INVERT_STEPS = 16;
-const float INVERT_DONE_M = 1e-5;
+const float INVERT_DONE_M = 2e-5;
 
 ivec2 texel(ivec2 t, int n) {
     return params.periodic == 1u ? ((t % n) + n) % n : clamp(t, ivec2(0), ivec2(n - 1));
@@ -81,17 +82,20 @@ vec4 sum_at(int which, vec2 rest) {
     return sum;
 }
 
-// What the depth under the rest point makes of the waves (`shore_scale` on the CPU).
+// What the depth under the rest point makes of the waves (`shore_scale` on the CPU): past
+// the island's slope the floor is flat, its K_s given (frame.open_sea.y), as the water's
+// vertices take it (common/water_vertex.glsl).
 float shore_scale(vec2 rest) {
     if (params.shore == 0u) return 1.0;
     vec2 world = frame.place.xy + rest;
+    if (!near_island(world)) return shore_waves_at(frame.open_sea.y, frame.open_sea.x).x;
     float depth = frame.place.w - terrain_height(world);
     return shore_waves_at(shore_shoaling(depth), depth).x;
 }
 
-// The rest point carried to `p` in image `which` (0 or 2), and its scaled displacement there.
-vec3 invert(int which, vec2 p, out vec2 rest) {
-    rest = p;
+// The rest point carried to `p` in image `which` (0 or 2) from the first guess `rest`, and
+// its scaled displacement there.
+vec3 invert(int which, vec2 p, inout vec2 rest) {
     for (int k = 0; k < INVERT_STEPS; ++k) {
         vec3 d = shore_scale(rest) * sum_at(which, rest).xyz;
         vec2 e = p - (rest + d.xz);
@@ -106,7 +110,7 @@ void main() {
     uint i = gl_GlobalInvocationID.x;
     if (i >= params.count) return;
     vec2 p = points[i];
-    vec2 rest;
+    vec2 rest = p;
     vec3 d = invert(0, p, rest);
     float residual = length(p - (rest + d.xz));
     float scale = shore_scale(rest);
@@ -114,7 +118,8 @@ void main() {
     vec3 normal = normalize(vec3(-slope.x, 1.0, -slope.y));
     float rate = 0.0;
     if (frame.place.z > 0.0) {
-        vec2 before_rest;
+        // A frame earlier the rest point was nearly the same: a few steps from there.
+        vec2 before_rest = rest;
         vec3 before = invert(2, p, before_rest);
         rate = (d.y - before.y) * frame.place.z;
     }

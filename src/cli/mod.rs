@@ -33,6 +33,7 @@ use crate::render::{
     default_sun_dir, AntiAliasing, Camera, FresnelModel, Geometry, SceneLayout, SceneSettings,
     ViewMode,
 };
+use crate::shared::MAX_BODIES;
 use glam::Vec3;
 
 /// A feature turned on or off (`--spray`, `--foam-sim`).
@@ -361,6 +362,13 @@ pub struct Cli {
     #[arg(long, global = true, value_name = "DIR", help_heading = "Scene")]
     pub skybox: Option<PathBuf>,
 
+    /// Floating bodies (0 to 256): crates, small boats and buoys on a grid 8 m apart in front
+    /// of the buoy, moved by buoyancy, drag and gravity on the GPU's height queries
+    /// (src/ocean/bodies.rs); `--dump` writes their states to bodies.json.
+    #[arg(long, global = true, value_name = "N", default_value = "0", help_heading = "Scene",
+          value_parser = |s: &str| parse_whole(s, 0, MAX_BODIES as u64).map(|n| n as usize))]
+    pub bodies: usize,
+
     /// Where the buoy floats (m).
     #[arg(long, global = true, value_name = "X,Z", value_parser = parse_vec2, allow_hyphen_values = true,
           default_value = "9,-55", help_heading = "Scene")]
@@ -654,6 +662,7 @@ impl Cli {
             stats: self.stats,
             log_resources: self.log_resources,
             dump: self.dump.clone(),
+            bodies: self.bodies,
             ocean: OceanSettings {
                 sea: SeaState {
                     spectrum: self.spectrum,
@@ -676,25 +685,4 @@ impl Cli {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn headless_defaults() {
-        let cli = Cli::parse_from(["vkocean", "--headless"]);
-        assert_eq!(cli.settings().unwrap().frames, Some(1));
-        let cli = Cli::parse_from(["vkocean", "--headless", "--profile", "p.json"]);
-        assert_eq!(cli.settings().unwrap().frames, Some(60));
-        let cli = Cli::parse_from([
-            "vkocean",
-            "--headless",
-            "--profile",
-            "p.json",
-            "--frames",
-            "5",
-        ]);
-        assert!(cli.settings().is_err());
-        let cli = Cli::parse_from(["vkocean", "--screenshot", "s.jpg"]);
-        assert!(cli.settings().is_err());
-    }
-}
+mod tests;

@@ -44,6 +44,8 @@ pub struct RunSettings {
     pub log_resources: Option<u64>,
     /// `--dump DIR`: the last frame's h0, displacement, normals (.npy) and params.json.
     pub dump: Option<PathBuf>,
+    /// `--bodies N`: floating bodies (`ocean::bodies`).
+    pub bodies: usize,
     /// How the scene looks (views, Fresnel, island, sky, DU/DV).
     pub scene: crate::render::SceneSettings,
     /// `--camera` / `--look-at` (`None`: the default camera).

@@ -12,6 +12,7 @@ use crate::gpu::selftest::SyncHazard;
 use crate::gpu::{
     Buffer, Context, FrameTimes, Frames, GpuResult, GpuTimings, MemoryLocation, Profilers,
 };
+use crate::ocean::bodies::Fleet;
 use crate::ocean::buoy::Buoy;
 use crate::ocean::dump;
 use crate::ocean::simulation::Simulation;
@@ -38,6 +39,10 @@ pub struct Session {
     simulation: Simulation,
     /// The floating buoy: its pose at each frame's time, from CPU height queries.
     buoy: Buoy,
+    /// `--bodies`: the floating bodies, on the GPU's height queries; and per frame, how many
+    /// frames old the answers they moved on were.
+    fleet: Option<Fleet>,
+    query_latency: Vec<u64>,
     /// Test-only hazard, recorded once in the first frame.
     hazard: Option<SyncHazard>,
     /// Wall time between consecutive frame starts (ms), after warm-up: (frame index, ms), the
@@ -53,6 +58,9 @@ pub struct Session {
     /// `--frame-graph`: the frame (index) whose graph goes to the file.
     frame_graph: Option<(u64, PendingFile)>,
 }
+
+/// How far apart `--bodies` places the bodies (m).
+const BODY_SPACING_M: f64 = 8.0;
 
 /// Writes a frame graph: Graphviz for a `.dot` path, JSON otherwise.
 fn write_frame_graph(file: PendingFile, graph: &FrameGraph) -> anyhow::Result<()> {
@@ -105,6 +113,11 @@ impl Session {
             renderer,
             simulation,
             buoy,
+            fleet: (s.bodies > 0).then(|| {
+                let [bx, bz] = s.scene.layout.buoy_xz;
+                Fleet::scattered(s.bodies, [bx as f64 + 30.0, bz as f64], BODY_SPACING_M)
+            }),
+            query_latency: Vec::new(),
             hazard,
             cpu_frame_ms: Vec::new(),
             measure_from: WARMUP_FRAMES,
@@ -155,6 +168,7 @@ impl Session {
                 .surface_slope_at(eye.x as f64, eye.z as f64, inputs.time_s),
             ..*inputs
         };
+        let newest = self.float_bodies(inputs.time_s)?;
         let index = self.frames.submitted();
         let graph = self.frame_graph.take_if(|(at, _)| *at == index);
         if graph.is_some() {
@@ -175,7 +189,31 @@ impl Session {
                 .map_err(|e| crate::gpu::GpuError::Unsupported(format!("{e:#}")))?;
         }
         self.last = Some((slot, value, inputs.time_s));
+        if let Some(answered) = newest {
+            self.query_latency.push(value - answered);
+        }
         Ok(value)
+    }
+
+    /// `--bodies`: moves the bodies to `time_s` on the newest height queries' answers, asks
+    /// about their columns' new places with this frame's simulation and hands them to the
+    /// renderer. Returns the frame value the answers were for (`None`: none yet).
+    fn float_bodies(&mut self, time_s: f64) -> GpuResult<Option<u64>> {
+        let Some(fleet) = &mut self.fleet else {
+            return Ok(None);
+        };
+        // The wait the frame's `begin` does anyway (for the frame that last used its slot, two
+        // back), done first: that frame's compute work is then done too, and its answers here.
+        self.frames.wait_for_slot()?;
+        let answers = self.simulation.answers()?;
+        let newest = answers.map(|a| a.value);
+        fleet.advance_on(answers, time_s);
+        self.simulation
+            .ask(&self.ctx, &fleet.query_points())
+            .map_err(|e| crate::gpu::GpuError::Unsupported(format!("{e:#}")))?;
+        self.renderer
+            .set_bodies(fleet.bodies.iter().map(|b| b.instance()).collect());
+        Ok(newest)
     }
 
     /// Applies changed settings between two frames (the overlay, `--live-set`): a changed sea
@@ -281,7 +319,12 @@ impl Session {
             .last
             .ok_or_else(|| anyhow::anyhow!("--dump: no frame was rendered"))?;
         self.frames.wait_for(value)?;
-        dump::files(&self.simulation, &self.ctx, slot, t)
+        let mut files = dump::files(&self.simulation, &self.ctx, slot, t)?;
+        if let Some(fleet) = &self.fleet {
+            let json = serde_json::to_string_pretty(&fleet.to_json())? + "\n";
+            files.push(("bodies.json", json.into_bytes()));
+        }
+        Ok(files)
     }
 
     /// Waits for every frame and builds the profile report. Nothing is written or printed:
@@ -328,13 +371,27 @@ impl Session {
     pub fn summary_line(&self, size: (u32, u32)) -> String {
         let n = self.frames.submitted();
         let secs = self.started.elapsed().as_secs_f64();
-        format!(
+        let mut line = format!(
             "vkocean: {n} frames at {}x{} in {secs:.2} s ({:.1} ms/frame) on {}",
             size.0,
             size.1,
             if n > 0 { secs * 1e3 / n as f64 } else { 0.0 },
             self.ctx.info.name
-        )
+        );
+        if let Some(fleet) = &self.fleet {
+            let mut latency = self.query_latency.clone();
+            latency.sort_unstable();
+            let median = latency.get(latency.len() / 2).copied().unwrap_or(0);
+            let max = latency.last().copied().unwrap_or(0);
+            line += &format!(
+                "\nvkocean: {} bodies, {} height queries a frame, answered {median} frames late \
+                 (median; max {max}), {} physics steps",
+                fleet.bodies.len(),
+                fleet.column_count(),
+                fleet.steps
+            );
+        }
+        line
     }
 }
 

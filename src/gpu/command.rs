@@ -289,6 +289,18 @@ impl<'a> Recorder<'a> {
         };
     }
 
+    /// `instances` instances of `vertices` vertices, from instance `first` (gl_InstanceIndex
+    /// counts from it).
+    pub fn draw_instances(&self, vertices: u32, instances: u32, first: u32) {
+        self.expect_bound(vk::PipelineBindPoint::GRAPHICS);
+        // SAFETY: recording-state invariant; inside a rendering scope with a bound pipeline.
+        unsafe {
+            self.ctx
+                .device
+                .cmd_draw(self.cmd, vertices, instances, 0, first)
+        };
+    }
+
     /// Binds a buffer of u32 indices for `draw_indexed`.
     /// Binds `buffer` (u32 indices) for `draw_indexed`; panics without INDEX_BUFFER usage. Its
     /// contents must be visible to index reads: upload it with `Use::IndexRead` after

@@ -4,6 +4,7 @@
 //! island's shallows ([`shore`]) and the rendered waves' moments ([`moments`]).
 
 pub mod accuracy;
+pub mod bodies;
 pub mod buoy;
 pub mod cpu;
 pub mod dump;

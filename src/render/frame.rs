@@ -166,13 +166,13 @@ pub fn record_frame(
         // Each pass: its rendering scope's barriers (from what its draws' shaders read), then
         // its timestamps around the drawing.
         let (view, reflection) = (ViewIndex::Reflection, &t.reflection);
-        let [island, objects] = r.terrain.draws(&set, view, false);
-        let draws = [island, objects, r.sky.draw(&set, view)];
+        let [island, objects, bodies] = r.terrain.draws(&set, view, false);
+        let draws = [island, objects, bodies, r.sky.draw(&set, view)];
         let scope = drawn_anew(&rec, names::REFLECTION, reflection, Load::DontCare, &draws);
         profiler.pass(&rec, names::REFLECTION, || {
             // The sky, last, writes every pixel the terrain left.
             scope.record(|| {
-                r.terrain.record(&rec, &set, view, false);
+                r.terrain.record(&rec, &set, view, false, r.bodies());
                 r.sky.record(&rec, &set, view);
             });
             // Its blurred layers, for the water to blur it by the slopes it does not resolve.
@@ -235,7 +235,7 @@ pub fn record_frame(
         let draws = r.terrain.draws(&set, view, underwater);
         let scope = drawn_anew(&rec, names::REFRACTION, &t.refraction, deep, &draws);
         profiler.pass(&rec, names::REFRACTION, || {
-            scope.record(|| r.terrain.record(&rec, &set, view, underwater))
+            scope.record(|| r.terrain.record(&rec, &set, view, underwater, r.bodies()))
         });
         // Scene, water and sky are three rendering scopes, so each pass's timestamps cover its
         // own rasterisation (a CPU driver may defer drawing to the end of a scope). The sky goes
@@ -244,7 +244,7 @@ pub fn record_frame(
         let draws = r.terrain.draws(&set, view, underwater);
         let scope = drawn_anew(&rec, names::SCENE, &t.main, Load::DontCare, &draws);
         profiler.pass(&rec, names::SCENE, || {
-            scope.record(|| r.terrain.record(&rec, &set, view, underwater))
+            scope.record(|| r.terrain.record(&rec, &set, view, underwater, r.bodies()))
         });
         let keep = |image| Target::new(image, Load::Keep);
         let main = [keep(&t.main.colour)];

@@ -31,6 +31,10 @@ use crate::gpu::{
 use crate::ocean::foam::FoamScene;
 use crate::ocean::simulation::IMAGE_FORMAT;
 use crate::pass_names as names;
+use crate::shared::MAX_BODIES;
+
+/// One floating body as shaders/terrain/bodies.vert reads it (`ocean::bodies::Body::instance`).
+pub type BodyInstance = [[f32; 4]; 3];
 
 /// The image a frame ends in: written by a copy or blit (it needs TRANSFER_DST usage), then
 /// drawn over by the overlay when it is shown. Its state (`gpu::track`) is where the frontend handed it over: a swapchain image
@@ -134,6 +138,10 @@ pub struct Renderer {
     /// Per frame slot: uniform buffer and the set that binds it (with the ocean images and
     /// the sky cube, which the set keeps alive).
     frame_uniforms: Vec<(Buffer, BoundSet)>,
+    /// Per frame slot: the floating bodies (`--bodies`; binding 6 of the frame set,
+    /// shaders/terrain/bodies.vert), and the ones the next frame draws.
+    body_uniforms: Vec<Buffer>,
+    bodies: Vec<BodyInstance>,
     /// The simulation images the frame sets bind, and the cascade layout.
     ocean: OceanBindings,
 
@@ -205,7 +213,7 @@ impl Renderer {
         let sampled = vk::DescriptorType::COMBINED_IMAGE_SAMPLER;
         let frame_set_layout = DescriptorSetLayout::new(
             ctx,
-            "frame set layout (uniforms, ocean images, sky cube, foam, light shafts)",
+            "frame set layout (uniforms, ocean images, sky cube, foam, light shafts, bodies)",
             &[
                 (0, vk::DescriptorType::UNIFORM_BUFFER, graphics),
                 (1, sampled, graphics),
@@ -213,6 +221,7 @@ impl Renderer {
                 (3, sampled, graphics),
                 (4, sampled, graphics),
                 (5, sampled, graphics),
+                (6, vk::DescriptorType::UNIFORM_BUFFER, graphics),
             ],
         )?;
         let repeat = vk::SamplerAddressMode::REPEAT;
@@ -248,7 +257,15 @@ impl Renderer {
             None => SkyCube::analytic(ctx)?,
         };
         let mut frame_uniforms = Vec::new();
+        let mut body_uniforms = Vec::new();
         for slot in 0..FRAMES_IN_FLIGHT {
+            let bodies = Buffer::new(
+                ctx,
+                &format!("floating bodies slot {slot}"),
+                (MAX_BODIES as usize * std::mem::size_of::<BodyInstance>()) as u64,
+                vk::BufferUsageFlags::UNIFORM_BUFFER,
+                MemoryLocation::CpuToGpu,
+            )?;
             let buffer = Buffer::new(
                 ctx,
                 &format!("frame uniforms slot {slot}"),
@@ -284,9 +301,11 @@ impl Renderer {
                         5,
                         Bind::Sampled(&shafts.image, &shafts_sampler, Order::Tracked),
                     ),
+                    (6, Bind::Uniform(&bodies)),
                 ],
             )?;
             frame_uniforms.push((buffer, set));
+            body_uniforms.push(bodies);
         }
 
         let (w, h) = match &settings.dudv {
@@ -386,6 +405,8 @@ impl Renderer {
             targets,
             _frame_set_layout: frame_set_layout,
             frame_uniforms,
+            body_uniforms,
+            bodies: Vec::new(),
             ocean,
             sky_cube,
             sky_light: (settings.sky(), sky_uniforms(&settings.sky())),
@@ -566,6 +587,9 @@ impl Renderer {
         self.frame_uniforms[slot]
             .0
             .write(bytemuck::bytes_of(&uniforms));
+        if !self.bodies.is_empty() {
+            self.body_uniforms[slot].write(bytemuck::cast_slice(&self.bodies));
+        }
         let aspect = output.aspect();
         self.water.prepare(
             slot,
@@ -583,6 +607,26 @@ impl Renderer {
             open_sea: uniforms.open_sea,
             objects: uniforms.objects,
         }
+    }
+
+    /// The floating bodies the next frames draw (`Body::instance`; at most `MAX_BODIES`, the
+    /// CLI's bound), sorted by shape: one draw per shape, of its own vertex count.
+    pub fn set_bodies(&mut self, mut bodies: Vec<BodyInstance>) {
+        assert!(
+            bodies.len() <= MAX_BODIES as usize,
+            "--bodies is at most {MAX_BODIES}"
+        );
+        bodies.sort_by(|a, b| a[0][3].total_cmp(&b[0][3]));
+        self.bodies = bodies;
+    }
+
+    /// How many floating bodies of each shape (box, boat, buoy) the frame draws.
+    pub fn bodies(&self) -> [u32; 3] {
+        let mut counts = [0; 3];
+        for b in &self.bodies {
+            counts[(b[0][3] as usize).min(2)] += 1;
+        }
+        counts
     }
 
     /// Slot `slot`'s frame descriptor set (uniforms, ocean images, sky cube).

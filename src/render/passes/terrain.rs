@@ -1,6 +1,7 @@
 //! Terrain pass: the procedural island (shaders/terrain/terrain.vert, heights from
-//! shaders/common/terrain.glsl) and the objects standing in the water (objects.vert: capped
-//! cylinders, one instance each), lit by terrain.frag. Drawn in every view, with the view's clip
+//! shaders/common/terrain.glsl), the objects standing in the water (objects.vert: capped
+//! cylinders, one instance each) and the floating bodies (bodies.vert, `--bodies`), lit by
+//! terrain.frag. Drawn in every view, with the view's clip
 //! plane. The reflection and refraction views draw a coarser mesh over the same lattice (every
 //! other lattice point): they render at `--rtt-scale`, blurred by the waves' distortion, and a
 //! CPU driver pays for every triangle on one thread.
@@ -24,6 +25,9 @@ use crate::shaders;
 const OBJECT_SEGMENTS: u32 = 20;
 /// Entries of `FrameUniforms::objects`.
 const OBJECTS: u32 = 4;
+/// Vertices of each shape of floating body (bodies.vert): a box, a boat, a buoy's 12-sided
+/// prism.
+const BODY_VERTICES: [u32; 3] = [36, 54, 144];
 
 pub struct TerrainPass {
     /// Index buffers over the (quads + 1)² lattice, two triangles per cell, row by row: each
@@ -33,12 +37,12 @@ pub struct TerrainPass {
     meshes: PerTarget<Mesh>,
     /// Island and objects with the caustics (terrain_caustics.frag): into HDR (refraction)
     /// and into the main target (from under the water). They sample the simulation's images.
-    caustics: PerTarget<[Pipeline; 2]>,
+    caustics: PerTarget<[Pipeline; 3]>,
     /// Island and objects without them (terrain.frag): the reflection, which reads nothing the
     /// simulation wrote, so it draws before the simulation is waited for (graphics 1), and the
     /// main view from above the water, where the drowned terrain lies under the water's
     /// surface (the caustic shader's untaken branch cost lavapipe 1.4 ms there at low).
-    plain: PerTarget<[Pipeline; 2]>,
+    plain: PerTarget<[Pipeline; 3]>,
 }
 
 impl TerrainPass {
@@ -79,7 +83,7 @@ impl TerrainPass {
                 target,
             )
         };
-        let pair = |label: &str, frag: &[u8], target, materials| -> GpuResult<[Pipeline; 2]> {
+        let pair = |label: &str, frag: &[u8], target, materials| -> GpuResult<[Pipeline; 3]> {
             Ok([
                 pipeline(
                     &format!("terrain ({label})"),
@@ -91,6 +95,13 @@ impl TerrainPass {
                 pipeline(
                     &format!("objects ({label})"),
                     shaders::TERRAIN_OBJECTS_VERT,
+                    frag,
+                    target,
+                    materials,
+                )?,
+                pipeline(
+                    &format!("floating bodies ({label})"),
+                    shaders::TERRAIN_BODIES_VERT,
                     frag,
                     target,
                     materials,
@@ -133,7 +144,8 @@ impl TerrainPass {
         })
     }
 
-    /// What `record` binds for `view`: the island's and the objects' pipelines with `sets`
+    /// What `record` binds for `view`: the island's, the objects' and the floating bodies'
+    /// pipelines with `sets`
     /// (the frame set); the caustics in the refraction, and in the main view when the camera
     /// is `underwater`.
     pub fn draws<'a>(
@@ -141,7 +153,7 @@ impl TerrainPass {
         sets: &'a [&'a BoundSet],
         view: ViewIndex,
         underwater: bool,
-    ) -> [Bindings<'a>; 2] {
+    ) -> [Bindings<'a>; 3] {
         let pipelines = match view {
             ViewIndex::Refraction => &self.caustics,
             ViewIndex::Main if underwater => &self.caustics,
@@ -153,16 +165,34 @@ impl TerrainPass {
             .map(|pipeline| Bindings { pipeline, sets })
     }
 
-    /// Draws the island and the objects inside a scene rendering scope that declared
+    /// Draws the island, the objects and the floating bodies (`bodies`: how many of each
+    /// shape, in that order in the bodies' block) inside a scene rendering scope that declared
     /// `draws(sets, view, underwater)`.
-    pub fn record(&self, rec: &Recorder, sets: &[&BoundSet], view: ViewIndex, underwater: bool) {
-        let [terrain, objects] = self.draws(sets, view, underwater);
+    pub fn record(
+        &self,
+        rec: &Recorder,
+        sets: &[&BoundSet],
+        view: ViewIndex,
+        underwater: bool,
+        bodies: [u32; 3],
+    ) {
+        let [terrain, objects, floating] = self.draws(sets, view, underwater);
         let mesh = self.meshes.for_view(view);
         bind_scene(rec, &terrain, view);
         rec.bind_index_buffer(&mesh.buffer);
         rec.draw_indexed(mesh.count, 1);
         bind_scene(rec, &objects, view);
         rec.draw(OBJECT_SEGMENTS * 9, OBJECTS);
+        if bodies.iter().any(|&n| n > 0) {
+            bind_scene(rec, &floating, view);
+            let mut first = 0;
+            for (n, vertices) in bodies.into_iter().zip(BODY_VERTICES) {
+                if n > 0 {
+                    rec.draw_instances(vertices, n, first);
+                }
+                first += n;
+            }
+        }
     }
 }
 
