@@ -46,7 +46,12 @@ fn run_frames(
     for f in 0..frames {
         let value = f + 1;
         sim.place_window(camera(f));
-        sim.ask(ctx, points).unwrap();
+        // Each frame asks about its own points (moved by f mm): the answers must name theirs.
+        let asked: Vec<[f64; 2]> = points
+            .iter()
+            .map(|p| [p[0] + 1e-3 * f as f64, p[1]])
+            .collect();
+        sim.ask(ctx, &asked).unwrap();
         let t = t0_s + f as f64 * DT_S;
         sim.submit(
             (f as usize) % FRAMES_IN_FLIGHT,
@@ -57,7 +62,18 @@ fn run_frames(
             None,
         )
         .unwrap();
-        let newest = sim.answers().unwrap().map(|a| a.value);
+        let newest = sim.answers().unwrap().map(|a| {
+            let g = (a.value - 1) as f64;
+            assert!(
+                a.points
+                    .iter()
+                    .zip(points)
+                    .all(|(q, p)| q[0] == p[0] + 1e-3 * g),
+                "frame {value}: answers for frame {} name other points",
+                a.value
+            );
+            a.value
+        });
         latencies.push(newest.map(|v| value - v));
     }
     let start = std::time::Instant::now();
@@ -120,7 +136,7 @@ fn four_thousand_queries_match_the_cpu_reference() {
     let (mut dh, mut dxz, mut angle, mut dv) = (0.0f64, 0.0f64, 0.0f64, Vec::new());
     let mut heights = Vec::new();
     let mut rates = Vec::new();
-    for (p, a) in points.iter().zip(&answers.surface) {
+    for (p, a) in answers.points.iter().zip(&answers.surface) {
         let [alpha, beta] = cpu.rest_position(p[0], p[1], t);
         let d = cpu.displaced(alpha, beta, t);
         dh = dh.max((a.height_m() - d[1]).abs());
@@ -184,7 +200,7 @@ fn four_thousand_queries_match_the_cpu_reference() {
     // against the height now; the stale heights' error for comparison.
     let now = t + 2.0 * DT_S;
     let (mut stale, mut carried) = (Vec::new(), Vec::new());
-    for (i, p) in points.iter().enumerate().step_by(8) {
+    for (i, p) in answers.points.iter().enumerate().step_by(8) {
         let truth = cpu_later.height_at(p[0], p[1], now);
         stale.push(answers.surface[i].height_m() - truth);
         carried.push(answers.height_at(i, now) - truth);
@@ -229,7 +245,7 @@ fn gerstner_queries_follow_the_moving_window() {
     let mut cpu = SurfaceQuery::new(lattice_for(&settings, 0.0));
     let mut cpu_before = SurfaceQuery::new(lattice_for(&settings, 0.0));
     let (mut dh, mut dv, mut rates) = (0.0f64, Vec::new(), Vec::new());
-    for (p, a) in points.iter().zip(&answers.surface) {
+    for (p, a) in answers.points.iter().zip(&answers.surface) {
         let h = cpu.height_at(p[0], p[1], t);
         dh = dh.max((a.height_m() - h).abs());
         let rate = (h - cpu_before.height_at(p[0], p[1], t - DT_S)) / DT_S;

@@ -42,6 +42,7 @@ pub struct Session {
     /// `--bodies`: the floating bodies, on the GPU's height queries; and per frame, how many
     /// frames old the answers they moved on were.
     fleet: Option<Fleet>,
+    /// Frames counted at each latency 0, 1, 2, … (a histogram: memory stays flat).
     query_latency: Vec<u64>,
     /// Test-only hazard, recorded once in the first frame.
     hazard: Option<SyncHazard>,
@@ -190,7 +191,11 @@ impl Session {
         }
         self.last = Some((slot, value, inputs.time_s));
         if let Some(answered) = newest {
-            self.query_latency.push(value - answered);
+            let late = (value - answered) as usize;
+            if self.query_latency.len() <= late {
+                self.query_latency.resize(late + 1, 0);
+            }
+            self.query_latency[late] += 1;
         }
         Ok(value)
     }
@@ -379,10 +384,17 @@ impl Session {
             self.ctx.info.name
         );
         if let Some(fleet) = &self.fleet {
-            let mut latency = self.query_latency.clone();
-            latency.sort_unstable();
-            let median = latency.get(latency.len() / 2).copied().unwrap_or(0);
-            let max = latency.last().copied().unwrap_or(0);
+            let counts = &self.query_latency;
+            let total: u64 = counts.iter().sum();
+            let mut seen = 0;
+            let median = counts
+                .iter()
+                .position(|&c| {
+                    seen += c;
+                    2 * seen > total
+                })
+                .unwrap_or(0);
+            let max = counts.iter().rposition(|&c| c > 0).unwrap_or(0);
             line += &format!(
                 "\nvkocean: {} bodies, {} height queries a frame, answered {median} frames late \
                  (median; max {max}), {} physics steps",

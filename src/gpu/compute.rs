@@ -141,23 +141,33 @@ impl ComputeQueue {
         Ok(())
     }
 
-    /// The bytes of the host-visible `buffer` as the submission that signalled `value` left
-    /// them, if the compute timeline has reached `value` (no wait; `None` if not yet). That
-    /// submission must have ended with `Use::HostRead` of the buffer (the barrier that makes its
-    /// writes available to the host), and no later submitted work may write it: the caller's
-    /// ring of buffers keeps those (`ocean::simulation::queries`).
-    pub fn read_if_done(&self, buffer: &Buffer, value: u64) -> GpuResult<Option<Vec<u8>>> {
+    /// The first `len` bytes of the host-visible `buffer` as the submission that signalled
+    /// `value` left them, if the compute timeline has reached `value` (no wait; `None` if not
+    /// yet). That submission must have ended with `Use::HostRead` of the buffer (the barrier
+    /// that makes its writes available to the host), and no later submitted work may write it:
+    /// the caller's ring of buffers keeps those (`ocean::simulation::queries`). Crate-only: a
+    /// caller breaking that would read bytes the GPU is writing.
+    pub(crate) fn read_if_done(
+        &self,
+        buffer: &Buffer,
+        value: u64,
+        len: usize,
+    ) -> GpuResult<Option<Vec<u8>>> {
         // SAFETY: the semaphore is a live timeline semaphore of this device.
         let done = unsafe { self.ctx.device.get_semaphore_counter_value(self.timeline) }
             .vk("vkGetSemaphoreCounterValue")?;
         if done < value {
             return Ok(None);
         }
+        // The spec orders host reads after a semaphore's signal through a host wait
+        // (vkWaitSemaphores), not through vkGetSemaphoreCounterValue: the wait, which returns at
+        // once now, makes the submission's host-available writes visible to this read.
+        self.ctx.wait_timeline(self.timeline, value)?;
         // gpu-allocator maps host-visible memory HOST_COHERENT: nothing to invalidate.
         let bytes = buffer
             .mapped()
             .unwrap_or_else(|| panic!("read_if_done of a buffer that is not host-visible"));
-        Ok(Some(bytes.to_vec()))
+        Ok(Some(bytes[..len].to_vec()))
     }
 
     /// The wait a graphics submission adds to sample this frame's compute results.

@@ -11,7 +11,8 @@
 //!   orbital velocity is not queried): linear, ρ_w V f · `LINEAR_DAMPING_PER_S` · v (the wave
 //!   radiation that damps a floating body's heave, a choice: a 1 m box in still water comes to
 //!   rest within about ten heave periods), and quadratic, ½ ρ_w C_d A f |v| v with Hoerner's
-//!   cube C_d = 1.05 (Hoerner 1965, *Fluid-Dynamic Drag*, 3-16) and A = V^(2/3);
+//!   cube C_d = 1.05 (Hoerner 1965, *Fluid-Dynamic Drag*, 3-16) and A the voxel's share of the
+//!   body's (N V)^(2/3);
 //! - gravity on the body's mass.
 //!
 //! Added mass: the water a body accelerates with it. A sphere carries half its displaced mass,
@@ -38,6 +39,8 @@ pub const ADDED_MASS: f64 = 0.5;
 pub const DRAG_COEFFICIENT: f64 = 1.05;
 /// Linear (radiation) damping rate (1/s) per unit submerged mass: a choice (see above).
 pub const LINEAR_DAMPING_PER_S: f64 = 1.0;
+/// Answers older than this are not carried forward (s): the bodies wait for new ones.
+pub const MAX_ANSWER_AGE_S: f64 = 0.5;
 /// Most steps one `advance` takes (a stalled frame does not run the physics for seconds).
 pub const MAX_STEPS: usize = 30;
 
@@ -146,15 +149,19 @@ impl Body {
         // mass (a tall buoy of uniform density capsizes: its metacentre lies below its centre
         // of gravity).
         let volume = cell.x * cell.y * cell.z;
-        let weight = |v: &Voxel| match desc.shape {
-            Shape::Buoy(_) if v.centre.y < -size.y / 2.0 + cell.y => BALLAST,
-            _ => 1.0,
-        };
-        let total: f64 = voxels.iter().map(weight).sum();
+        // Weighed in the shape's frame, before the voxels are moved to the mass centre's.
+        let weights: Vec<f64> = voxels
+            .iter()
+            .map(|v| match desc.shape {
+                Shape::Buoy(_) if v.centre.y < -size.y / 2.0 + cell.y => BALLAST,
+                _ => 1.0,
+            })
+            .collect();
+        let total: f64 = weights.iter().sum();
         let mass = desc.relative_density * WATER_DENSITY * volume * voxels.len() as f64;
         let mut centre = DVec3::ZERO;
-        for v in &voxels {
-            centre += v.centre * weight(v);
+        for (v, w) in voxels.iter().zip(&weights) {
+            centre += v.centre * *w;
         }
         centre /= total.max(1e-9);
         for v in &mut voxels {
@@ -169,8 +176,8 @@ impl Body {
             cell.x * cell.x + cell.y * cell.y,
         ) / 12.0;
         let mut inertia = DMat3::ZERO;
-        for v in &voxels {
-            let m = mass * weight(v) / total;
+        for (v, w) in voxels.iter().zip(&weights) {
+            let m = mass * w / total;
             let r = v.centre;
             let parallel = DMat3::from_diagonal(DVec3::splat(r.length_squared()))
                 - DMat3::from_cols(r * r.x, r * r.y, r * r.z);
@@ -249,7 +256,10 @@ impl Body {
     fn step(&mut self, dt: f64, water: &[[f64; 2]]) {
         let r = DMat3::from_quat(self.orientation);
         let volume = self.voxel_size.x * self.voxel_size.y * self.voxel_size.z;
-        let area = volume.powf(2.0 / 3.0);
+        // Each voxel's share of the body's frontal area, (N V)^(2/3) over its N voxels (a
+        // voxel's own V^(2/3) would count the inner faces: N^(1/3) times too much).
+        let n = self.voxels.len() as f64;
+        let area = (n * volume).powf(2.0 / 3.0) / n;
         // The voxel's world-vertical extent: its rotated box's height.
         let extent = r.row(1).abs().dot(self.voxel_size);
         let mut force = DVec3::new(0.0, -self.mass * GRAVITY, 0.0);
@@ -338,14 +348,24 @@ impl Fleet {
     /// Advances to `t_s` on the GPU's newest height queries `answers`, each column's height
     /// carried to the step's time with its ∂h/∂t (`Answers::height_at`). The answers are for
     /// the points this fleet asked a frame or two before, one per column in `query_points`'
-    /// order; until the first arrive (or while they are for another set of columns) the
-    /// bodies wait.
+    /// order, each moved along the surface's slope to where its column is now; until the first
+    /// arrive (or while they are for another set of columns, or older than
+    /// `MAX_ANSWER_AGE_S`) the bodies wait.
     pub fn advance_on(&mut self, answers: Option<&Answers>, t_s: f64) {
         let columns = self.column_count();
         match answers {
-            Some(a) if a.surface.len() == columns => self.advance(t_s, &mut |i, _, t| {
-                [a.height_at(i, t), a.surface[i].vertical_velocity_m_s]
-            }),
+            Some(a) if a.surface.len() == columns && t_s - a.time_s <= MAX_ANSWER_AGE_S => {
+                self.advance(t_s, &mut |i, xz, t| {
+                    // The column has moved since it asked: along the surface's slope there.
+                    let s = &a.surface[i];
+                    let [ax, az] = a.points[i];
+                    // At most 45° (a fold's normal lies nearly flat: its slope means nothing).
+                    let ny = s.normal[1].max(1e-3);
+                    let slope = [s.normal[0], s.normal[2]].map(|n| (-n / ny).clamp(-1.0, 1.0));
+                    let moved = slope[0] * (xz[0] - ax) + slope[1] * (xz[1] - az);
+                    [a.height_at(i, t) + moved, s.vertical_velocity_m_s]
+                })
+            }
             _ => self.time_s = None,
         }
     }

@@ -65,7 +65,9 @@ fn a_box_of_half_the_waters_density_floats_half_under() {
 }
 
 #[test]
-fn a_box_denser_than_water_sinks() {
+fn a_box_denser_than_water_sinks_at_its_terminal_speed() {
+    // A 1 m cube of 1.2 sinks; once under, its speed v settles where the drag holds its net
+    // weight: ρ_w V · LINEAR_DAMPING_PER_S · v + ½ ρ_w C_d A v² = 0.2 ρ_w g V (A = 1 m²).
     let mut fleet = Fleet::new(&[cube(1.2, 0.0)]);
     let track = run(&mut fleet, 10.0, &mut still);
     let end = track.last().unwrap().1;
@@ -73,12 +75,65 @@ fn a_box_denser_than_water_sinks() {
         end < -5.0,
         "a density-1.2 box sank only to {end:.2} m in 10 s"
     );
-    // It keeps going down, at a terminal speed (drag against the net weight).
-    let v = fleet.bodies[0].velocity.y;
-    let net = 0.2 * WATER_DENSITY * GRAVITY; // N per m³ of the 1 m³ box
+    let (a, b, c) = (
+        0.5 * WATER_DENSITY * DRAG_COEFFICIENT,
+        WATER_DENSITY * LINEAR_DAMPING_PER_S,
+        -0.2 * WATER_DENSITY * GRAVITY,
+    );
+    let terminal = (-b + (b * b - 4.0 * a * c).sqrt()) / (2.0 * a);
+    let v = -fleet.bodies[0].velocity.y;
+    eprintln!("sinking at {v:.3} m/s, terminal {terminal:.3} m/s");
     assert!(
-        v < -0.1 && v > -5.0,
-        "sinking at {v:.2} m/s (net weight {net:.0} N)"
+        (v / terminal - 1.0).abs() < 0.02,
+        "sinking at {v:.3} m/s, terminal speed {terminal:.3} m/s (±2 %)"
+    );
+}
+
+#[test]
+fn mass_and_inertia_are_the_shapes() {
+    // A box's voxels hold its mass, and its inertia is a solid box's, m (b² + c²) / 12 about
+    // each axis, exactly (a voxel's own inertia plus the parallel axes sum to it).
+    let b = Body::new(BodyDesc {
+        heading_deg: 0.0,
+        ..cube(0.5, 0.0)
+    });
+    let m = 0.5 * WATER_DENSITY;
+    assert!((b.mass() - m).abs() < 1e-9 * m);
+    for k in 0..3 {
+        let i = b.inertia.col(k)[k];
+        assert!(
+            (i - m / 6.0).abs() < 1e-9 * m,
+            "I[{k}] {i} against {}",
+            m / 6.0
+        );
+    }
+    // A ballasted buoy: its centre of mass lies below its middle, where the ballast weighs:
+    // bottom layer 10 shares, the two above 1 each, at −h/3, 0 and h/3: −9/12 · h/3.
+    let buoy = Body::new(BodyDesc {
+        shape: Shape::Buoy([0.5, 1.2]),
+        relative_density: 0.4,
+        position: [0.0; 3],
+        heading_deg: 0.0,
+    });
+    let below = -buoy.centroid.y;
+    let expected = 9.0 / 12.0 * 0.4;
+    assert!(
+        (below - expected).abs() < 1e-9,
+        "buoy's mass centre {below} m below its middle, expected {expected}"
+    );
+    // Its roll inertia about the mass centre is less than a uniform one's about its middle.
+    let uniform = buoy.mass() * (1.0 + 1.2 * 1.2) / 12.0;
+    assert!(buoy.inertia.col(0)[0] < uniform);
+}
+
+#[test]
+fn the_most_bodies_fit_the_height_queries() {
+    let fleet = Fleet::scattered(crate::shared::MAX_BODIES as usize, [0.0; 2], 8.0);
+    let columns = fleet.column_count();
+    assert!(
+        columns <= crate::ocean::simulation::MAX_QUERIES,
+        "{columns} columns over the {} queries a frame",
+        crate::ocean::simulation::MAX_QUERIES
     );
 }
 

@@ -310,7 +310,8 @@ impl HeightQueries {
         let Some(pending) = &self.pending[slot] else {
             return Ok(());
         };
-        let Some(bytes) = queue.read_if_done(&self.answers[slot], pending.value)? else {
+        let len = pending.points.len() * 32;
+        let Some(bytes) = queue.read_if_done(&self.answers[slot], pending.value, len)? else {
             return Ok(());
         };
         let pending = self.pending[slot].take().expect("checked above");
@@ -321,7 +322,7 @@ impl HeightQueries {
         {
             return Ok(());
         }
-        let floats: &[f32] = bytemuck::cast_slice(&bytes[..pending.points.len() * 32]);
+        let floats: &[f32] = bytemuck::cast_slice(&bytes);
         let surface = floats
             .chunks_exact(8)
             .map(|a| SurfaceAnswer {
