@@ -7,7 +7,7 @@ mod common;
 
 use std::process::Output;
 
-use vkocean::ocean::surface::{Lattice, SurfaceQuery};
+use vkocean::ocean::surface::SurfaceQuery;
 
 /// `vkocean --headless --validation --size 160x90 --dump DIR ARGS`; returns the run and the
 /// parsed bodies.json.
@@ -43,10 +43,14 @@ fn run_bodies(name: &str, args: &[&str]) -> (Output, serde_json::Value, impl Fn(
         .collect();
     // The surface the dumped images draw (deep water here: no shore factor).
     let surface = move |x: f64, z: f64| {
-        let lattice = Dumped {
-            texels: texels.clone(),
+        let lattice = common::ImageLattice {
+            texels: texels
+                .chunks_exact(4)
+                .map(|t| [t[0], t[1], t[2], t[3]])
+                .collect(),
             n,
             steps: steps.clone(),
+            origin: None,
         };
         SurfaceQuery::new(Box::new(lattice)).height_at(x, z, 0.0)
     };
@@ -55,25 +59,6 @@ fn run_bodies(name: &str, args: &[&str]) -> (Output, serde_json::Value, impl Fn(
         serde_json::from_str(&json).expect("bodies.json is JSON"),
         surface,
     )
-}
-
-/// Dumped displacement images as a lattice: texel (i, j) of cascade c is node (i, j), periodic.
-struct Dumped {
-    texels: Vec<f32>,
-    n: usize,
-    steps: Vec<f64>,
-}
-
-impl Lattice for Dumped {
-    fn steps(&self) -> Vec<f64> {
-        self.steps.clone()
-    }
-    fn set_time(&mut self, _t: f64) {}
-    fn node(&self, c: usize, i: i64, j: i64) -> [f64; 3] {
-        let n = self.n as i64;
-        let at = ((c as i64 * n + j.rem_euclid(n)) * n + i.rem_euclid(n)) as usize * 4;
-        [0, 1, 2].map(|k| f64::from(self.texels[at + k]))
-    }
 }
 
 /// The number after `after` on the summary's bodies line.

@@ -6,43 +6,9 @@ mod common;
 
 use vkocean::ocean::buoy::Buoy;
 use vkocean::ocean::foam::FoamScene;
-use vkocean::ocean::gerstner::default_waves;
-use vkocean::ocean::simulation::{Simulation, Texels};
-use vkocean::ocean::surface::{Lattice, SurfaceQuery};
-use vkocean::ocean::{OceanSettings, Waves};
-
-/// The GPU's images as a lattice: texel (i, j) of cascade c is node (i, j), periodic (FFT) or
-/// offset by the window's origin (Gerstner).
-struct GpuImages {
-    texels: Texels,
-    n: usize,
-    steps: Vec<f64>,
-    /// The window's origin in nodes (Gerstner), None for periodic cascades.
-    origin: Option<[i64; 2]>,
-}
-
-impl Lattice for GpuImages {
-    fn steps(&self) -> Vec<f64> {
-        self.steps.clone()
-    }
-    fn set_time(&mut self, _t: f64) {}
-    fn node(&self, c: usize, i: i64, j: i64) -> [f64; 3] {
-        let n = self.n as i64;
-        let (col, row) = match self.origin {
-            None => (i.rem_euclid(n), j.rem_euclid(n)),
-            Some([oi, oj]) => {
-                let (col, row) = (i - oi, j - oj);
-                assert!(
-                    (0..n).contains(&col) && (0..n).contains(&row),
-                    "node ({i},{j}) outside the window"
-                );
-                (col, row)
-            }
-        };
-        let d = self.texels[c * self.n * self.n + (row * n + col) as usize];
-        [d[0] as f64, d[1] as f64, d[2] as f64]
-    }
-}
+use vkocean::ocean::simulation::Simulation;
+use vkocean::ocean::surface::SurfaceQuery;
+use vkocean::ocean::OceanSettings;
 
 /// Max |buoy heave − GPU surface height| over a few times, at the buoy and a second mooring.
 fn max_heave_error(settings: &OceanSettings, times: &[f64]) -> f64 {
@@ -68,7 +34,7 @@ fn max_heave_error(settings: &OceanSettings, times: &[f64]) -> f64 {
             let origin = sim
                 .is_window()
                 .then(|| sim.origin_m().map(|o| (o / steps[0]).round() as i64));
-            let gpu = SurfaceQuery::new(Box::new(GpuImages {
+            let gpu = SurfaceQuery::new(Box::new(common::ImageLattice {
                 texels,
                 n,
                 steps,
@@ -99,14 +65,7 @@ fn fft_buoy_heaves_with_the_gpu_surface() {
 
 #[test]
 fn gerstner_buoy_heaves_with_the_gpu_surface() {
-    let mut waves = default_waves();
-    vkocean::ocean::gerstner::limit_steepness(&mut waves);
-    let settings = OceanSettings {
-        fft_size: 128,
-        patch_size_m: 200.0,
-        waves: Waves::Gerstner(waves),
-        ..OceanSettings::default()
-    };
+    let settings = common::gerstner_window_settings();
     let error = max_heave_error(&settings, &[2.0, 7.3, 31.9]);
     eprintln!(
         "Gerstner: max |heave − GPU surface| = {:.2} mm",

@@ -8,10 +8,9 @@ mod common;
 use vkocean::gpu::FRAMES_IN_FLIGHT;
 use vkocean::ocean::cpu::CpuOcean;
 use vkocean::ocean::foam::FoamScene;
-use vkocean::ocean::gerstner::default_waves;
 use vkocean::ocean::simulation::{Answers, Simulation, MAX_QUERIES};
 use vkocean::ocean::surface::{lattice_for, SurfaceQuery};
-use vkocean::ocean::{OceanSettings, Waves};
+use vkocean::ocean::OceanSettings;
 
 /// A frame step of 60 frames a second.
 const DT_S: f64 = 1.0 / 60.0;
@@ -223,14 +222,7 @@ fn four_thousand_queries_match_the_cpu_reference() {
 fn gerstner_queries_follow_the_moving_window() {
     // The Gerstner window (200 m, 128²) follows a camera moving 7 m a frame: this slot's and
     // the previous slot's images lie at different origins; the points stay inside both.
-    let mut waves = default_waves();
-    vkocean::ocean::gerstner::limit_steepness(&mut waves);
-    let settings = OceanSettings {
-        fft_size: 128,
-        patch_size_m: 200.0,
-        waves: Waves::Gerstner(waves),
-        ..OceanSettings::default()
-    };
+    let settings = common::gerstner_window_settings();
     let frames = 5;
     let camera = |f: u64| [10.0 + 7.0 * f as f64, -20.0];
     let points = scattered(1000, [camera(frames - 1)[0] - 4.0, -20.0], 120.0);

@@ -356,3 +356,49 @@ pub fn assert_one_line(out: &Output, code: i32, needle: &str, what: &str) {
         "{what}: {err}"
     );
 }
+
+/// Seed 000's Gerstner waves (steepness-limited) over a 200 m window of 128² texels.
+pub fn gerstner_window_settings() -> vkocean::ocean::OceanSettings {
+    let mut waves = vkocean::ocean::gerstner::default_waves();
+    vkocean::ocean::gerstner::limit_steepness(&mut waves);
+    vkocean::ocean::OceanSettings {
+        fft_size: 128,
+        patch_size_m: 200.0,
+        waves: vkocean::ocean::Waves::Gerstner(waves),
+        ..vkocean::ocean::OceanSettings::default()
+    }
+}
+
+/// Simulation images read back or dumped, as a lattice: texel (i, j) of cascade c is node
+/// (i, j), periodic (FFT) or offset by the window's origin (Gerstner).
+pub struct ImageLattice {
+    /// RGBA texels, cascade after cascade, `[m][n]`.
+    pub texels: Vec<[f32; 4]>,
+    pub n: usize,
+    pub steps: Vec<f64>,
+    /// The window's origin in nodes (Gerstner), None for periodic cascades.
+    pub origin: Option<[i64; 2]>,
+}
+
+impl vkocean::ocean::surface::Lattice for ImageLattice {
+    fn steps(&self) -> Vec<f64> {
+        self.steps.clone()
+    }
+    fn set_time(&mut self, _t: f64) {}
+    fn node(&self, c: usize, i: i64, j: i64) -> [f64; 3] {
+        let n = self.n as i64;
+        let (col, row) = match self.origin {
+            None => (i.rem_euclid(n), j.rem_euclid(n)),
+            Some([oi, oj]) => {
+                let (col, row) = (i - oi, j - oj);
+                assert!(
+                    (0..n).contains(&col) && (0..n).contains(&row),
+                    "node ({i},{j}) outside the window"
+                );
+                (col, row)
+            }
+        };
+        let d = self.texels[c * self.n * self.n + (row * n + col) as usize];
+        [d[0] as f64, d[1] as f64, d[2] as f64]
+    }
+}
