@@ -11,7 +11,7 @@
 // to well under that. Not included: the surf's bores near the shore (as on the CPU).
 //
 // The vertical velocity is the rate at the fixed point (x, z): the height found the same way in
-// the previous slot's images (the frame before, at place.z = 1/Δt; 0 when there is none),
+// the previous slot's images (the frame before, at params.rate = 1/Δt; 0 when there is none),
 // differenced.
 #include "shared.glsl"
 layout(local_size_x = 64) in;
@@ -23,7 +23,7 @@ layout(std140, set = 0, binding = 0) uniform Placement {
     // slot's images (xy) and in the previous slot's (zw).
     vec4 base[4];
     vec4 texels_per_m; // per cascade: 1 / node spacing
-    vec4 place;        // xy: the anchor's world xz (m); z: 1/Δt to the previous slot (0: none); w: water level (m)
+    vec4 place;        // xy: the anchor's world xz (m); z: unused; w: water level (m)
     vec4 terrain;      // island x, z, shelf depth, island radius
     vec4 shore;        // the sea's Hs, mean ω, c_g at the simulated depth
     vec4 open_sea;     // the open sea's floor depth, K_s there
@@ -44,6 +44,10 @@ layout(push_constant) uniform Params {
     uint cascades;
     uint periodic; // 1: the FFT's tiling cascades; 0: the Gerstner window (clamped)
     uint shore;    // 1: the waves scaled over the island's shallows; 0: no island (scale 1)
+    // 1/Δt to the previous slot's images (0: none). A push constant, as every value a branch
+    // tests: Mesa 22.3's lavapipe compiles a fresh variant for a uniform that steers control
+    // flow at every dispatch (13 ms a frame here; README, "Measured on lavapipe").
+    float rate;
 } params;
 
 // Iterations of the inversion (the CPU's bound) and the step below which it stops (m; fp32
@@ -117,11 +121,11 @@ void main() {
     vec2 slope = scale * sum_at(1, rest).xy;
     vec3 normal = normalize(vec3(-slope.x, 1.0, -slope.y));
     float rate = 0.0;
-    if (frame.place.z > 0.0) {
+    if (params.rate > 0.0) {
         // A frame earlier the rest point was nearly the same: a few steps from there.
         vec2 before_rest = rest;
         vec3 before = invert(2, p, before_rest);
-        rate = (d.y - before.y) * frame.place.z;
+        rate = (d.y - before.y) * params.rate;
     }
     answers[2 * i] = vec4(d, rate);
     answers[2 * i + 1] = vec4(normal, residual);

@@ -229,6 +229,9 @@ impl Overlay {
                     "{fps:.1} FPS   CPU {:.1} ms/frame   GPU {gpu:.1} ms",
                     self.cpu_ms
                 ));
+                if let Some(bodies) = session.bodies_status() {
+                    ui.label(bodies);
+                }
                 let passes: Vec<_> = compute
                     .into_iter()
                     .chain(graphics)

@@ -372,6 +372,31 @@ impl Session {
         Ok(self.profilers.finish()?)
     }
 
+    /// `--bodies`: how many, the height queries they ask a frame and how late the answers
+    /// came (median and most, in frames), the physics steps taken; `None` without bodies.
+    /// The summary line and the overlay show it.
+    pub fn bodies_status(&self) -> Option<String> {
+        let fleet = self.fleet.as_ref()?;
+        let counts = &self.query_latency;
+        let total: u64 = counts.iter().sum();
+        let mut seen = 0;
+        let median = counts
+            .iter()
+            .position(|&c| {
+                seen += c;
+                2 * seen > total
+            })
+            .unwrap_or(0);
+        let max = counts.iter().rposition(|&c| c > 0).unwrap_or(0);
+        Some(format!(
+            "{} bodies, {} height queries a frame, answered {median} frames late (median; max \
+             {max}), {} physics steps",
+            fleet.bodies.len(),
+            fleet.column_count(),
+            fleet.steps
+        ))
+    }
+
     /// The closing line of a run: frames, size, wall time, device.
     pub fn summary_line(&self, size: (u32, u32)) -> String {
         let n = self.frames.submitted();
@@ -383,25 +408,8 @@ impl Session {
             if n > 0 { secs * 1e3 / n as f64 } else { 0.0 },
             self.ctx.info.name
         );
-        if let Some(fleet) = &self.fleet {
-            let counts = &self.query_latency;
-            let total: u64 = counts.iter().sum();
-            let mut seen = 0;
-            let median = counts
-                .iter()
-                .position(|&c| {
-                    seen += c;
-                    2 * seen > total
-                })
-                .unwrap_or(0);
-            let max = counts.iter().rposition(|&c| c > 0).unwrap_or(0);
-            line += &format!(
-                "\nvkocean: {} bodies, {} height queries a frame, answered {median} frames late \
-                 (median; max {max}), {} physics steps",
-                fleet.bodies.len(),
-                fleet.column_count(),
-                fleet.steps
-            );
+        if let Some(status) = self.bodies_status() {
+            line += &format!("\nvkocean: {status}");
         }
         line
     }

@@ -99,6 +99,8 @@ struct Params {
     cascades: u32,
     periodic: u32,
     shore: u32,
+    /// 1/Δt to the previous slot (0: none).
+    rate: f32,
 }
 
 impl Simulation {
@@ -397,12 +399,7 @@ impl HeightQueries {
             .map(|b| f.here.time_s - b.time_s)
             .filter(|dt| *dt > 0.0)
             .map_or(0.0, |dt| 1.0 / dt);
-        block.place = [
-            anchor[0] as f32,
-            anchor[1] as f32,
-            rate as f32,
-            WATER_LEVEL_M,
-        ];
+        block.place = [anchor[0] as f32, anchor[1] as f32, 0.0, WATER_LEVEL_M];
         block.terrain = f.scene.terrain;
         block.shore = f.scene.shore;
         block.open_sea = f.scene.open_sea;
@@ -420,6 +417,7 @@ impl HeightQueries {
                 periodic: f.periodic as u32,
                 // A scene without an island (tests' `FoamScene::default()`): no shore.
                 shore: (f.scene.terrain[3] > 0.0 && f.scene.shore[0] > 0.0) as u32,
+                rate: rate as f32,
             },
         }))
     }
