@@ -204,11 +204,6 @@ impl Body {
         self.mass
     }
 
-    /// Volume (m³).
-    pub fn volume(&self) -> f64 {
-        self.voxels.len() as f64 * self.voxel_size.x * self.voxel_size.y * self.voxel_size.z
-    }
-
     /// World xz of each column now (where the water is asked about).
     pub fn column_points(&self) -> impl Iterator<Item = [f64; 2]> + '_ {
         self.columns.iter().map(|c| {
@@ -243,12 +238,6 @@ impl Body {
     /// Where the shape's centre is (m): the body's position is its centre of mass.
     pub fn shape_centre(&self) -> DVec3 {
         self.position - self.orientation * self.centroid
-    }
-
-    /// Kinetic energy (J).
-    pub fn kinetic_energy(&self) -> f64 {
-        let w_body = self.orientation.inverse() * self.angular_velocity;
-        0.5 * self.mass * self.velocity.length_squared() + 0.5 * w_body.dot(self.inertia * w_body)
     }
 
     /// One step of `dt` s; `water(column)` gives the surface's (height, ∂h/∂t) above each
