@@ -14,11 +14,14 @@ vec4 field_planes(uint c, uint first, uvec2 texel, uint n) {
                        fields[(c * 4u + first + 1u) * plane + at]);
 }
 
-// The same at a fractional texel position p of cascade c (periodic bilinear; p ≥ 0).
+// The same at a fractional texel position p of cascade c (periodic bilinear; p ≥ 0). n is a
+// power of two (every FFT size): the wrap is a mask, as an integer division has no vector
+// instruction on a CPU (lavapipe split each into eight: two thirds of foam.comp's time).
 vec4 field_planes_at(uint c, uint first, vec2 p, uint n) {
     vec2 f = fract(p);
-    uvec2 a = uvec2(floor(p)) % n;
-    uvec2 b = (a + 1u) % n;
+    uint wrap = n - 1u;
+    uvec2 a = uvec2(floor(p)) & wrap;
+    uvec2 b = (a + 1u) & wrap;
     return mix(mix(field_planes(c, first, a, n), field_planes(c, first, uvec2(b.x, a.y), n), f.x),
                mix(field_planes(c, first, uvec2(a.x, b.y), n), field_planes(c, first, b, n), f.x),
                f.y);
