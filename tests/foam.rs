@@ -109,13 +109,15 @@ const FH: usize = 270;
 
 /// Linear luminance of each pixel of a picture, and `--view foam`'s foam reflectance R of each
 /// water pixel (`None` elsewhere: the view draws the water exactly grey, the land not).
+/// One run draws both: the picture at frame 1, then (`--time-scale 0`: the same moment, a foam
+/// step of 0 s that leaves the field as it was) `--view foam` at frame 2.
 fn foam_pictures(name: &str, args: &[&str]) -> (Vec<f64>, Vec<Option<f64>>) {
-    let mut all = vec!["--quality", "high"];
+    let mut all = vec!["--quality", "high", "--time-scale", "0", "--frames", "2"];
+    all.extend_from_slice(&["--live-set", "view=foam"]);
     all.extend_from_slice(args);
     let size = (FW as u32, FH as u32);
-    let picture = common::shot(&format!("foam-{name}"), size, &all, &[]);
-    all.extend_from_slice(&["--view", "foam"]);
-    let view = common::shot(&format!("foam-{name}-view"), size, &all, &[]);
+    let pictures = common::shots(&format!("foam-{name}"), size, 1, &all);
+    let (picture, view) = (&pictures[0], &pictures[1]);
     let luminance = picture
         .chunks(4)
         .map(|c| 0.2126 * linear(c[0]) + 0.7152 * linear(c[1]) + 0.0722 * linear(c[2]))
@@ -241,30 +243,28 @@ fn foam_fades_rather_than_pops() {
     // 8.5 % a step); and no more than 5 % of
     // those pixels lose over 0.3 of R in a step (a pop). Measured on lavapipe: 77 %, steps of
     // 4–8 %, 0.1 % of the pixels popping.
-    let frames: Vec<Vec<f64>> = [1, 7, 13, 19, 25]
+    let args = [
+        "--quality",
+        "high",
+        "--preset",
+        "moderate",
+        "--time",
+        "15",
+        "--camera=0,40,0",
+        "--look-at=0,0,-1",
+        "--dt",
+        "0.016666667",
+        "--frames",
+        "25",
+        "--view",
+        "foam",
+    ];
+    // Frames 1, 7, 13, 19 and 25 of one run.
+    let frames: Vec<Vec<f64>> = common::shots("foam-fade", (FW as u32, FH as u32), 6, &args)
         .iter()
-        .map(|frames| {
-            let frames = frames.to_string();
-            let args = [
-                "--quality",
-                "high",
-                "--preset",
-                "moderate",
-                "--time",
-                "15",
-                "--camera=0,40,0",
-                "--look-at=0,0,-1",
-                "--dt",
-                "0.016666667",
-                "--frames",
-                &frames,
-                "--view",
-                "foam",
-            ];
-            let view = common::shot("foam-fade", (FW as u32, FH as u32), &args, &[]);
-            view.chunks(4).map(|c| linear(c[0])).collect()
-        })
+        .map(|view| view.chunks(4).map(|c| linear(c[0])).collect())
         .collect();
+    assert_eq!(frames.len(), 5);
     let region = morph(
         &frames[0].iter().map(|&a| a > 0.2).collect::<Vec<_>>(),
         4,

@@ -76,6 +76,11 @@ pub struct Cli {
     #[arg(long, value_name = "PATH")]
     pub screenshot: Option<PathBuf>,
 
+    /// With --headless and --screenshot PATH: save frames 1, N+1, 2N+1, … instead, each as
+    /// PATH with its frame number before .png (ocean-01.png … ocean-25.png for --frames 25).
+    #[arg(long, value_name = "N", value_parser = parse_frames)]
+    pub screenshot_every: Option<u64>,
+
     /// Enable the Khronos validation layer with synchronization validation; prints
     /// "validation: N warnings, M errors" at exit and exits with 3 if there were any.
     #[arg(long, global = true)]
@@ -617,6 +622,11 @@ impl Cli {
         if self.dump.is_some() && !self.headless {
             return Err(UsageError("--dump needs --headless".to_string()));
         }
+        if self.screenshot_every.is_some() && !(self.headless && self.screenshot.is_some()) {
+            return Err(UsageError(
+                "--screenshot-every needs --headless and --screenshot".into(),
+            ));
+        }
         if self.log_resources.is_some() && !self.headless {
             return Err(UsageError("--log-resources needs --headless".to_string()));
         }
@@ -651,6 +661,7 @@ impl Cli {
             frames,
             size: self.size.unwrap_or(DEFAULT_SIZE),
             screenshot: self.screenshot.clone(),
+            screenshot_every: self.screenshot_every,
             profile: self.profile.clone(),
             frame_graph: self.frame_graph.clone(),
             validation: self.validation_on(),

@@ -20,3 +20,23 @@ fn headless_defaults() {
     let cli = Cli::parse_from(["vkocean", "--screenshot", "s.jpg"]);
     assert!(cli.settings().is_err());
 }
+
+#[test]
+fn screenshot_every_needs_a_headless_screenshot() {
+    let every = |extra: &[&str]| {
+        let mut args = vec!["vkocean", "--screenshot-every", "6"];
+        args.extend_from_slice(extra);
+        Cli::try_parse_from(args)
+            .map_err(|e| e.to_string())?
+            .settings()
+            .map_err(|e| e.0)
+    };
+    let ok = every(&["--headless", "--screenshot", "s.png"]).unwrap();
+    assert_eq!(ok.screenshot_every, Some(6));
+    for extra in [&["--headless"][..], &["--screenshot", "s.png"]] {
+        let err = every(extra).unwrap_err();
+        assert_eq!(err, "--screenshot-every needs --headless and --screenshot");
+    }
+    let zero = Cli::try_parse_from(["vkocean", "--headless", "--screenshot-every", "0"]);
+    assert!(zero.is_err(), "0 frames apart is refused");
+}

@@ -1,6 +1,7 @@
 //! Headless frontend: renders `--frames` frames into an offscreen target, reads the last one back
-//! and writes `--screenshot` as PNG. Time starts at `--time` and advances by a fixed `--dt`
-//! (default 1/60 s) per frame, so a run is reproducible.
+//! and writes `--screenshot` as PNG (with `--screenshot-every N`, frames 1, N+1, … as numbered
+//! PNGs). Time starts at `--time` and advances by a fixed `--dt` (default 1/60 s) per frame, so a
+//! run is reproducible.
 
 use std::time::{Duration, Instant};
 
@@ -34,6 +35,22 @@ pub fn run(s: &RunSettings) -> anyhow::Result<Outcome> {
         .map(|dir| PendingDir::create("--dump", dir))
         .transpose()?;
     let frames = s.frames.unwrap_or(1);
+    // `--screenshot-every`: the frames saved (0-based) and their files, all checked up front.
+    let sequence = match (&s.screenshot, s.screenshot_every) {
+        (Some(path), Some(every)) => (0..frames)
+            .step_by(every as usize)
+            .map(|i| {
+                Ok((
+                    i,
+                    PendingFile::create("--screenshot", &numbered(path, i + 1, frames))?,
+                ))
+            })
+            .collect::<anyhow::Result<Vec<_>>>()?,
+        _ => Vec::new(),
+    };
+    let screenshot = screenshot.filter(|_| sequence.is_empty());
+    let mut sequence = sequence.into_iter().peekable();
+    let mut staged = Vec::new();
 
     let ctx = Context::headless(s.validation, s.validation_extras, s.gpu, s.scene.needs())?;
     let counters = ctx.counters();
@@ -44,7 +61,7 @@ pub fn run(s: &RunSettings) -> anyhow::Result<Outcome> {
     };
     let offscreen = Offscreen::with_format(&ctx, s.size, format)?;
     let (extent, output) = (offscreen.extent, offscreen.output());
-    let readback = if screenshot.is_some() {
+    let readback = if screenshot.is_some() || sequence.peek().is_some() {
         Some(readback_buffer(&ctx, extent)?)
     } else {
         None
@@ -64,7 +81,9 @@ pub fn run(s: &RunSettings) -> anyhow::Result<Outcome> {
 
     let mut last_progress = Instant::now();
     for i in 0..frames {
-        let capture = readback.as_ref().filter(|_| i + 1 == frames);
+        let in_sequence = sequence.peek().is_some_and(|(k, _)| *k == i);
+        let last = screenshot.is_some() && i + 1 == frames;
+        let capture = readback.as_ref().filter(|_| in_sequence || last);
         if i == 1 && !s.live_set.is_empty() {
             let time_scale = apply_live_set(s, &mut session)?;
             clock.set(i as f64 * dt, time_scale, false);
@@ -82,6 +101,13 @@ pub fn run(s: &RunSettings) -> anyhow::Result<Outcome> {
             None => None,
         };
         session.frame(&output, &inputs, &delivery, draw)?;
+        if let (true, Some(buffer)) = (in_sequence, &readback) {
+            // Waits for this frame; the next capture reuses the buffer after this read.
+            let pixels = session.frames.read_back(buffer)?;
+            let png = encode_png(extent.width, extent.height, &pixels)?;
+            let (_, file) = sequence.next().expect("peeked");
+            staged.push(file.stage(&png)?);
+        }
         if s.stats {
             session.print_stats()?;
             crate::output::stdout_status()?;
@@ -120,7 +146,6 @@ pub fn run(s: &RunSettings) -> anyhow::Result<Outcome> {
         None => None,
     };
     // Every output staged, then all moved into place together (or none, after a signal).
-    let mut staged = Vec::new();
     if let (Some(file), Some(png)) = (screenshot, png) {
         staged.push(file.stage(&png)?);
     }
@@ -168,6 +193,14 @@ fn overlay_frame<'o>(
     let (_, textures) = o.run(input, session);
     o.upload(textures)?;
     Ok(o.draw())
+}
+
+/// `path` with frame `number` (1-based) before its extension, zero-padded to the digits of
+/// `frames`: ocean.png, 7 of 25 -> ocean-07.png.
+fn numbered(path: &std::path::Path, number: u64, frames: u64) -> std::path::PathBuf {
+    let stem = path.file_stem().unwrap_or_default().to_string_lossy();
+    let width = frames.to_string().len();
+    path.with_file_name(format!("{stem}-{number:0width$}.png"))
 }
 
 /// The offscreen colour target both the headless run and `bench frames` render into.
@@ -241,4 +274,21 @@ fn proc_status_kib(key: &str) -> Option<u64> {
     let status = std::fs::read_to_string("/proc/self/status").ok()?;
     let line = status.lines().find(|l| l.starts_with(key))?;
     line.split_whitespace().nth(1)?.parse().ok()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::numbered;
+    use std::path::{Path, PathBuf};
+
+    #[test]
+    fn sequence_files_are_numbered_from_one_to_the_width_of_the_frame_count() {
+        let at = |path: &str, n, frames| numbered(Path::new(path), n, frames);
+        assert_eq!(
+            at("out/ocean.png", 7, 25),
+            PathBuf::from("out/ocean-07.png")
+        );
+        assert_eq!(at("ocean.png", 1, 1), PathBuf::from("ocean-1.png"));
+        assert_eq!(at("a.b.png", 100, 1000), PathBuf::from("a.b-0100.png"));
+    }
 }

@@ -24,6 +24,8 @@ pub struct RunSettings {
     pub frames: Option<u64>,
     pub size: (u32, u32),
     pub screenshot: Option<PathBuf>,
+    /// `--screenshot-every N`: frames 1, N+1, 2N+1, … as numbered PNGs instead of the last.
+    pub screenshot_every: Option<u64>,
     pub profile: Option<PathBuf>,
     /// `--frame-graph PATH`: one frame's graph, as JSON or (`.dot`) Graphviz.
     pub frame_graph: Option<PathBuf>,

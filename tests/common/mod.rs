@@ -234,6 +234,40 @@ pub fn shot(name: &str, size: (u32, u32), args: &[&str], env: &[(&str, &str)]) -
     pixels
 }
 
+/// One validation-clean headless run of `size` with `args` that saves every `every`-th frame
+/// (`--screenshot-every`): the RGBA pixels of frames 1, every + 1, … in order. `name` names the
+/// scratch directory.
+pub fn shots(name: &str, size: (u32, u32), every: u64, args: &[&str]) -> Vec<Vec<u8>> {
+    let dir = scratch(&format!("shots-{name}"));
+    let png = dir.join("s.png");
+    let size_arg = format!("{}x{}", size.0, size.1);
+    let every_arg = every.to_string();
+    let mut all = vec![
+        "--headless",
+        "--validation",
+        "--size",
+        &size_arg,
+        "--screenshot",
+        png.to_str().expect("temp paths are UTF-8"),
+        "--screenshot-every",
+        &every_arg,
+    ];
+    all.extend_from_slice(args);
+    let out = run(&all);
+    clean_run(&out, &format!("{all:?}"));
+    let names = entries(&dir);
+    let pictures = names
+        .iter()
+        .map(|file| {
+            let (w, h, pixels) = read_png(&dir.join(file));
+            assert_eq!((w, h), size, "{file}");
+            pixels
+        })
+        .collect();
+    let _ = std::fs::remove_dir_all(&dir);
+    pictures
+}
+
 /// An sRGB byte's linear value (IEC 61966-2-1).
 pub fn linear(v: u8) -> f64 {
     let v = f64::from(v) / 255.0;
