@@ -4,13 +4,14 @@
 # sweep_runs FN: calls `FN ARGS...` once per run, ARGS being vkocean's arguments for it (FN adds
 # --validation and whatever else it checks): every --view, both --waves models, each water
 # --geometry of SWEEP_GEOMETRIES (default: both; tools/swiftshader: clipmap, the device has no
-# tessellation) and every --quality headless at 160x90 for 3 frames, the storm at medium (the
+# tessellation) and every --quality (high without the foam simulation near the camera) headless
+# at 160x90 for 3 frames, the storm at medium (the
 # spray flies, lands and adds to the foam levels: about 9,000 puffs, 100 landing a frame), the
 # view from under the water over the shallows (the light shafts' pass, the floor mirrored
 # outside Snell's window) and from a camera half in the water (the waterline's pipeline), and
 # bench fft at sizes 64 and 128.
 sweep_runs() {
-    local fn=$1 view waves geometry quality
+    local fn=$1 view waves geometry
     local small=(--headless --size 160x90 --frames 3)
     for view in final reflection refraction displacement normals foam dudv wireframe; do
         "$fn" "${small[@]}" --view "$view"
@@ -21,9 +22,13 @@ sweep_runs() {
     for geometry in ${SWEEP_GEOMETRIES:-tessellated clipmap}; do
         "$fn" "${small[@]}" --geometry "$geometry"
     done
-    for quality in low medium high; do
-        "$fn" "${small[@]}" --quality "$quality"
-    done
+    # --quality high without the foam simulation near the camera: its 32 warm-up steps go in
+    # the first frame's one submission, which under GPU-assisted validation on lavapipe took
+    # longer than vkocean's 60 s GPU wait at high (its levels are the same at medium, which
+    # runs it).
+    "$fn" "${small[@]}" --quality low
+    "$fn" "${small[@]}" --quality medium
+    "$fn" "${small[@]}" --quality high --foam-sim off
     "$fn" "${small[@]}" --preset storm --quality medium
     "$fn" "${small[@]}" --preset calm --camera=-140,-3,-860 --look-at=-150,3,-860
     "$fn" "${small[@]}" --preset calm --wind-speed 1 --camera=-102,0,-582 --look-at=-60,0,-600
