@@ -595,7 +595,8 @@ impl Simulation {
     }
 
     /// The steps run before the first FFT frame `frame`: foam::RESIDUAL_WARMUP_STEPS long steps
-    /// (the residual foam's slow life) and then foam::WARMUP_STEPS short ones (the whitecaps')
+    /// (the residual foam's slow life, with the foam near the camera only) and then
+    /// foam::WARMUP_STEPS short ones (the whitecaps')
     /// over the seconds before it, alternating slots and ending in the other one, so its foam is
     /// already in steady state (a single screenshot shows the foam a running sea has). Both
     /// slots are unused by graphics so far. Gerstner: none (its per-slot wave buffers are
@@ -604,7 +605,7 @@ impl Simulation {
         if self.model.h0().is_none() {
             return Vec::new();
         }
-        let schedule = foam::warmup_schedule();
+        let schedule = foam::warmup_schedule(self.foam_levels.count > 0);
         let total = schedule.len();
         schedule
             .into_iter()
