@@ -211,10 +211,11 @@ pub fn assert_validation_clean(ctx: std::sync::Arc<vkocean::gpu::Context>) {
     );
 }
 
-/// One validation-clean headless frame of `size` with `args` (and `env`): its RGBA pixels.
-/// `name` names the scratch directory.
-pub fn shot(name: &str, size: (u32, u32), args: &[&str], env: &[(&str, &str)]) -> Vec<u8> {
-    let dir = scratch(&format!("shot-{name}"));
+/// A validation-clean headless run of `size` with `args` (and `env`) whose `--screenshot` is a
+/// file in a fresh scratch directory named `name`: the RGBA pixels of every PNG it wrote, in
+/// file-name order (the one, or `--screenshot-every`'s numbered frames).
+fn pictures(name: &str, size: (u32, u32), args: &[&str], env: &[(&str, &str)]) -> Vec<Vec<u8>> {
+    let dir = scratch(name);
     let png = dir.join("s.png");
     let size_arg = format!("{}x{}", size.0, size.1);
     let mut all = vec![
@@ -228,35 +229,7 @@ pub fn shot(name: &str, size: (u32, u32), args: &[&str], env: &[(&str, &str)]) -
     all.extend_from_slice(args);
     let out = run_with_env(&all, env);
     clean_run(&out, &format!("{all:?}"));
-    let (w, h, pixels) = read_png(&png);
-    assert_eq!((w, h), size);
-    let _ = std::fs::remove_dir_all(&dir);
-    pixels
-}
-
-/// One validation-clean headless run of `size` with `args` that saves every `every`-th frame
-/// (`--screenshot-every`): the RGBA pixels of frames 1, every + 1, … in order. `name` names the
-/// scratch directory.
-pub fn shots(name: &str, size: (u32, u32), every: u64, args: &[&str]) -> Vec<Vec<u8>> {
-    let dir = scratch(&format!("shots-{name}"));
-    let png = dir.join("s.png");
-    let size_arg = format!("{}x{}", size.0, size.1);
-    let every_arg = every.to_string();
-    let mut all = vec![
-        "--headless",
-        "--validation",
-        "--size",
-        &size_arg,
-        "--screenshot",
-        png.to_str().expect("temp paths are UTF-8"),
-        "--screenshot-every",
-        &every_arg,
-    ];
-    all.extend_from_slice(args);
-    let out = run(&all);
-    clean_run(&out, &format!("{all:?}"));
-    let names = entries(&dir);
-    let pictures = names
+    let pictures = entries(&dir)
         .iter()
         .map(|file| {
             let (w, h, pixels) = read_png(&dir.join(file));
@@ -266,6 +239,24 @@ pub fn shots(name: &str, size: (u32, u32), every: u64, args: &[&str]) -> Vec<Vec
         .collect();
     let _ = std::fs::remove_dir_all(&dir);
     pictures
+}
+
+/// One validation-clean headless frame of `size` with `args` (and `env`): its RGBA pixels.
+/// `name` names the scratch directory.
+pub fn shot(name: &str, size: (u32, u32), args: &[&str], env: &[(&str, &str)]) -> Vec<u8> {
+    let mut one = pictures(&format!("shot-{name}"), size, args, env);
+    assert_eq!(one.len(), 1, "one picture");
+    one.pop().expect("one picture")
+}
+
+/// One validation-clean headless run of `size` with `args` that saves every `every`-th frame
+/// (`--screenshot-every`): the RGBA pixels of frames 1, every + 1, … in order. `name` names the
+/// scratch directory.
+pub fn shots(name: &str, size: (u32, u32), every: u64, args: &[&str]) -> Vec<Vec<u8>> {
+    let every = every.to_string();
+    let mut all = vec!["--screenshot-every", &every];
+    all.extend_from_slice(args);
+    pictures(&format!("shots-{name}"), size, &all, &[])
 }
 
 /// An sRGB byte's linear value (IEC 61966-2-1).
