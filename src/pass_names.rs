@@ -41,6 +41,8 @@ pub const OCEAN_QUERIES: &str = "ocean height queries";
 pub const SPRAY: &str = "spray";
 /// Gerstner model: the wave sum written into the displacement and normal images.
 pub const OCEAN_GERSTNER: &str = "ocean gerstner";
+/// `--boat`: the wake's steps (eWave: spectrum, inverse FFT, the boat's pressure, forward FFT).
+pub const OCEAN_WAKE: &str = "ocean wake";
 /// The first frame's foam warm-up steps (a debug label only, never timed).
 pub const OCEAN_WARMUP: &str = "ocean foam warm-up";
 

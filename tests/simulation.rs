@@ -43,6 +43,7 @@ fn gpu_fields_match_the_cpu_reference() {
             waves: vkocean::ocean::Waves::Fft,
             spray: true,
             foam_sim: None,
+            boat: None,
         };
         let mut sim = Simulation::new(&ctx, &settings).unwrap();
         sim.submit(0, 1, None, t, &FoamScene::default(), None)

@@ -54,6 +54,8 @@ layout(set = 0, binding = 0, std140) uniform FrameUniforms {
     vec4 foam_levels[FOAM_MAX_LEVELS]; // the foam near the camera, level l: xy its image
                          // coordinates of the water grid's centre, z per metre; w the number
                          // of levels (0: the lattice's foam only)
+    vec4 wake;           // --boat (src/ocean/wake.rs): xy the wake image's coordinates of the
+                         // water grid's centre, z per metre; w 1 with a boat
 } frame;
 
 // Which view a draw renders (ViewIndex in src/render/uniforms.rs).
@@ -76,6 +78,17 @@ layout(set = 0, binding = 3) uniform samplerCube sky_cube;
 // The foam near the camera (src/ocean/simulation/foam_sim.rs), one layer per level: (whitecap
 // foam, residual foam, 0, 0) at rest positions.
 layout(set = 0, binding = 4) uniform sampler2DArray foam_field;
+// The boat's wake on its grid near the camera (src/ocean/simulation/wake_sim.rs): (h, ∂h/∂x,
+// ∂h/∂z, foam) (clamp sampler; 1×1 without a boat).
+layout(set = 0, binding = 7) uniform sampler2DArray wake_field;
+
+// The wake's (h, ∂h/∂x, ∂h/∂z, foam) at a point `xz` metres from the water grid's centre; zero
+// off its grid (its absorbing edge has already taken the wake to zero there) and without a boat.
+vec4 wake_at(vec2 xz) {
+    vec2 uv = frame.wake.xy + xz * frame.wake.z;
+    float inside = step(0.0, uv.x) * step(uv.x, 1.0) * step(0.0, uv.y) * step(uv.y, 1.0);
+    return frame.wake.w * inside * textureLod(wake_field, vec3(uv, 0.0), 0.0);
+}
 
 // The ocean image coordinates of cascade c at a point `xz` metres from the water grid's
 // centre (repeating for the FFT cascades). `weight` fades a cascade out with distance before its

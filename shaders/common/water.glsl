@@ -63,5 +63,6 @@ vec3 ocean_displacement_at(vec2 xz, float dist) {
         vec3 uv = ocean_uv(xz, c, dist, weight);
         d += weight * ocean_texture(ocean_displacement, uv).xyz;
     }
+    d.y += wake_at(xz).x;
     return d;
 }

@@ -27,6 +27,9 @@ layout(std140, set = 0, binding = 0) uniform Placement {
     vec4 terrain;      // island x, z, shelf depth, island radius
     vec4 shore;        // the sea's Hs, mean ω, c_g at the simulated depth
     vec4 open_sea;     // the open sea's floor depth, K_s there
+    vec4 wake_base;    // the anchor's texel coordinate in this slot's wake image (xy), the
+                       // previous slot's (zw)
+    vec4 wake;         // x: the wake's texels per metre; y: 1 with a wake (--boat)
 } frame;
 #include "common/terrain.glsl"
 #include "common/shore.glsl"
@@ -39,6 +42,10 @@ layout(std430, set = 0, binding = 2) writeonly buffer Answers { vec4 answers[]; 
 layout(set = 0, binding = 3, rgba32f) uniform readonly image2DArray displacement;
 layout(set = 0, binding = 4, rgba32f) uniform readonly image2DArray normals;
 layout(set = 0, binding = 5, rgba32f) uniform readonly image2DArray previous;
+// The boat's wake (src/ocean/wake.rs), this slot's and the previous slot's: (h, ∂h/∂x, ∂h/∂z, foam)
+// with texel i at the grid's origin + i·spacing; 1×1 without a boat.
+layout(set = 0, binding = 6, rgba32f) uniform readonly image2DArray wake_here;
+layout(set = 0, binding = 7, rgba32f) uniform readonly image2DArray wake_before;
 layout(push_constant) uniform Params {
     uint count;    // points asked
     uint cascades;
@@ -97,6 +104,32 @@ float shore_scale(vec2 rest) {
     return shore_waves_at(shore_shoaling(depth), depth).x;
 }
 
+// The wake's (h, ∂h/∂x, ∂h/∂z) at the rest point, bilinear, as the water adds it to the
+// height and slopes there (common/frame.glsl `wake_at`); zero off its grid. `before`: the
+// previous slot's.
+vec3 wake_at(bool before, vec2 rest) {
+    vec2 u = (before ? frame.wake_base.zw : frame.wake_base.xy) + rest * frame.wake.x;
+    int n = imageSize(wake_here).x;
+    if (frame.wake.y == 0.0 || any(lessThan(u, vec2(0.0))) || any(greaterThan(u, vec2(n - 1)))) {
+        return vec3(0.0);
+    }
+    ivec2 i = min(ivec2(floor(u)), ivec2(n - 2));
+    vec2 w = u - vec2(i);
+    vec4 a, b, d, e;
+    if (before) {
+        a = imageLoad(wake_before, ivec3(i, 0));
+        b = imageLoad(wake_before, ivec3(i + ivec2(1, 0), 0));
+        d = imageLoad(wake_before, ivec3(i + ivec2(0, 1), 0));
+        e = imageLoad(wake_before, ivec3(i + ivec2(1, 1), 0));
+    } else {
+        a = imageLoad(wake_here, ivec3(i, 0));
+        b = imageLoad(wake_here, ivec3(i + ivec2(1, 0), 0));
+        d = imageLoad(wake_here, ivec3(i + ivec2(0, 1), 0));
+        e = imageLoad(wake_here, ivec3(i + ivec2(1, 1), 0));
+    }
+    return mix(mix(a, b, w.x), mix(d, e, w.x), w.y).xyz;
+}
+
 // The rest point carried to `p` in image `which` (0 or 2) from the first guess `rest`, and
 // its scaled displacement there.
 vec3 invert(int which, vec2 p, inout vec2 rest) {
@@ -118,13 +151,16 @@ void main() {
     vec3 d = invert(0, p, rest);
     float residual = length(p - (rest + d.xz));
     float scale = shore_scale(rest);
-    vec2 slope = scale * sum_at(1, rest).xy;
+    vec3 wake = wake_at(false, rest);
+    d.y += scale * wake.x;
+    vec2 slope = scale * (sum_at(1, rest).xy + wake.yz);
     vec3 normal = normalize(vec3(-slope.x, 1.0, -slope.y));
     float rate = 0.0;
     if (params.rate > 0.0) {
         // A frame earlier the rest point was nearly the same: a few steps from there.
         vec2 before_rest = rest;
         vec3 before = invert(2, p, before_rest);
+        before.y += shore_scale(before_rest) * wake_at(true, before_rest).x;
         rate = (d.y - before.y) * params.rate;
     }
     answers[2 * i] = vec4(d, rate);

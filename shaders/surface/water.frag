@@ -84,6 +84,7 @@ vec4 ocean_normal_foam(vec2 xz, float dist, float pixel_m, float scale, out floa
         resolved += slope_weight * slope_weight * frame.slope_variance[c];
         compression += (c == 0 ? 0.5 : (c == 1 ? 1.0 : 0.0)) * weight * (1.0 - s.z);
     }
+    slope += wake_at(xz).yz;
     slope *= scale;
     resolved *= scale * scale;
     return vec4(normalize(vec3(-slope.x, 1.0, -slope.y)), foam);
@@ -167,7 +168,8 @@ float foam_at(vec2 xz, float lattice) {
         float inside = 1.0 - smoothstep(0.4, 0.49, max(q.x, q.y));
         residual = mix(residual, textureLod(foam_field, vec3(uv, float(l)), 0.0).y, inside);
     }
-    return max(lattice, residual);
+    // The boat's white water (src/ocean/wake.rs).
+    return max(max(lattice, residual), wake_at(xz).w);
 }
 
 // One octave of foam texture at about `per_m` cells per metre over the largest cascade's patch

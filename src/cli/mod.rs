@@ -10,6 +10,7 @@ mod bench;
 mod config;
 mod retune;
 mod values;
+mod waves;
 
 pub use crate::tuning::{self, presets};
 pub use bench::{
@@ -25,7 +26,7 @@ use values::*;
 
 use crate::frontend::RunSettings;
 use crate::gpu::PresentMode;
-use crate::ocean::{gerstner, OceanSettings, SeaState, SpectrumKind, Waves};
+use crate::ocean::{OceanSettings, SeaState, SpectrumKind};
 use crate::profile::WARMUP_FRAMES;
 use crate::render::camera::LOWEST_M;
 use crate::render::uniforms::DEEP_FLOOR_M;
@@ -374,6 +375,13 @@ pub struct Cli {
           value_parser = |s: &str| parse_whole(s, 0, MAX_BODIES as u64).map(|n| n as usize))]
     pub bodies: usize,
 
+    /// A boat driven in a straight line at SPEED m/s (0.5 to 15) along HEADING (degrees from +x
+    /// toward +z), passing in front of the camera at the first frame and leaving a Kelvin wake
+    /// (src/ocean/wake.rs); `--dump` writes the wake to wake.npy.
+    #[arg(long, global = true, value_name = "SPEED,HEADING", value_parser = parse_boat,
+          allow_hyphen_values = true, help_heading = "Scene")]
+    pub boat: Option<[f64; 2]>,
+
     /// Where the buoy floats (m).
     #[arg(long, global = true, value_name = "X,Z", value_parser = parse_vec2, allow_hyphen_values = true,
           default_value = "9,-55", help_heading = "Scene")]
@@ -559,52 +567,6 @@ impl Cli {
         }
     }
 
-    /// `--waves` with its table (`--gerstner-waves`, `--gerstner-count`).
-    fn waves_setting(&self) -> Result<Waves, UsageError> {
-        Ok(match self.waves {
-            WavesArg::Fft => {
-                if self.gerstner_waves.is_some() || self.gerstner_count.is_some() {
-                    return Err(UsageError(
-                        "--gerstner-waves and --gerstner-count need --waves gerstner".to_string(),
-                    ));
-                }
-                Waves::Fft
-            }
-            WavesArg::Gerstner => {
-                let mut table = match &self.gerstner_waves {
-                    None => gerstner::default_waves(),
-                    Some(path) => {
-                        let text = crate::input::read_text(
-                            "--gerstner-waves",
-                            path,
-                            gerstner::MAX_TABLE_BYTES,
-                        )
-                        .map_err(input)?;
-                        let format = gerstner::TableFormat::of_path(path);
-                        gerstner::parse_waves(&text, format).map_err(|e| {
-                            UsageError(format!("--gerstner-waves {}: {e}", path.display()))
-                        })?
-                    }
-                };
-                if let Some(m) = self.gerstner_count {
-                    if m > table.len() {
-                        return Err(UsageError(format!(
-                            "--gerstner-count {m}: the table has only {} waves",
-                            table.len()
-                        )));
-                    }
-                    table.truncate(m);
-                }
-                if let Some((factor, sum)) = gerstner::limit_steepness(&mut table) {
-                    eprintln!(
-                        "vkocean: Gerstner steepness Q scaled by {factor:.3}: the table's Σ Q·k·a was {sum:.3}, and above 1 the surface can fold over"
-                    );
-                }
-                Waves::Gerstner(table)
-            }
-        })
-    }
-
     /// Cross-checks the options and resolves defaults.
     pub fn settings(&self) -> Result<RunSettings, UsageError> {
         require_extension("--screenshot", self.screenshot.as_deref(), "png")?;
@@ -619,6 +581,13 @@ impl Cli {
             }
         }
         let waves = self.waves_setting()?;
+        if self.boat.is_some() && self.bodies >= MAX_BODIES as usize {
+            return Err(UsageError(format!(
+                "--bodies {} with --boat: at most {} (the boat is a body too)",
+                self.bodies,
+                MAX_BODIES - 1
+            )));
+        }
         if self.dump.is_some() && !self.headless {
             return Err(UsageError("--dump needs --headless".to_string()));
         }
@@ -690,6 +659,7 @@ impl Cli {
                 waves,
                 spray: self.spray == Switch::On,
                 foam_sim: self.foam_sim.map(|s| s == Switch::On),
+                boat: self.boat,
             },
         })
     }

@@ -86,6 +86,19 @@ pub fn parse_vec2(s: &str) -> Result<[f32; 2], String> {
     Ok([v[0], v[1]])
 }
 
+/// `--boat SPEED,HEADING`: a speed within the wake model's range, any heading.
+pub fn parse_boat(s: &str) -> Result<[f64; 2], String> {
+    use crate::ocean::wake::{MAX_SPEED_M_S, MIN_SPEED_M_S};
+    let v = parse_list(s, 2)?;
+    let speed = f64::from(v[0]);
+    if !(MIN_SPEED_M_S..=MAX_SPEED_M_S).contains(&speed) {
+        return Err(format!(
+            "the speed must be from {MIN_SPEED_M_S} to {MAX_SPEED_M_S} m/s"
+        ));
+    }
+    Ok([speed, f64::from(v[1])])
+}
+
 pub fn parse_sun(s: &str) -> Result<[f32; 2], String> {
     let v = parse_list(s, 2)?;
     if !(-10.0..=90.0).contains(&v[1]) {

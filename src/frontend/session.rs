@@ -12,7 +12,7 @@ use crate::gpu::selftest::SyncHazard;
 use crate::gpu::{
     Buffer, Context, FrameTimes, Frames, GpuResult, GpuTimings, MemoryLocation, Profilers,
 };
-use crate::ocean::bodies::Fleet;
+use crate::ocean::bodies::{Body, Fleet};
 use crate::ocean::buoy::Buoy;
 use crate::ocean::dump;
 use crate::ocean::simulation::Simulation;
@@ -102,9 +102,27 @@ impl Session {
                 ctx.info.name
             );
         }
-        let simulation = Simulation::new(ctx, &s.ocean)?;
+        let mut simulation = Simulation::new(ctx, &s.ocean)?;
         let buoy = buoy_on(s, &simulation);
         let camera = s.camera.unwrap_or_default();
+        let mut fleet = (s.bodies > 0).then(|| {
+            let [bx, bz] = s.scene.layout.buoy_xz;
+            Fleet::scattered(s.bodies, [bx as f64 + 30.0, bz as f64], BODY_SPACING_M)
+        });
+        // `--boat`: the wake's grid where the first frame will put it, and the boat there,
+        // driven along its course (the first body).
+        let (eye, forward) = (camera.position, camera.forward);
+        simulation.wake.place(
+            [eye.x as f64, eye.z as f64],
+            [forward.x as f64, forward.z as f64],
+        );
+        if let Some(boat) = simulation.wake.boat_for(s.start_time_s) {
+            let body = Body::driven_boat(&boat, s.start_time_s);
+            fleet
+                .get_or_insert_with(Fleet::default)
+                .bodies
+                .insert(0, body);
+        }
         let ocean = ocean_bindings(&simulation);
         let renderer = Renderer::new(ctx, output_format, extent, ocean, &s.scene, camera)?;
         let mut session = Session {
@@ -114,10 +132,7 @@ impl Session {
             renderer,
             simulation,
             buoy,
-            fleet: (s.bodies > 0).then(|| {
-                let [bx, bz] = s.scene.layout.buoy_xz;
-                Fleet::scattered(s.bodies, [bx as f64 + 30.0, bz as f64], BODY_SPACING_M)
-            }),
+            fleet,
             query_latency: Vec::new(),
             hazard,
             cpu_frame_ms: Vec::new(),
@@ -210,6 +225,11 @@ impl Session {
         // The wait the frame's `begin` does anyway (for the frame that last used its slot, two
         // back), done first: that frame's compute work is then done too, and its answers here.
         self.frames.wait_for_slot()?;
+        if let Some(boat) = self.simulation.wake.boat_for(time_s) {
+            for body in fleet.bodies.iter_mut().filter(|b| b.driven.is_some()) {
+                body.driven = Some(boat);
+            }
+        }
         let answers = self.simulation.answers()?;
         let newest = answers.map(|a| a.value);
         fleet.advance_on(answers, time_s);
@@ -240,8 +260,15 @@ impl Session {
         };
         let bindings = ocean_bindings(simulation.as_ref().unwrap_or(&self.simulation));
         self.renderer = self.renderer.remade(bindings, &s.scene)?;
-        if let Some(simulation) = simulation {
+        if let Some(mut simulation) = simulation {
             self.buoy = buoy_on(s, &simulation);
+            // A new wake starts anew in front of the camera (the boat with it: `float_bodies`).
+            let camera = self.renderer.camera();
+            let (eye, forward) = (camera.position, camera.forward);
+            simulation.wake.place(
+                [eye.x as f64, eye.z as f64],
+                [forward.x as f64, forward.z as f64],
+            );
             self.simulation = simulation;
         }
         Ok(())
@@ -455,6 +482,7 @@ fn ocean_bindings(simulation: &Simulation) -> OceanBindings {
         displacement: simulation.displacement.clone(),
         normals: simulation.normals.clone(),
         foam: simulation.foam.clone(),
+        wake: simulation.wake.images.clone(),
         spray: simulation.spray().cloned(),
         wait_stages: simulation.wait_stages,
         patch_m: simulation.patch_sizes(),

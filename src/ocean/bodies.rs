@@ -26,6 +26,7 @@
 use glam::{DMat3, DQuat, DVec3};
 
 use super::simulation::Answers;
+use super::wake::{self, Boat};
 
 /// Density of sea water (kg/m³).
 pub const WATER_DENSITY: f64 = 1025.0;
@@ -81,6 +82,9 @@ pub struct Body {
     pub orientation: DQuat,
     pub velocity: DVec3,
     pub angular_velocity: DVec3,
+    /// `--boat`: the course that drives it (its engine holds its speed against the drag, a
+    /// rudder its heading); the water still lifts, tilts and drags it vertically.
+    pub driven: Option<Boat>,
     mass: f64,
     /// Inertia about the centre of mass, body frame.
     inertia: DMat3,
@@ -190,6 +194,7 @@ impl Body {
             orientation,
             velocity: DVec3::ZERO,
             angular_velocity: DVec3::ZERO,
+            driven: None,
             mass,
             inertia,
             voxels,
@@ -235,6 +240,43 @@ impl Body {
         ]
     }
 
+    /// A boat driven along `boat`'s course: the hull whose pressure makes its wake
+    /// (`wake::HULL_LENGTH_M` by `wake::HULL_BEAM_M`, 1.2 m deep, a third of the water's
+    /// density), where the course has it at `t_s`.
+    pub fn driven_boat(boat: &Boat, t_s: f64) -> Body {
+        let p = boat.position(t_s);
+        let mut body = Body::new(BodyDesc {
+            shape: Shape::Hull([wake::HULL_LENGTH_M, wake::HULL_BEAM_M, 1.2]),
+            relative_density: 0.35,
+            position: [p[0], 0.0, p[1]],
+            // Rotations about +y turn +x toward −z; the course turns it toward +z.
+            heading_deg: -boat.heading_deg,
+        });
+        body.driven = Some(*boat);
+        body.drive(t_s);
+        body
+    }
+
+    /// The driven body's horizontal velocity (zero for the others).
+    fn driven_velocity(&self) -> DVec3 {
+        self.driven.map_or(DVec3::ZERO, |b| {
+            let u = b.course();
+            DVec3::new(u[0], 0.0, u[1]) * b.speed_m_s
+        })
+    }
+
+    /// Puts a driven body where its course has it at `t_s`, at its speed, not turning about
+    /// the vertical.
+    fn drive(&mut self, t_s: f64) {
+        if let Some(b) = self.driven {
+            let p = b.position(t_s);
+            let v = self.driven_velocity();
+            (self.position.x, self.position.z) = (p[0], p[1]);
+            (self.velocity.x, self.velocity.z) = (v.x, v.z);
+            self.angular_velocity.y = 0.0;
+        }
+    }
+
     /// Where the shape's centre is (m): the body's position is its centre of mass.
     pub fn shape_centre(&self) -> DVec3 {
         self.position - self.orientation * self.centroid
@@ -263,8 +305,9 @@ impl Body {
                 continue;
             }
             submerged += f * volume;
-            let relative =
-                self.velocity + self.angular_velocity.cross(arm) - DVec3::new(0.0, rate, 0.0);
+            let relative = self.velocity + self.angular_velocity.cross(arm)
+                - DVec3::new(0.0, rate, 0.0)
+                - self.driven_velocity();
             let mut fv = DVec3::new(0.0, WATER_DENSITY * GRAVITY * volume * f, 0.0);
             fv -= relative * (WATER_DENSITY * volume * f * LINEAR_DAMPING_PER_S);
             fv -=
@@ -341,6 +384,9 @@ impl Fleet {
     /// arrive (or while they are for another set of columns, or older than
     /// `MAX_ANSWER_AGE_S`) the bodies wait.
     pub fn advance_on(&mut self, answers: Option<&Answers>, t_s: f64) {
+        for body in &mut self.bodies {
+            body.drive(t_s);
+        }
         let columns = self.column_count();
         match answers {
             Some(a) if a.surface.len() == columns && t_s - a.time_s <= MAX_ANSWER_AGE_S => {
@@ -382,6 +428,7 @@ impl Fleet {
                     "orientation": [q.x, q.y, q.z, q.w],
                     "velocity": b.velocity.to_array(),
                     "angular_velocity": b.angular_velocity.to_array(),
+                    "driven": b.driven.is_some(),
                 })
             })
             .collect();
@@ -417,6 +464,7 @@ impl Fleet {
                 }
                 first += body.column_count();
                 body.step(STEP_S, &samples);
+                body.drive(t + STEP_S);
             }
             t += STEP_S;
             taken += 1;

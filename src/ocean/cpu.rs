@@ -315,6 +315,7 @@ mod tests {
             waves: crate::ocean::Waves::Fft,
             spray: false,
             foam_sim: None,
+            boat: None,
         }
     }
 

@@ -1,7 +1,8 @@
 //! `--dump DIR`: a frame's simulation as files for outside tools (numpy, tools/plot):
 //! h0.npy (complex64, K×N×N; FFT model only), displacement.npy and normals.npy (float32,
-//! K×N×N×4), spray.npy (float32, P×12, the spray's live particles; with spray) and
-//! params.json, which says what they hold and how they were made.
+//! K×N×N×4), spray.npy (float32, P×12, the spray's live particles; with spray), wake.npy
+//! (float32, N×N, the wake's height, rows along z; with `--boat`) and params.json, which says
+//! what they hold and how they were made.
 
 use std::sync::Arc;
 
@@ -39,6 +40,12 @@ pub fn files(
     if let Some(particles) = sim.spray_particles(ctx, slot)? {
         let bytes: &[u8] = bytemuck::cast_slice(&particles);
         files.push(("spray.npy", npy("<f4", &[particles.len() / 12, 12], bytes)));
+    }
+    if let Some(texels) = sim.read_wake(ctx, slot)? {
+        let n = super::wake::GRID_N;
+        let heights: Vec<f32> = texels.iter().map(|t| t[0]).collect();
+        let bytes: &[u8] = bytemuck::cast_slice(&heights);
+        files.push(("wake.npy", npy("<f4", &[n, n], bytes)));
     }
     let params = params(sim, t);
     files.push((
@@ -118,6 +125,27 @@ pub fn params(sim: &Simulation, t: f64) -> Value {
     let mut out = common;
     for (key, value) in model.as_object().into_iter().flatten() {
         out[key] = value.clone();
+    }
+    if let (Some((origin, spacing)), Some(boat)) = (sim.wake.place_of(), sim.wake.boat()) {
+        // wake.npy[j, i] is the wake's height at x = origin_m[0] + i·spacing_m,
+        // z = origin_m[1] + j·spacing_m (src/ocean/wake.rs).
+        out["wake"] = json!({
+            "origin_m": origin,
+            "spacing_m": spacing,
+            "n": super::wake::GRID_N,
+            "model": "eWave (Tessendorf 2014): exact Fourier step with ω = √(g k tanh k d), a Gaussian pressure patch for the hull, an absorbing layer at the edge",
+            "boat": {
+                "position": boat.position(t),
+                "speed_m_s": boat.speed_m_s,
+                "heading_deg": boat.heading_deg,
+                "course": boat.course(),
+                "hull_length_m": super::wake::HULL_LENGTH_M,
+                "hull_beam_m": super::wake::HULL_BEAM_M,
+                "draft_m": super::wake::DRAFT_M,
+                "froude": boat.froude(),
+            },
+            "sponge_texels": super::wake::SPONGE_TEXELS,
+        });
     }
     out
 }

@@ -19,6 +19,7 @@ pub mod spectrum;
 pub mod spray;
 pub mod stats;
 pub mod surface;
+pub mod wake;
 
 pub use params::{OceanSettings, Waves};
 pub use spectrum::{SeaState, SpectrumKind};

@@ -34,6 +34,9 @@ pub struct OceanSettings {
     /// The foam simulation near the camera (`--foam-sim`; FFT waves only): `None` for the
     /// default, on above a 64² grid (`foam::FoamLevels::layout`).
     pub foam_sim: Option<bool>,
+    /// `--boat SPEED,HEADING`: a boat driven in a straight line (m/s, degrees from +x toward
+    /// +z) and its wake (`ocean::wake`).
+    pub boat: Option<[f64; 2]>,
 }
 
 impl Default for OceanSettings {
@@ -49,6 +52,7 @@ impl Default for OceanSettings {
             waves: Waves::Fft,
             spray: true,
             foam_sim: None,
+            boat: None,
         }
     }
 }

@@ -22,6 +22,7 @@ mod gerstner_model;
 mod queries;
 mod readback;
 mod spray_sim;
+mod wake_sim;
 
 use fft_model::FftModel;
 pub use foam_sim::FOAM_FORMAT;
@@ -29,6 +30,7 @@ use gerstner_model::GerstnerModel;
 pub use queries::{Answers, SurfaceAnswer, MAX_QUERIES};
 use queries::{HeightQueries, SlotPlace};
 pub use spray_sim::{SprayBuffers, COUNTS_BYTES, DRAW_ARGS_OFFSET, LIVE_INDEX, PARTICLE_BYTES};
+pub use wake_sim::Wake;
 
 use super::foam::{self, FoamLevels, FoamScene};
 use super::gerstner::Wave;
@@ -324,6 +326,8 @@ pub struct Simulation {
     /// The rendered sea's significant height and mean frequency (the shore's shoaling and
     /// breaking, `ocean::shore`).
     pub sea_moments: SeaMoments,
+    /// `--boat`: the wake near the camera (`ocean::wake`), and its images.
+    pub wake: Wake,
 }
 
 impl Simulation {
@@ -337,6 +341,17 @@ impl Simulation {
             Waves::Gerstner(_) => resolved + cox_munk_mean_square_slope(0.0),
         };
         sea.max(resolved)
+    }
+}
+
+/// The foam near the camera's levels for `settings` (none for Gerstner waves or `--foam-sim
+/// off`; by the grid's size by default).
+fn foam_levels_for(settings: &OceanSettings) -> FoamLevels {
+    let fft = matches!(settings.waves, Waves::Fft);
+    match (fft, settings.foam_sim) {
+        (false, _) | (true, Some(false)) => FoamLevels::none(),
+        (true, None) => FoamLevels::layout(settings.fft_size),
+        (true, Some(true)) => FoamLevels::levels(),
     }
 }
 
@@ -366,12 +381,7 @@ impl Simulation {
                 | vk::FormatFeatureFlags::TRANSFER_DST,
             what: "the ocean simulation images",
         }])?;
-        let fft = matches!(settings.waves, Waves::Fft);
-        let foam_levels = match (fft, settings.foam_sim) {
-            (false, _) | (true, Some(false)) => FoamLevels::none(),
-            (true, None) => FoamLevels::layout(n),
-            (true, Some(true)) => FoamLevels::levels(),
-        };
+        let foam_levels = foam_levels_for(settings);
         ctx.require_formats(&[FormatUse {
             format: FOAM_FORMAT,
             features: vk::FormatFeatureFlags::STORAGE_IMAGE
@@ -417,6 +427,9 @@ impl Simulation {
             displacement: &displacement,
             normals: &normals,
         };
+        let wake = Wake::new(ctx, settings, |name, side| {
+            image(name, IMAGE_FORMAT, side, 1)
+        })?;
         let (model, max_displacement_m, sea_moments) = match &settings.waves {
             Waves::Fft => boxed(FftModel::new(ctx, settings, &cascades, &images, &foam)?),
             Waves::Gerstner(w) => boxed(GerstnerModel::new(ctx, w, &images)?),
@@ -443,6 +456,7 @@ impl Simulation {
             camera_xz: [0.0; 2],
             queries: None,
             slot_places: [None; FRAMES_IN_FLIGHT],
+            wake,
         })
     }
 
@@ -493,8 +507,7 @@ impl Simulation {
     ) -> GpuResult<()> {
         let dt_s = self
             .last_time_s
-            .map(|t| (time_s - t).max(0.0) as f32)
-            .unwrap_or(0.0);
+            .map_or(0.0, |t| (time_s - t).max(0.0) as f32);
         self.last_time_s = Some(time_s);
         let window_shift = self.window_shift();
         let previous_foam = self.previous_foam_levels.unwrap_or(self.foam_levels);
@@ -523,6 +536,7 @@ impl Simulation {
                 .iter()
                 .chain(&self.normals)
                 .chain(&self.foam)
+                .chain(&self.wake.images)
                 .cloned()
                 .collect()
         } else {
@@ -549,7 +563,9 @@ impl Simulation {
             self.queue.wait_for_last()?;
         }
         self.model.prepare(&frame);
+        let wake_steps = self.wake.plan(first, slot, time_s);
         let queries = self.prepare_queries(&warmup, slot, value, time_s, scene)?;
+        let wake = &self.wake;
         let model = &*self.model;
         let query_pass = self.queries.as_ref().zip(queries);
         self.queue.submit(slot, value, wait_graphics, |rec| {
@@ -568,6 +584,7 @@ impl Simulation {
                 rec.end_label();
             }
             model.record(rec, &mut timer, &frame);
+            wake.record(rec, &mut timer, &wake_steps, first);
             if let Some((pass, dispatch)) = &query_pass {
                 scope(&mut timer, rec, names::OCEAN_QUERIES, || {
                     pass.record(rec, dispatch)

@@ -133,12 +133,18 @@ pub fn record_frame(
     debug_assert_eq!(output.extent, r.extent());
     let mut frame = frames.begin()?;
     let value = frame.signal_value();
-    let camera = r.camera().position;
-    simulation.place_window([camera.x as f64, camera.z as f64]);
+    let camera = r.camera();
+    let (eye, forward) = (camera.position, camera.forward);
+    simulation.place_window([eye.x as f64, eye.z as f64]);
+    simulation.wake.place(
+        [eye.x as f64, eye.z as f64],
+        [forward.x as f64, forward.z as f64],
+    );
     let inputs = &FrameInputs {
         ocean_origin_m: simulation.origin_m(),
         ocean_window: simulation.is_window(),
         foam_levels: simulation.foam_levels,
+        wake: simulation.wake.place_of(),
         ..*inputs
     };
 

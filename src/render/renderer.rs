@@ -213,7 +213,7 @@ impl Renderer {
         let sampled = vk::DescriptorType::COMBINED_IMAGE_SAMPLER;
         let frame_set_layout = DescriptorSetLayout::new(
             ctx,
-            "frame set layout (uniforms, ocean images, sky cube, foam, light shafts, bodies)",
+            "frame set layout (uniforms, ocean images, sky cube, foam, light shafts, bodies, wake)",
             &[
                 (0, vk::DescriptorType::UNIFORM_BUFFER, graphics),
                 (1, sampled, graphics),
@@ -222,6 +222,7 @@ impl Renderer {
                 (4, sampled, graphics),
                 (5, sampled, graphics),
                 (6, vk::DescriptorType::UNIFORM_BUFFER, graphics),
+                (7, sampled, graphics),
             ],
         )?;
         let repeat = vk::SamplerAddressMode::REPEAT;
@@ -250,6 +251,18 @@ impl Renderer {
         };
         let sky_sampler = Sampler::linear(ctx, "sky cube sampler", clamp)?;
         let foam_sampler = Sampler::linear(ctx, "foam sampler (clamp)", clamp)?;
+        // The wake is RGBA32F too (the height queries read it exactly): nearest where the
+        // device does not filter it linearly.
+        let wake_sampler = if ocean_linear {
+            Sampler::linear(ctx, "wake sampler (clamp)", clamp)?
+        } else {
+            Sampler::new(
+                ctx,
+                "wake sampler (nearest, clamp)",
+                vk::Filter::NEAREST,
+                clamp,
+            )?
+        };
         let shafts = ShaftsPass::new(ctx, &frame_set_layout, water_kind)?;
         let shafts_sampler = Sampler::linear(ctx, "light shafts sampler (clamp)", clamp)?;
         let sky_cube = match &settings.skybox {
@@ -302,6 +315,7 @@ impl Renderer {
                         Bind::Sampled(&shafts.image, &shafts_sampler, Order::Tracked),
                     ),
                     (6, Bind::Uniform(&bodies)),
+                    (7, Bind::Sampled(&ocean.wake[slot], &wake_sampler, wait)),
                 ],
             )?;
             frame_uniforms.push((buffer, set));

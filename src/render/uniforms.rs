@@ -33,6 +33,9 @@ pub struct FrameInputs {
     pub camera_slope: [f64; 2],
     /// Where the foam's levels lie this frame (`Simulation::foam_levels`; none for Gerstner).
     pub foam_levels: FoamLevels,
+    /// `--boat`: where the wake's grid lies this frame, its texel (0, 0) (world x, z; m) and
+    /// texel size (m) (`Wake::place_of`).
+    pub wake: Option<([f64; 2], f64)>,
 }
 
 impl FrameInputs {
@@ -89,6 +92,8 @@ pub struct OceanBindings {
     pub normals: Vec<crate::gpu::Image>,
     /// Per frame slot: the foam near the camera (`Simulation::foam`), one layer per level.
     pub foam: Vec<crate::gpu::Image>,
+    /// Per frame slot: the wake (`Simulation::wake`; 1×1 without a boat).
+    pub wake: Vec<crate::gpu::Image>,
     /// The spray's particles and draw arguments (`Simulation::spray`), when the run has spray.
     pub spray: Option<crate::ocean::simulation::SprayBuffers>,
     /// The stages at which a graphics submission waits for the compute timeline before
@@ -273,6 +278,9 @@ pub struct FrameUniforms {
     /// centre, z its image coordinates per metre (1 / its side), w the number of levels (0:
     /// the lattice's foam only).
     pub foam_levels: [[f32; 4]; MAX_LEVELS],
+    /// The wake (`--boat`, src/ocean/wake.rs): xy its image coordinates of the water grid's
+    /// centre (texel centres at (i + ½)/N), z its image coordinates per metre, w 1 with a boat.
+    pub wake: [f32; 4],
 }
 
 /// Side of a DU/DV tile on the water (m).
@@ -530,6 +538,7 @@ impl FrameUniforms {
             waterline,
             sky_light: [sky_light[0], sky_light[1], sky_light[2], exposure],
             foam_levels: foam_levels(&p.inputs.foam_levels, &water),
+            wake: wake_uniform(p.inputs.wake, &water),
             slope_variance: p.ocean.sea_moments.slope_variance.map(|v| v as f32),
             curvature_variance: p.ocean.sea_moments.curvature_variance.map(|v| v as f32),
             open_sea: {
@@ -556,6 +565,17 @@ fn foam_levels(levels: &FoamLevels, water: &WaterFrame) -> [[f32; 4]; MAX_LEVELS
         let uv = |i: usize| ((water.centre[i] - levels.origin_m[l][i]) / side) as f32;
         [uv(0), uv(1), (1.0 / side) as f32, levels.count as f32]
     })
+}
+
+/// `FrameUniforms::wake`: the wake image's coordinates of the water grid's centre (texel i's
+/// centre at (i + ½)/N), reduced in f64, and per metre; zero without a boat.
+fn wake_uniform(place: Option<([f64; 2], f64)>, water: &WaterFrame) -> [f32; 4] {
+    let Some((origin, spacing)) = place else {
+        return [0.0; 4];
+    };
+    let side = spacing * crate::ocean::wake::GRID_N as f64;
+    let uv = |i: usize| ((water.centre[i] - origin[i] + 0.5 * spacing) / side) as f32;
+    [uv(0), uv(1), (1.0 / side) as f32, 1.0]
 }
 
 /// `FrameUniforms::shore` for the sea `sea` at time `time_s`.

@@ -90,6 +90,11 @@ struct Placement {
     terrain: [f32; 4],
     shore: [f32; 4],
     open_sea: [f32; 4],
+    /// The anchor's texel coordinate in this slot's wake image (xy) and the previous slot's
+    /// (zw).
+    wake_base: [f32; 4],
+    /// x: the wake's texels per metre; y: 1 with a wake (`--boat`).
+    wake: [f32; 4],
 }
 
 #[repr(C)]
@@ -114,7 +119,12 @@ impl Simulation {
             points.len()
         );
         if self.queries.is_none() {
-            self.queries = Some(HeightQueries::new(ctx, &self.displacement, &self.normals)?);
+            self.queries = Some(HeightQueries::new(
+                ctx,
+                &self.displacement,
+                &self.normals,
+                &self.wake.images,
+            )?);
         }
         self.queries.as_mut().expect("made above").ask(points);
         Ok(())
@@ -154,7 +164,12 @@ impl Simulation {
         let periodic = !self.is_window();
         let n = self.settings.fft_size;
         let steps_m: Vec<f64> = self.cascades.iter().map(|c| c.patch_m / n as f64).collect();
-        let before = self.slot_places[(slot + FRAMES_IN_FLIGHT - 1) % FRAMES_IN_FLIGHT];
+        let previous = (slot + FRAMES_IN_FLIGHT - 1) % FRAMES_IN_FLIGHT;
+        let before = self.slot_places[previous];
+        let wake = self.wake.place_of().map(|(_, spacing)| {
+            let here = self.wake.slot_origin(slot);
+            (here, self.wake.slot_origin(previous), spacing)
+        });
         let Some(q) = &mut self.queries else {
             return Ok(None);
         };
@@ -170,6 +185,7 @@ impl Simulation {
                 n,
                 periodic,
                 scene,
+                wake,
             },
         )
     }
@@ -208,6 +224,8 @@ struct QueryFrame<'a> {
     pub n: usize,
     pub periodic: bool,
     pub scene: &'a FoamScene,
+    /// With a wake: its grid's texel (0, 0) for this slot and the previous one, its texel (m).
+    pub wake: Option<([f64; 2], [f64; 2], f64)>,
 }
 
 /// The mean water level (m): render::uniforms::WATER_LEVEL_M, which the water draws at.
@@ -227,11 +245,12 @@ pub(super) struct HeightQueries {
 }
 
 impl HeightQueries {
-    /// The pass over the per-slot images `displacement` and `normals`.
+    /// The pass over the per-slot images `displacement`, `normals` and `wake`.
     pub(super) fn new(
         ctx: &Arc<Context>,
         displacement: &[Image],
         normals: &[Image],
+        wake: &[Image],
     ) -> GpuResult<HeightQueries> {
         let (uniform, storage, image) = (
             vk::DescriptorType::UNIFORM_BUFFER,
@@ -242,7 +261,7 @@ impl HeightQueries {
             ctx,
             names::OCEAN_QUERIES,
             shaders::OCEAN_QUERY_COMP,
-            &[uniform, storage, storage, image, image, image],
+            &[uniform, storage, storage, image, image, image, image, image],
             std::mem::size_of::<Params>(),
         )?;
         let buffer = |name: String, size: usize, usage, location| {
@@ -284,6 +303,8 @@ impl HeightQueries {
                         (3, Bind::StorageImage(&displacement[slot], t)),
                         (4, Bind::StorageImage(&normals[slot], t)),
                         (5, Bind::StorageImage(&displacement[previous], t)),
+                        (6, Bind::StorageImage(&wake[slot], t)),
+                        (7, Bind::StorageImage(&wake[previous], t)),
                     ],
                 )
             })
@@ -403,6 +424,12 @@ impl HeightQueries {
         block.terrain = f.scene.terrain;
         block.shore = f.scene.shore;
         block.open_sea = f.scene.open_sea;
+        if let Some((here, before, spacing)) = f.wake {
+            let at = |origin: [f64; 2]| [0, 1].map(|i| ((anchor[i] - origin[i]) / spacing) as f32);
+            let (h, b) = (at(here), at(before));
+            block.wake_base = [h[0], h[1], b[0], b[1]];
+            block.wake = [(1.0 / spacing) as f32, 1.0, 0.0, 0.0];
+        }
         self.placement[f.slot].write(bytemuck::bytes_of(&block));
         self.pending[f.slot] = Some(Pending {
             value: f.value,

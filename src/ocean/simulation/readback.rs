@@ -67,4 +67,21 @@ impl Simulation {
             None => Ok(None),
         }
     }
+
+    /// The wake's image of `slot` (`--boat`; `None` without): N × N texels (h, ∂h/∂x, ∂h/∂z, foam),
+    /// rows along z, read on the compute queue that wrote it (the caller waited for the frame
+    /// that sampled it).
+    pub fn read_wake(&self, ctx: &Arc<Context>, slot: usize) -> GpuResult<Option<Texels>> {
+        if self.wake.place_of().is_none() {
+            return Ok(None);
+        }
+        ctx.wait_idle()?;
+        let bytes = download_image_layers_on(
+            ctx,
+            ctx.compute,
+            &[&self.wake.images[slot]],
+            Use::ComputeRead,
+        )?;
+        Ok(Some(bytemuck::cast_slice(&bytes[0]).to_vec()))
+    }
 }
