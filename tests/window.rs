@@ -1,7 +1,7 @@
 //! The windowed frontend under Xvfb (a small ocean, --fft-size 64, keeps lavapipe's frame rate up) (xvfb-run, xdotool from tools/setup): a window opens, is
 //! resized twice (the swapchain is recreated each time), saves a screenshot on F12, runs
 //! validation-clean and exits on Esc;
-//! `--frames N` stops by itself; `--screenshot` saves the last frame at the window's size.
+//! `--frames N` stops by itself; `--screenshot` saves the last frame at the window's size. A right click on the water drops a crate there.
 
 mod common;
 
@@ -370,4 +370,43 @@ fn a_killed_x_connection_and_ctrl_c_end_a_window_with_one_line() {
     left.sort();
     assert_eq!(left, ["int.err", "kill.err"], "files left: {left:?}");
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// A right click on the water drops a crate there; one on the sky drops nothing. Two clicks
+/// low in the picture and one high: the run ends with two bodies, stepped, validation-clean.
+#[test]
+fn a_right_click_on_the_water_drops_a_crate() {
+    let script = format!(
+        r#"
+        "$VKOCEAN" --validation --size 640x480 --fft-size 64 --cascades 2 &
+        pid=$!
+        {wait}
+        drawn_at 640x480
+        sleep 1
+        xdotool windowfocus --sync "$wid" 2>/dev/null || true
+        xdotool mousemove --window "$wid" 320 400; sleep 0.5; xdotool click 3; sleep 1
+        xdotool mousemove --window "$wid" 200 360; sleep 0.5; xdotool click 3; sleep 1
+        xdotool mousemove --window "$wid" 320 40; sleep 0.5; xdotool click 3; sleep 1
+        xdotool key --window "$wid" Escape 2>/dev/null || true
+        for _ in $(seq 200); do kill -0 "$pid" 2>/dev/null || break; sleep 0.1; done
+        kill "$pid" 2>/dev/null && echo "vkocean did not exit on Esc" >&2
+        wait "$pid"
+        "#,
+        wait = WAIT_FOR_WINDOW
+    );
+    let out = under_xvfb(&script);
+    let err = clean_run(&out, "vkocean");
+    let line = err
+        .lines()
+        .find(|l| l.contains(" bodies, "))
+        .unwrap_or_else(|| panic!("no bodies line: {err}"));
+    assert!(line.starts_with("vkocean: 2 bodies, "), "{line}");
+    // "..., N physics steps; swapchain created ..."
+    let steps: u64 = line
+        .split(" physics steps")
+        .next()
+        .and_then(|s| s.rsplit(", ").next())
+        .and_then(|s| s.parse().ok())
+        .unwrap_or_else(|| panic!("{line}"));
+    assert!(steps > 0, "{line}");
 }

@@ -232,6 +232,7 @@ impl Overlay {
                 if let Some(bodies) = session.bodies_status() {
                     ui.label(bodies);
                 }
+                ui.label("right click on the water: drop a crate there");
                 let passes: Vec<_> = compute
                     .into_iter()
                     .chain(graphics)

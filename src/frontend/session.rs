@@ -12,10 +12,11 @@ use crate::gpu::selftest::SyncHazard;
 use crate::gpu::{
     Buffer, Context, FrameTimes, Frames, GpuResult, GpuTimings, MemoryLocation, Profilers,
 };
-use crate::ocean::bodies::{Body, Fleet};
+use crate::ocean::bodies::{Body, BodyDesc, Fleet, Shape};
 use crate::ocean::buoy::Buoy;
 use crate::ocean::dump;
 use crate::ocean::simulation::Simulation;
+use crate::ocean::simulation::MAX_QUERIES;
 use crate::ocean::stats::stats_line;
 use crate::output::{PendingFile, Staged};
 use crate::profile::{ProfileReport, WARMUP_FRAMES};
@@ -24,6 +25,7 @@ use crate::render::{
     record_frame, Delivery, FrameInputs, FrameParts, OceanBindings, OutputTarget, OverlayDraw,
     Renderer,
 };
+use crate::shared::MAX_BODIES;
 
 pub struct Session {
     /// The device, its queues and timelines (the frontends create it).
@@ -397,6 +399,29 @@ impl Session {
             }
         }
         Ok(self.profilers.finish()?)
+    }
+
+    /// Drops a crate (1.2 × 0.5 × 1 m, half the water's density) a metre above the water under
+    /// the pixel `ndc` (−1 to 1, y down) of a view of `aspect`, if the ray meets the water within
+    /// 500 m and the bodies and their height queries have room. Returns where (world x, z).
+    pub fn drop_body(&mut self, ndc: [f32; 2], aspect: f32) -> Option<[f32; 2]> {
+        let at = self
+            .renderer
+            .camera()
+            .water_point(ndc, aspect, 0.0, 500.0)?;
+        let fleet = self.fleet.get_or_insert_with(Fleet::default);
+        let body = Body::new(BodyDesc {
+            shape: Shape::Box([0.6, 0.25, 0.5]),
+            relative_density: 0.5,
+            position: [at[0] as f64, 1.0, at[1] as f64],
+            heading_deg: 37.0 * fleet.bodies.len() as f64,
+        });
+        let room = fleet.bodies.len() < MAX_BODIES as usize
+            && fleet.column_count() + body.column_count() <= MAX_QUERIES;
+        room.then(|| {
+            fleet.bodies.push(body);
+            at
+        })
     }
 
     /// `--bodies`: how many, the height queries they ask a frame and how late the answers

@@ -61,6 +61,7 @@ pub fn run(s: &RunSettings) -> anyhow::Result<Outcome> {
         clock: super::clock::Clock::new(s.start_time_s, s.time_scale),
         last_frame: None,
         title_since: None,
+        cursor: None,
     };
     event_loop
         .run_app(&mut app)
@@ -117,6 +118,8 @@ struct App {
     last_frame: Option<std::time::Instant>,
     /// When the title was last updated, the frame count and the size it showed.
     title_since: Option<(std::time::Instant, u64, vk::Extent2D)>,
+    /// Where the cursor is in the window (physical pixels): a right click drops a body there.
+    cursor: Option<(f64, f64)>,
 }
 
 /// How often the title's frame count and frame time are updated.
@@ -417,6 +420,22 @@ impl App {
         Ok(())
     }
 
+    /// A right click: a crate dropped on the water under the cursor (`Session::drop_body`).
+    fn drop_body(&mut self) {
+        let (Some(state), Some((x, y))) = (self.state.as_mut(), self.cursor) else {
+            return;
+        };
+        let (w, h) = (state.size.width as f64, state.size.height as f64);
+        if w < 1.0 || h < 1.0 {
+            return;
+        }
+        let ndc = [(2.0 * x / w - 1.0) as f32, (2.0 * y / h - 1.0) as f32];
+        state.overlay.status = match state.session.drop_body(ndc, (w / h) as f32) {
+            Some([x, z]) => format!("dropped a crate at {x:.1}, {z:.1}"),
+            None => "no room for another body, or no water under the cursor".to_string(),
+        };
+    }
+
     /// Esc or close: with --screenshot, render one more frame to capture it, then exit.
     fn request_exit(&mut self, event_loop: &ActiveEventLoop) {
         let minimised = self
@@ -554,7 +573,15 @@ impl ApplicationHandler for App {
                 state,
                 ..
             } => self.fly.drag(state == ElementState::Pressed),
-            WindowEvent::CursorMoved { position, .. } => self.fly.cursor(position.x, position.y),
+            WindowEvent::MouseInput {
+                button: MouseButton::Right,
+                state: ElementState::Pressed,
+                ..
+            } => self.drop_body(),
+            WindowEvent::CursorMoved { position, .. } => {
+                self.cursor = Some((position.x, position.y));
+                self.fly.cursor(position.x, position.y);
+            }
             WindowEvent::Focused(false) => self.fly.release_all(),
             WindowEvent::KeyboardInput {
                 event:

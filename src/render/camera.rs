@@ -5,7 +5,7 @@
 //! degrade far from the origin; the projection is reversed-Z with an infinite far plane (depth 1
 //! at the near plane, 0 at infinity: clear depth to 0, test GREATER).
 
-use glam::{Mat4, Vec3};
+use glam::{Mat4, Vec3, Vec4};
 
 /// A perspective camera in world space (metres, y up).
 /// The lowest a camera may go (m): under the water from 0 down (the view from below); past
@@ -68,6 +68,26 @@ impl Camera {
     }
 
     /// Camera-relative position -> clip space.
+    /// Where the ray through `ndc` (x right, y down, −1 to 1) of a view of `aspect` meets the
+    /// water plane y = `level` (world x, z): `None` at or above the horizon, or past `max_m`.
+    pub fn water_point(
+        &self,
+        ndc: [f32; 2],
+        aspect: f32,
+        level: f32,
+        max_m: f32,
+    ) -> Option<[f32; 2]> {
+        // Camera-relative: view_proj holds no translation.
+        let p = self.view_proj(aspect).inverse() * Vec4::new(ndc[0], ndc[1], 0.5, 1.0);
+        let dir = (p.truncate() / p.w).normalize();
+        if dir.y > -1e-4 {
+            return None;
+        }
+        let t = (level - self.position.y) / dir.y;
+        (t > 0.0 && t <= max_m)
+            .then_some([self.position.x + t * dir.x, self.position.z + t * dir.z])
+    }
+
     pub fn view_proj(&self, aspect: f32) -> Mat4 {
         self.projection(aspect) * self.view_rotation()
     }
@@ -76,6 +96,27 @@ impl Camera {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_water_under_a_pixel() {
+        // 12 m up, forward (0, -0.08, -1): the centre ray meets the water 12/0.08 = 150 m ahead.
+        let cam = Camera::default();
+        let aspect = 16.0 / 9.0;
+        let centre = cam.water_point([0.0, 0.0], aspect, 0.0, 1e4).unwrap();
+        assert!(
+            centre[0].abs() < 1e-3 && (centre[1] + 150.0).abs() < 0.1,
+            "{centre:?}"
+        );
+        // Lower in the picture is nearer (Vulkan's y points down); right is +x.
+        let near = cam.water_point([0.5, 0.8], aspect, 0.0, 1e4).unwrap();
+        assert!(
+            near[1] > -30.0 && near[1] < -10.0 && near[0] > 0.0,
+            "{near:?}"
+        );
+        // Above the horizon, and past the range: none.
+        assert_eq!(cam.water_point([0.0, -0.8], aspect, 0.0, 1e4), None);
+        assert_eq!(cam.water_point([0.0, 0.0], aspect, 0.0, 100.0), None);
+    }
 
     #[test]
     fn reversed_z_maps_near_to_one_and_far_to_zero() {
