@@ -124,6 +124,13 @@ fn bad_usage_exits_2_with_one_line() {
         (&["--headless", "--dt", "0"], "--dt"),
         (&["--headless", "--time", "-1"], "--time"),
         (&["--headless", "--buoy", "1,inf"], "--buoy"),
+        (&["--headless", "--boat", "12,0"], "from 0.5 to 10 m/s"),
+        (&["--headless", "--boat", "3"], "--boat"),
+        (&["--headless", "--boat", "3,nan"], "--boat"),
+        (
+            &["--headless", "--bodies", "256", "--boat", "3,0"],
+            "the boat is a body too",
+        ),
         (
             &["--headless", "--quality", "ultra"],
             "possible values: low, medium, high",

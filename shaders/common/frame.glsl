@@ -79,16 +79,8 @@ layout(set = 0, binding = 3) uniform samplerCube sky_cube;
 // foam, residual foam, 0, 0) at rest positions.
 layout(set = 0, binding = 4) uniform sampler2DArray foam_field;
 // The boat's wake on its grid near the camera (src/ocean/simulation/wake_sim.rs): (h, ∂h/∂x,
-// ∂h/∂z, foam) (clamp sampler; 1×1 without a boat).
+// ∂h/∂z, foam) (clamp sampler; 1×1 without a boat), read by `wake_at` (common/water.glsl).
 layout(set = 0, binding = 7) uniform sampler2DArray wake_field;
-
-// The wake's (h, ∂h/∂x, ∂h/∂z, foam) at a point `xz` metres from the water grid's centre; zero
-// off its grid (its absorbing edge has already taken the wake to zero there) and without a boat.
-vec4 wake_at(vec2 xz) {
-    vec2 uv = frame.wake.xy + xz * frame.wake.z;
-    float inside = step(0.0, uv.x) * step(uv.x, 1.0) * step(0.0, uv.y) * step(uv.y, 1.0);
-    return frame.wake.w * inside * textureLod(wake_field, vec3(uv, 0.0), 0.0);
-}
 
 // The ocean image coordinates of cascade c at a point `xz` metres from the water grid's
 // centre (repeating for the FFT cascades). `weight` fades a cascade out with distance before its

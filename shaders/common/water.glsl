@@ -51,6 +51,15 @@ vec4 ocean_texture(sampler2DArray images, vec3 uv) {
     return mix(mix(a, b, f.x), mix(e, g, f.x), f.y);
 }
 
+// The wake's (h, ∂h/∂x, ∂h/∂z, foam) at a point `xz` metres from the water grid's centre
+// (common/frame.glsl's `wake_field`, bilinear as the height queries read it); zero off its grid
+// (its absorbing edge has already taken the wake to zero there) and without a boat.
+vec4 wake_at(vec2 xz) {
+    vec2 uv = frame.wake.xy + xz * frame.wake.z;
+    float inside = step(0.0, uv.x) * step(uv.x, 1.0) * step(0.0, uv.y) * step(uv.y, 1.0);
+    return frame.wake.w * inside * ocean_texture(wake_field, vec3(uv, 0.0));
+}
+
 // Sum of every cascade's displacement at an undisplaced point (relative to the grid centre).
 // No branch here depends on a uniform: Mesa 22.3's lavapipe "inlines" uniforms that steer control
 // flow into a fresh evaluation-shader variant at every bind of the pipeline and never frees it

@@ -375,7 +375,7 @@ pub struct Cli {
           value_parser = |s: &str| parse_whole(s, 0, MAX_BODIES as u64).map(|n| n as usize))]
     pub bodies: usize,
 
-    /// A boat driven in a straight line at SPEED m/s (0.5 to 15) along HEADING (degrees from +x
+    /// A boat driven in a straight line at SPEED m/s (0.5 to 10) along HEADING (degrees from +x
     /// toward +z), passing in front of the camera at the first frame and leaving a Kelvin wake
     /// (src/ocean/wake.rs); `--dump` writes the wake to wake.npy.
     #[arg(long, global = true, value_name = "SPEED,HEADING", value_parser = parse_boat,

@@ -299,7 +299,14 @@ impl Body {
         for v in &self.voxels {
             let arm = r * v.centre;
             let p = self.position + arm;
-            let [h, rate] = water[v.column];
+            let [mut h, rate] = water[v.column];
+            // A driven hull's own pressure holds the water under it down (up to
+            // `wake::DRAFT_M`, the wake's static trough, in the height queries too): its
+            // columns see the water without that hollow, or the hull would sink into it.
+            if let Some(b) = self.driven {
+                let at = [self.position.x, self.position.z];
+                h += b.pressure(at, [p.x, p.z]) / GRAVITY;
+            }
             let f = ((h - (p.y - extent / 2.0)) / extent).clamp(0.0, 1.0);
             if f == 0.0 {
                 continue;

@@ -584,7 +584,7 @@ impl Simulation {
                 rec.end_label();
             }
             model.record(rec, &mut timer, &frame);
-            wake.record(rec, &mut timer, &wake_steps, first);
+            wake.record(rec, &mut timer, &wake_steps);
             if let Some((pass, dispatch)) = &query_pass {
                 scope(&mut timer, rec, names::OCEAN_QUERIES, || {
                     pass.record(rec, dispatch)

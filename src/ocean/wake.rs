@@ -36,6 +36,8 @@ pub const GRID_N: usize = 256;
 /// Texel size (m): the grid is 128 m across. A 3 m/s boat's transverse waves (λ = 2πU²/g =
 /// 5.8 m) get 11 texels a wavelength.
 pub const SPACING_M: f64 = 0.5;
+/// The grid's side (m).
+pub const GRID_SIDE_M: f64 = GRID_N as f64 * SPACING_M;
 /// Width of the absorbing layer at each edge (texels: 12 m).
 pub const SPONGE_TEXELS: u32 = 24;
 /// The layer's damping rate at the very edge (1/s), ramping up as the square of the depth
@@ -45,11 +47,13 @@ pub const SPONGE_RATE_PER_S: f64 = 2.5;
 /// The hull's pressure patch: length and beam (m) between the Gaussian's ±2σ points.
 pub const HULL_LENGTH_M: f64 = 8.0;
 pub const HULL_BEAM_M: f64 = 3.0;
+/// The Gaussian's σ along the course and across it (m).
+pub const HULL_SIGMA_M: [f64; 2] = [HULL_LENGTH_M / 4.0, HULL_BEAM_M / 4.0];
 /// How deep the patch presses the water at rest under its centre (m): p0 = ρ g DRAFT_M.
 pub const DRAFT_M: f64 = 1.0;
-/// Longest step (s): the warm-up runs the boat's path before the first frame as a few hundred
-/// exact steps (`max_step_s`).
-pub const WARMUP_STEP_S: f64 = 0.1;
+/// Longest step (s), in the warm-up (the boat's path before the first frame, a few hundred
+/// exact steps) and in every frame (`max_step_s`): the hull's pressure is an impulse a step.
+pub const MAX_STEP_S: f64 = 0.1;
 /// How far the boat travels in the warm-up (m; `Boat::warmup_span_s`).
 pub const WARMUP_TRAVEL_M: f64 = 120.0;
 /// How far ahead of the camera the grid's centre lies, over the grid's side: the camera sits
@@ -73,9 +77,10 @@ pub fn churn(speed_m_s: f64) -> f64 {
     0.8 * x * x * (3.0 - 2.0 * x)
 }
 
-/// Fastest and slowest boat (m/s).
+/// Slowest and fastest boat (m/s). At 10 m/s the transverse waves are 2πU²/g = 64 m long, half
+/// the grid's side; faster, they would not fit on it, and the boat would cross it in seconds.
 pub const MIN_SPEED_M_S: f64 = 0.5;
-pub const MAX_SPEED_M_S: f64 = 15.0;
+pub const MAX_SPEED_M_S: f64 = 10.0;
 
 /// A boat driven along a straight line at a constant speed.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -115,7 +120,7 @@ impl Boat {
         let d = [xz[0] - at[0], xz[1] - at[1]];
         let along = d[0] * u[0] + d[1] * u[1];
         let across = -d[0] * u[1] + d[1] * u[0];
-        let (sl, sb) = (HULL_LENGTH_M / 4.0, HULL_BEAM_M / 4.0);
+        let [sl, sb] = HULL_SIGMA_M;
         G * DRAFT_M * (-0.5 * ((along / sl).powi(2) + (across / sb).powi(2))).exp()
     }
 
@@ -142,7 +147,7 @@ impl Boat {
         let span = self.warmup_span_s();
         let count = (span / max_step_s(self.speed_m_s)).ceil() as usize;
         let time = |i: usize| t_s - span + span * i as f64 / count as f64;
-        let half = GRID_N as f64 * SPACING_M / 2.0;
+        let half = GRID_SIDE_M / 2.0;
         let centred = |t: f64| {
             let p = self.position(t);
             [0, 1].map(|i| ((p[i] - half) / SPACING_M).round() * SPACING_M)
@@ -180,10 +185,10 @@ pub fn steps_since(last_s: f64, t_s: f64, origin: [f64; 2], speed_m_s: f64) -> V
         .collect()
 }
 
-/// Longest step: `WARMUP_STEP_S`, and one texel of the boat's travel (the impulses it leaves
+/// Longest step: `MAX_STEP_S`, and one texel of the boat's travel (the impulses it leaves
 /// along its path then overlap into a smooth line: the patch is 1.5 texels wide at ±σ).
 pub fn max_step_s(speed_m_s: f64) -> f64 {
-    WARMUP_STEP_S.min(SPACING_M / speed_m_s.max(1e-6))
+    MAX_STEP_S.min(SPACING_M / speed_m_s.max(1e-6))
 }
 
 /// World position of the grid's texel (0, 0) for a camera at `camera_xz` whose unit view
@@ -191,7 +196,7 @@ pub fn max_step_s(speed_m_s: f64) -> f64 {
 /// of the camera as it looks toward the horizon, under it as it looks straight down, snapped to
 /// whole texels so the field stays on a fixed world lattice.
 pub fn grid_origin(camera_xz: [f64; 2], forward_xz: [f64; 2]) -> [f64; 2] {
-    let side = GRID_N as f64 * SPACING_M;
+    let side = GRID_SIDE_M;
     let len = forward_xz[0].hypot(forward_xz[1]).max(1.0);
     [0, 1].map(|i| {
         let centre = camera_xz[i] + forward_xz[i] / len * AHEAD * side;
@@ -210,10 +215,10 @@ pub fn sponge_rate(i: u32, j: u32) -> f64 {
     SPONGE_RATE_PER_S * depth * depth
 }
 
-/// Angular frequency of a wave number (rad/m) at `depth_m` (deep water: `None`).
+/// Angular frequency of a wave number (rad/m) at `depth_m` (deep water: `None`): the sea's own
+/// dispersion (`spectrum::dispersion`).
 pub fn omega(k: f64, depth_m: Option<f64>) -> f64 {
-    let kd = depth_m.map_or(1.0, |d| (k * d).min(20.0).tanh());
-    (G * k * kd).sqrt()
+    super::spectrum::dispersion(k, depth_m).0
 }
 
 /// Signed frequency index of FFT bin `i` (0..N/2−1, then −N/2..−1).
@@ -289,7 +294,15 @@ impl CpuWake {
             for i in 0..n {
                 let idx = j * n + i;
                 let damp = (-sponge_rate(i as u32, j as u32) * dt_s).exp();
-                let mut phi = out[idx].im * scale;
+                // Texel i held texel i + shift: where that lies off the old grid, the spectrum's
+                // periodic shift brought the far edge's water in; the water there is still.
+                let from = [i as i64 + shift[0], j as i64 + shift[1]];
+                let inside = from.iter().all(|&f| (0..n as i64).contains(&f));
+                let (h, mut phi) = if inside {
+                    (out[idx].re * scale, out[idx].im * scale)
+                } else {
+                    (0.0, 0.0)
+                };
                 if let Some((boat, t_mid)) = boat {
                     let xz = [
                         origin[0] + i as f64 * SPACING_M,
@@ -298,7 +311,7 @@ impl CpuWake {
                     let at = boat.position(t_mid);
                     phi -= dt_s * boat.strength(t_mid) * boat.pressure(at, xz);
                 }
-                self.h[idx] = out[idx].re * scale * damp;
+                self.h[idx] = h * damp;
                 self.phi[idx] = phi * damp;
             }
         }

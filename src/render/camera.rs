@@ -67,7 +67,6 @@ impl Camera {
         self.projection(aspect).y_axis.y.abs() * height_px * 0.5
     }
 
-    /// Camera-relative position -> clip space.
     /// Where the ray through `ndc` (x right, y down, −1 to 1) of a view of `aspect` meets the
     /// water plane y = `level` (world x, z): `None` at or above the horizon, or past `max_m`.
     pub fn water_point(
@@ -88,6 +87,7 @@ impl Camera {
             .then_some([self.position.x + t * dir.x, self.position.z + t * dir.z])
     }
 
+    /// Camera-relative position -> clip space.
     pub fn view_proj(&self, aspect: f32) -> Mat4 {
         self.projection(aspect) * self.view_rotation()
     }

@@ -252,7 +252,8 @@ impl Renderer {
         let sky_sampler = Sampler::linear(ctx, "sky cube sampler", clamp)?;
         let foam_sampler = Sampler::linear(ctx, "foam sampler (clamp)", clamp)?;
         // The wake is RGBA32F too (the height queries read it exactly): nearest where the
-        // device does not filter it linearly.
+        // device does not filter it linearly, and `wake_at` (common/water.glsl) then filters
+        // it by hand like the ocean images.
         let wake_sampler = if ocean_linear {
             Sampler::linear(ctx, "wake sampler (clamp)", clamp)?
         } else {

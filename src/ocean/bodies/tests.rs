@@ -261,3 +261,30 @@ fn a_thousand_bodies_run_ten_thousand_steps_without_blowing_up() {
         "a body is {worst_depth:.1} m from the mean level"
     );
 }
+
+#[test]
+fn a_driven_boat_floats_on_the_water_not_in_its_own_trough() {
+    // The wake's hull presses the water under it down by up to `wake::DRAFT_M` (1 m), and the
+    // height queries answer with that trough in. Driven at 3 m/s over water that is only its
+    // own static trough, the hull must float as high as the same hull on still water (within
+    // 1 cm), not a trough's depth lower.
+    let boat = Boat {
+        speed_m_s: 3.0,
+        heading_deg: 30.0,
+        anchor: [5.0, -7.0],
+        anchor_time_s: 0.0,
+    };
+    let mut driven = Fleet::new(&[]);
+    driven.bodies.push(Body::driven_boat(&boat, 0.0));
+    let mut trough =
+        |_: usize, xz: [f64; 2], t: f64| [-boat.pressure(boat.position(t), xz) / GRAVITY, 0.0];
+    let sails = run(&mut driven, 20.0, &mut trough);
+    let mut plain = Fleet::new(&[driven.bodies[0].desc]);
+    let floats = run(&mut plain, 20.0, &mut still);
+    let (y_driven, y_plain) = (sails.last().unwrap().1, floats.last().unwrap().1);
+    eprintln!("driven hull {y_driven:.4} m, on still water {y_plain:.4} m");
+    assert!(
+        (y_driven - y_plain).abs() < 0.01,
+        "driven hull at {y_driven:.4} m, the same hull on still water at {y_plain:.4} m"
+    );
+}

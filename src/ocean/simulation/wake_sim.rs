@@ -17,6 +17,14 @@ use crate::ocean::wake::{self, Boat};
 use crate::pass_names as names;
 use crate::shaders;
 
+// Each step's output carries the foam of the image written before it, the previous slot's; the
+// warm-up alternates between this slot and that one. With more than two slots in flight the
+// steps would need to alternate over all of them.
+const _: () = assert!(
+    FRAMES_IN_FLIGHT == 2,
+    "the wake alternates between two slots"
+);
+
 #[repr(C)]
 #[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
 struct SpectrumParams {
@@ -33,6 +41,7 @@ struct SpectrumParams {
 struct SpaceParams {
     boat: [f32; 2],
     course: [f32; 2],
+    shift: [i32; 2],
     dt: f32,
     pressure: f32,
     sigma_length: f32,
@@ -42,7 +51,6 @@ struct SpaceParams {
     sponge_texels: u32,
     n: u32,
     reset: u32,
-    _pad: u32,
 }
 
 #[repr(C)]
@@ -94,6 +102,8 @@ pub struct Wake {
     slot_origins: [Option<[f64; 2]>; FRAMES_IN_FLIGHT],
     /// Per slot: (h, ∂h/∂x, ∂h/∂z, foam) on the grid (a 1×1 image without a boat).
     pub images: Vec<Image>,
+    /// The steps `plan` made last are a warm-up: the state is zeroed before them.
+    reset: bool,
 }
 
 impl Wake {
@@ -129,6 +139,7 @@ impl Wake {
             last: None,
             slot_origins: [None; FRAMES_IN_FLIGHT],
             images,
+            reset: false,
         })
     }
 
@@ -153,7 +164,7 @@ impl Wake {
         if self.last.is_some() {
             return Some(sim.boat);
         }
-        let half = wake::GRID_N as f64 * wake::SPACING_M / 2.0;
+        let half = wake::GRID_SIDE_M / 2.0;
         Some(Boat {
             anchor: [self.origin_m[0] + half, self.origin_m[1] + half],
             anchor_time_s: t_s,
@@ -181,14 +192,21 @@ impl Wake {
             return Vec::new();
         };
         let origin = self.origin_m;
-        let warmup = first || self.last.is_none();
+        // The run's first frame, and after a jump in time longer than the warm-up (a window
+        // minimised for minutes, `--dt 1000`): the warm-up from still water again, the boat
+        // anchored in front of the camera, rather than that many steps in one frame.
+        let jumped = self
+            .last
+            .is_some_and(|(_, last_s)| time_s - last_s > sim.boat.warmup_span_s());
+        let warmup = first || self.last.is_none() || jumped;
+        self.reset = warmup;
         let (mut previous, steps) = match self.last {
-            Some((previous, last_s)) if !first => (
+            Some((previous, last_s)) if !warmup => (
                 previous,
                 wake::steps_since(last_s, time_s, origin, sim.boat.speed_m_s),
             ),
             _ => {
-                let half = wake::GRID_N as f64 * wake::SPACING_M / 2.0;
+                let half = wake::GRID_SIDE_M / 2.0;
                 sim.boat.anchor = [origin[0] + half, origin[1] + half];
                 sim.boat.anchor_time_s = time_s;
                 let steps = sim.boat.warmup(time_s, origin);
@@ -203,7 +221,7 @@ impl Wake {
         self.last = Some((origin, time_s));
         self.slot_origins[slot] = Some(origin);
         let count = steps.len();
-        let other = (slot + 1) % FRAMES_IN_FLIGHT;
+        let other = (slot + FRAMES_IN_FLIGHT - 1) % FRAMES_IN_FLIGHT;
         steps
             .iter()
             .enumerate()
@@ -245,16 +263,10 @@ impl Wake {
             .collect()
     }
 
-    /// Records `steps` (`plan`), zeroing the state first on the run's first submission.
-    pub(super) fn record(
-        &self,
-        rec: &Recorder,
-        timer: &mut Timer,
-        steps: &[WakeStep],
-        first: bool,
-    ) {
+    /// Records `steps` (`plan`), zeroing the state first when they are a warm-up.
+    pub(super) fn record(&self, rec: &Recorder, timer: &mut Timer, steps: &[WakeStep]) {
         if let Some(sim) = &self.sim {
-            sim.record(rec, timer, steps, first);
+            sim.record(rec, timer, steps, self.reset);
         }
     }
 }
@@ -326,7 +338,13 @@ impl WakeSim {
                     &[
                         (0, Bind::Storage(&fft.data, t)),
                         (1, Bind::StorageImage(img, t)),
-                        (2, Bind::StorageImage(&images[(slot + 1) % images.len()], t)),
+                        (
+                            2,
+                            Bind::StorageImage(
+                                &images[(slot + images.len() - 1) % images.len()],
+                                t,
+                            ),
+                        ),
                     ],
                 )
             })
@@ -349,16 +367,16 @@ impl WakeSim {
         SpaceParams {
             boat: step.boat_m.map(|v| v as f32),
             course: u.map(|v| v as f32),
+            shift: step.shift,
             dt: step.dt_s as f32,
             pressure: (step.strength * crate::ocean::spectrum::G * wake::DRAFT_M) as f32,
-            sigma_length: (wake::HULL_LENGTH_M / 4.0) as f32,
-            sigma_beam: (wake::HULL_BEAM_M / 4.0) as f32,
+            sigma_length: wake::HULL_SIGMA_M[0] as f32,
+            sigma_beam: wake::HULL_SIGMA_M[1] as f32,
             spacing: wake::SPACING_M as f32,
             sponge_rate: wake::SPONGE_RATE_PER_S as f32,
             sponge_texels: wake::SPONGE_TEXELS,
             n: wake::GRID_N as u32,
             reset: u32::from(reset),
-            _pad: 0,
         }
     }
 
@@ -395,8 +413,7 @@ impl WakeSim {
                 let params = SpectrumParams {
                     shift: step.shift,
                     dt: step.dt_s as f32,
-                    dk: (2.0 * std::f64::consts::PI / (wake::GRID_N as f64 * wake::SPACING_M))
-                        as f32,
+                    dk: (2.0 * std::f64::consts::PI / wake::GRID_SIDE_M) as f32,
                     depth: self.depth_m.unwrap_or(0.0) as f32,
                     scale: 1.0 / (n * n) as f32,
                     n,
@@ -419,8 +436,8 @@ impl WakeSim {
                         spread: (wake::FOAM_SPREAD_M2_S * out.dt_s / wake::SPACING_M.powi(2))
                             .min(0.25) as f32,
                         churn: (step.strength * wake::churn(self.boat.speed_m_s)) as f32,
-                        sigma_length: (wake::HULL_LENGTH_M / 4.0) as f32,
-                        sigma_beam: (wake::HULL_BEAM_M / 4.0) as f32,
+                        sigma_length: wake::HULL_SIGMA_M[0] as f32,
+                        sigma_beam: wake::HULL_SIGMA_M[1] as f32,
                         n,
                     };
                     rec.push_constants(&self.output.pipeline, &params);

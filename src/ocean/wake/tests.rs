@@ -70,10 +70,40 @@ fn the_grid_moves_by_whole_texels_without_changing_the_field() {
 }
 
 #[test]
+fn a_long_move_brings_still_water_in_not_the_far_edge() {
+    // A bump of water 20 texels in from the grid's −x edge, then the grid moves 40 texels along
+    // +x (past the absorbing layer's 24): the periodic shift would carry the bump round to
+    // texel 256 − 20 on the far side. The water that came in is still, and the bump is gone
+    // with the part of the grid left behind.
+    let n = GRID_N;
+    let mut wake = CpuWake::new([0.0; 2], None);
+    for j in 0..n {
+        for i in 0..n {
+            let d2 = (i as f64 - 20.0).powi(2) + (j as f64 - 128.0).powi(2);
+            wake.h[j * n + i] = 0.5 * (-d2 / 18.0).exp();
+        }
+    }
+    wake.step(0.0, [40.0 * SPACING_M, 0.0], None);
+    let came_in = (0..n)
+        .flat_map(|j| (n - 40..n).map(move |i| (i, j)))
+        .map(|(i, j)| wake.h[j * n + i].abs())
+        .fold(0.0, f64::max);
+    let kept = wake.h.iter().map(|h| h.abs()).fold(0.0, f64::max);
+    assert!(
+        came_in < 1e-12,
+        "the far edge's water came back: {came_in} m"
+    );
+    assert!(
+        kept < 1e-3,
+        "the bump, now off the grid, is still on it: {kept} m"
+    );
+}
+
+#[test]
 fn a_hull_at_rest_sinks_the_water_by_its_draft() {
     // Hydrostatics: under a steady pressure p0 the water settles at −p0/(ρg) = −DRAFT_M. The
     // patch is switched on at t = 0 and its waves leave through the absorbing layer.
-    let centre = GRID_N as f64 * SPACING_M / 2.0;
+    let centre = GRID_SIDE_M / 2.0;
     let boat = Boat {
         speed_m_s: 1e-9,
         heading_deg: 0.0,
@@ -134,7 +164,7 @@ fn warmup_ends_at_the_first_frame_in_short_steps() {
         assert!(dt > 0.0 && dt <= max_step_s(3.0) + 1e-12);
         // The grid stays centred on the boat within a texel.
         let p = boat.position(s.to_s);
-        let half = GRID_N as f64 * SPACING_M / 2.0;
+        let half = GRID_SIDE_M / 2.0;
         assert!((s.origin[0] + half - p[0]).abs() <= SPACING_M);
     }
     let p = boat.position(5.0 + 2.0);
