@@ -30,10 +30,6 @@ vec4 field_planes_at(uint c, uint first, vec2 p, uint n) {
 // (∂Dx/∂x, ∂Dz/∂z, ∂Dx/∂z) of cascade c at fractional texel position p (planes 2 and 3).
 vec3 field_derivatives_at(uint c, vec2 p, uint n) { return field_planes_at(c, 2u, p, n).yzw; }
 
-// The Jacobian of the choppy surface from its summed derivatives d = λ(Dxx, Dzz, Dxz)
-// (Tessendorf 2001, eq. 45).
-float surface_jacobian(vec3 d) { return (1.0 + d.x) * (1.0 + d.y) - d.z * d.z; }
-
 // (Dx, h, Dz) of cascade c at fractional texel position p (planes 0 and 1; Dx and Dz before
 // choppiness).
 vec3 field_displacement_at(uint c, vec2 p, uint n) { return field_planes_at(c, 0u, p, n).xyz; }

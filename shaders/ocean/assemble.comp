@@ -11,7 +11,10 @@
 //   foam = max(foam_prev · exp(−dt / decay), clamp((threshold − J_s) · gain, 0, 1))
 // foam_prev is the previous slot's layer 0 at the same texel: foam lives at rest positions, so it
 // rides the choppy displacement with the water it formed in. `surface_jacobian` in
-// src/ocean/cpu.rs is the CPU reference.
+// src/ocean/cpu.rs is the CPU reference. It also writes each cascade's sign-corrected
+// derivatives (∂Dx/∂x, ∂Dz/∂z, ∂Dx/∂z, 0) before choppiness, as `field_derivatives_at` reads
+// them at a texel, for foam.comp: four image loads a bilinear lookup instead of eight buffer
+// reads and their index and sign arithmetic (only when the foam step runs).
 #include "common/ocean.glsl"
 #include "shared.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -21,6 +24,7 @@ layout(std430, set = 0, binding = 0) readonly buffer Fields { vec2 fields[]; };
 layout(set = 0, binding = 1, rgba32f) uniform writeonly image2DArray displacement;
 layout(set = 0, binding = 2, rgba32f) uniform writeonly image2DArray normals;
 layout(set = 0, binding = 3, rgba32f) uniform readonly image2DArray previous_normals;
+layout(set = 0, binding = 4, rgba32f) uniform writeonly image2DArray derivatives;
 layout(push_constant) uniform Params {
     vec4 patch_m; // side of each cascade's patch (m)
     float choppiness;
@@ -30,6 +34,7 @@ layout(push_constant) uniform Params {
     float foam_gain;
     uint n;
     uint cascades;
+    uint derivatives; // 1: write `derivatives` (the foam step runs)
 } params;
 
 void main() {
@@ -63,6 +68,9 @@ void main() {
     }
 
     imageStore(displacement, texel, vec4(l * p0.x, p0.y, l * p1.x, 0.0));
+    if (params.derivatives != 0u) {
+        imageStore(derivatives, texel, vec4(p2.y, p3.x, p3.y, 0.0));
+    }
     // p1.y = ∂h/∂x, p2.x = ∂h/∂z, p2.y = ∂Dx/∂x, p3.x = ∂Dz/∂z, p3.y = ∂Dx/∂z.
     float j = max(jacobian, NORMAL_MIN_JACOBIAN);
     vec2 slope = vec2(p1.y * (1.0 + l * p3.x) - p2.x * l * p3.y,

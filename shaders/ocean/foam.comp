@@ -4,7 +4,7 @@
 // images, so the foam rides the choppy displacement with the water it lies on. Per texel
 // (foam = (A, S): A the whitecaps' foam, S the residual foam they leave):
 //   1. the surface's Jacobian J_s from every cascade's derivatives at the texel's rest position
-//      (bilinear in each cascade's lattice), and the whitecap source
+//      (bilinear in each cascade's lattice, from the image assemble.comp writes), and the whitecap source
 //      clamp((threshold − J_s)·gain, 0, 1), as assemble.comp computes it on the lattice; and
 //      the foam the sea makes where it meets land and things: the rollers of the surf's
 //      bores where the shore's breaking criterion holds (common/shore.glsl), and a band
@@ -21,8 +21,9 @@
 #include "shared.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;
 
-layout(std430, set = 0, binding = 0) readonly buffer Fields { vec2 fields[]; };
-#include "common/fields.glsl"
+// Per cascade (layer): (∂Dx/∂x, ∂Dz/∂z, ∂Dx/∂z, 0) before choppiness, sign-corrected
+// (assemble.comp).
+layout(set = 0, binding = 0, rgba32f) uniform readonly image2DArray derivatives;
 
 // Where a level lies (src/ocean/simulation/foam_sim.rs `GpuLevel`); texel i's centre is at
 // origin + (i + ½)·h.
@@ -85,6 +86,21 @@ vec2 previous_at(uint l, vec2 q, out float inside) {
     vec2 s01 = imageLoad(previous, ivec3(a.x, b.y, l)).xy;
     vec2 s11 = imageLoad(previous, ivec3(b, l)).xy;
     return mix(mix(s00, s10, f.x), mix(s01, s11, f.x), f.y);
+}
+
+// Cascade c's derivatives at a fractional texel position p (periodic bilinear; p ≥ 0; n a
+// power of two): the same values as `field_derivatives_at` on the FFT output.
+vec3 derivatives_at(uint c, vec2 p, uint n) {
+    vec2 f = fract(p);
+    uint wrap = n - 1u;
+    ivec2 a = ivec2(uvec2(floor(p)) & wrap);
+    ivec2 b = ivec2((uvec2(a) + 1u) & wrap);
+    int layer = int(c);
+    vec3 d00 = imageLoad(derivatives, ivec3(a, layer)).xyz;
+    vec3 d10 = imageLoad(derivatives, ivec3(b.x, a.y, layer)).xyz;
+    vec3 d01 = imageLoad(derivatives, ivec3(a.x, b.y, layer)).xyz;
+    vec3 d11 = imageLoad(derivatives, ivec3(b, layer)).xyz;
+    return mix(mix(d00, d10, f.x), mix(d01, d11, f.x), f.y);
 }
 
 // A hash of a lattice point (0–1).
@@ -153,7 +169,7 @@ void main() {
     for (uint c = 0u; c < params.cascades; ++c) {
         vec2 base = (c & 1u) == 0u ? (c < 2u ? level.base01.xy : level.base23.xy)
                                    : (c < 2u ? level.base01.zw : level.base23.zw);
-        d += field_derivatives_at(c, base + i * level.steps[c], params.n);
+        d += derivatives_at(c, base + i * level.steps[c], params.n);
     }
     float source = clamp((params.threshold - surface_jacobian(params.choppiness * d)) * params.gain,
                          0.0, 1.0);

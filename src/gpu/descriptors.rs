@@ -84,6 +84,7 @@ pub enum Order {
 }
 
 /// One binding of a [`BoundSet`].
+#[derive(Clone, Copy)]
 pub enum Bind<'a> {
     /// A uniform block the host writes before each submission (`Order::Host`).
     Uniform(&'a Buffer),

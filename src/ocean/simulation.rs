@@ -179,19 +179,21 @@ impl Kernel {
         Kernel::new(ctx, name, spirv, &bindings, push_size)
     }
 
-    /// One set per slot for an `image_writer` kernel: `input(slot)` at binding 0 and
-    /// `images(slot)` at 1–3.
+    /// One set per slot for an `image_writer` kernel: `input(slot)` at binding 0,
+    /// `images(slot)` at 1–3 and `more` (the same in every slot) after them.
     fn slot_sets<'a>(
         &self,
         ctx: &Arc<Context>,
         name: &str,
         input: impl Fn(usize) -> Bind<'a>,
         images: &SlotImages,
+        more: &[(u32, Bind<'a>)],
     ) -> GpuResult<Vec<BoundSet>> {
         (0..FRAMES_IN_FLIGHT)
             .map(|slot| {
                 let mut binds = vec![(0, input(slot))];
                 binds.extend(images.binds(slot));
+                binds.extend(more.iter().cloned());
                 BoundSet::new(
                     ctx,
                     &self.set_layout,
@@ -294,6 +296,9 @@ pub struct Simulation {
     /// Per slot: (−n_x/n_y, −n_z/n_y, J, foam) of the choppy surface's exact normal, one layer
     /// per cascade; J is the cascade's own, the foam (layer 0 only) the whole surface's.
     pub normals: Vec<Image>,
+    /// Each cascade's (∂Dx/∂x, ∂Dz/∂z, ∂Dx/∂z, 0) before choppiness, one layer per cascade:
+    /// written by assemble, read by the foam step after it (FFT only; 1×1 for Gerstner waves).
+    derivatives: Image,
     /// Per slot: the foam near the camera (whitecap foam, residual foam, 0, 0), one layer per
     /// level of `foam_levels` (`foam_sim.rs`; FFT only, a 1×1 image for Gerstner waves).
     pub foam: Vec<Image>,
@@ -411,6 +416,10 @@ impl Simulation {
                 },
             )
         };
+        // Each cascade's derivatives, written by assemble and read by the foam step in the same
+        // submission (FFT waves only: 1×1 for Gerstner waves).
+        let side = if settings.waves == Waves::Fft { n } else { 1 };
+        let derivatives = image("ocean derivatives".into(), IMAGE_FORMAT, side, layers)?;
         let mut displacement = Vec::new();
         let mut normals = Vec::new();
         let mut foam = Vec::new();
@@ -431,7 +440,14 @@ impl Simulation {
             image(name, IMAGE_FORMAT, side, 1)
         })?;
         let (model, max_displacement_m, sea_moments) = match &settings.waves {
-            Waves::Fft => boxed(FftModel::new(ctx, settings, &cascades, &images, &foam)?),
+            Waves::Fft => boxed(FftModel::new(
+                ctx,
+                settings,
+                &cascades,
+                &images,
+                &derivatives,
+                &foam,
+            )?),
             Waves::Gerstner(w) => boxed(GerstnerModel::new(ctx, w, &images)?),
         };
         Ok(Simulation {
@@ -445,6 +461,7 @@ impl Simulation {
             origin_m: [0.0, 0.0],
             displacement,
             normals,
+            derivatives,
             foam,
             foam_levels,
             previous_foam_levels: None,
@@ -537,6 +554,7 @@ impl Simulation {
                 .chain(&self.normals)
                 .chain(&self.foam)
                 .chain(&self.wake.images)
+                .chain([&self.derivatives])
                 .cloned()
                 .collect()
         } else {

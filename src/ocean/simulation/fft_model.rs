@@ -43,6 +43,8 @@ struct AssembleParams {
     foam_gain: f32,
     n: u32,
     cascades: u32,
+    /// 1: write each cascade's derivatives for the foam step (only when it runs).
+    derivatives: u32,
 }
 
 pub(super) struct FftModel {
@@ -72,6 +74,7 @@ impl FftModel {
         settings: &OceanSettings,
         cascades: &[Cascade],
         images: &SlotImages,
+        derivatives: &Image,
         foam: &[Image],
     ) -> anyhow::Result<(FftModel, f64, SeaMoments)> {
         let fft = GpuFft::new(ctx, settings.fft_size, 4 * cascades.len())?;
@@ -85,10 +88,13 @@ impl FftModel {
             &[storage, storage, storage],
             std::mem::size_of::<EvolveParams>(),
         )?;
-        let assemble = Kernel::image_writer(
+        // An image writer's bindings (0–3), and the derivatives it writes for the foam (4).
+        let image = vk::DescriptorType::STORAGE_IMAGE;
+        let assemble = Kernel::new(
             ctx,
             names::OCEAN_ASSEMBLE,
             shaders::OCEAN_ASSEMBLE_COMP,
+            &[storage, image, image, image, image],
             std::mem::size_of::<AssembleParams>(),
         )?;
         let t = Order::Tracked;
@@ -107,6 +113,7 @@ impl FftModel {
             names::OCEAN_ASSEMBLE,
             |_| Bind::Storage(&fft.data, t),
             images,
+            &[(4, Bind::StorageImage(derivatives, t))],
         )?;
         let wind = Wind {
             dir: wind_vector(&settings.sea),
@@ -116,7 +123,7 @@ impl FftModel {
             .spray
             .then(|| SpraySim::new(ctx, &fft.data, foam, wind))
             .transpose()?;
-        let foam = FoamSim::new(ctx, &fft.data, foam, wind)?;
+        let foam = FoamSim::new(ctx, derivatives, foam, wind)?;
         let model = FftModel {
             foam,
             spray,
@@ -224,6 +231,7 @@ impl WaveModel for FftModel {
             foam_gain: foam::GAIN,
             n: f.n,
             cascades: f.layers,
+            derivatives: u32::from(f.foam.count > 0),
         };
         let (evolve, assemble) = (&self.evolve, &self.assemble);
         scope(timer, rec, names::OCEAN_EVOLVE, || {

@@ -77,7 +77,7 @@ pub(super) struct FoamSim {
     kernel: Kernel,
     /// Per slot: the levels' placement, written by the host.
     buffers: SlotUniforms,
-    /// Per slot: reads the FFT output and the other slot's foam, writes this slot's.
+    /// Per slot: reads the cascades' derivatives and the other slot's foam, writes this slot's.
     sets: Vec<BoundSet>,
     wind: Wind,
     /// Steps recorded so far (the spreading alternates its diagonal with them).
@@ -85,16 +85,15 @@ pub(super) struct FoamSim {
 }
 
 impl FoamSim {
-    /// The kernel and its sets over `fields` (the inverse FFT's output) and the per-slot foam
-    /// images `foam`.
+    /// The kernel and its sets over `derivatives` (the cascades' derivatives, from assemble)
+    /// and the per-slot foam images `foam`.
     pub(super) fn new(
         ctx: &Arc<Context>,
-        fields: &Buffer,
+        derivatives: &Image,
         foam: &[Image],
         wind: Wind,
     ) -> anyhow::Result<FoamSim> {
-        let (storage, uniform, image) = (
-            vk::DescriptorType::STORAGE_BUFFER,
+        let (uniform, image) = (
             vk::DescriptorType::UNIFORM_BUFFER,
             vk::DescriptorType::STORAGE_IMAGE,
         );
@@ -102,7 +101,7 @@ impl FoamSim {
             ctx,
             names::OCEAN_FOAM,
             shaders::OCEAN_FOAM_COMP,
-            &[storage, uniform, image, image],
+            &[image, uniform, image, image],
             std::mem::size_of::<FoamParams>(),
         )?;
         let slots = foam.len();
@@ -126,7 +125,7 @@ impl FoamSim {
                     &kernel.set_layout,
                     &format!("{} set slot {slot}", names::OCEAN_FOAM),
                     &[
-                        (0, Bind::Storage(fields, t)),
+                        (0, Bind::StorageImage(derivatives, t)),
                         (1, Bind::Uniform(&buffers[slot])),
                         (2, Bind::StorageImage(&foam[slot], t)),
                         (3, Bind::StorageImage(&foam[previous], t)),
@@ -155,7 +154,8 @@ impl FoamSim {
         self.buffers.write(f.slot, bytemuck::bytes_of(&block));
     }
 
-    /// Records the foam step of frame `f` (after assemble: it reads the same FFT output).
+    /// Records the foam step of frame `f` (after assemble: it reads the derivatives assemble
+    /// wrote).
     pub(super) fn record(&self, rec: &Recorder, timer: &mut Timer, f: &ModelFrame) {
         let levels = f.foam.count as u32;
         if levels == 0 {

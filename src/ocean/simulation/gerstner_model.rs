@@ -78,6 +78,7 @@ impl GerstnerModel {
             names::OCEAN_GERSTNER,
             |slot| Bind::Storage(&buffers[slot], Order::Host),
             images,
+            &[],
         )?;
         // Each wave moves a point by at most a vertically and Q·a sideways.
         let max_displacement_m = waves
