@@ -279,8 +279,18 @@ pub(crate) fn bilinear<T: Copy + Into<f64>>(
 
 /// Unnormalized 2D inverse DFT in place (rows, then columns).
 pub fn inverse_2d(data: &mut [Complex64], n: usize) {
+    fft_2d(data, n, true);
+}
+
+/// Unnormalized 2D DFT of an N × N row-major array in place (rows, then columns; `inverse`:
+/// e^{+2πi}, else e^{−2πi}).
+pub fn fft_2d(data: &mut [Complex64], n: usize, inverse: bool) {
     let mut planner = FftPlanner::<f64>::new();
-    let fft = planner.plan_fft_inverse(n);
+    let fft = if inverse {
+        planner.plan_fft_inverse(n)
+    } else {
+        planner.plan_fft_forward(n)
+    };
     for row in data.chunks_exact_mut(n) {
         fft.process(row);
     }

@@ -27,7 +27,6 @@
 //! 2013, *Phys. Rev. Lett.* 110, 214503).
 
 use rustfft::num_complex::Complex64;
-use rustfft::FftPlanner;
 
 use super::spectrum::G;
 
@@ -328,28 +327,7 @@ impl CpuWake {
     }
 }
 
-/// 2D FFT of an N × N row-major array in place (unnormalized; `inverse`: e^{+2πi}).
-pub fn fft2(z: &mut [Complex64], n: usize, inverse: bool) {
-    let mut planner = FftPlanner::<f64>::new();
-    let fft = if inverse {
-        planner.plan_fft_inverse(n)
-    } else {
-        planner.plan_fft_forward(n)
-    };
-    for row in z.chunks_mut(n) {
-        fft.process(row);
-    }
-    let mut column = vec![Complex64::new(0.0, 0.0); n];
-    for i in 0..n {
-        for j in 0..n {
-            column[j] = z[j * n + i];
-        }
-        fft.process(&mut column);
-        for j in 0..n {
-            z[j * n + i] = column[j];
-        }
-    }
-}
+pub use super::cpu::fft_2d as fft2;
 
 #[cfg(test)]
 mod tests;
