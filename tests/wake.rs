@@ -263,6 +263,30 @@ fn a_boat_at_3_m_s_leaves_a_kelvin_wake() {
     let correlation = ab / (aa * bb).sqrt();
     println!("correlation in the boat's frame 3 s apart: {correlation:.4}");
     assert!(correlation > 0.95, "{correlation}");
+
+    // A jump in time longer than the warm-up (60 s, `--dt 10 --time-scale 6`; the warm-up
+    // spans 40 s at 3 m/s) runs the warm-up again, the
+    // boat anchored in front of the camera once more: the same wake as the first frame's
+    // (stepping through the jump instead, the boat would have left the grid 180 m behind).
+    let jumped = dumped(
+        "wake-jump",
+        &[
+            "--frames",
+            "2",
+            "--dt",
+            "10",
+            "--time-scale",
+            "6",
+            "--boat",
+            "3,0",
+        ],
+    );
+    assert!((jumped.t - first.t - 60.0).abs() < 1e-9);
+    let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();
+    let same =
+        dot(&first.h, &jumped.h) / (dot(&first.h, &first.h) * dot(&jumped.h, &jumped.h)).sqrt();
+    println!("after a 60 s jump, correlation with the first frame's wake: {same:.6}");
+    assert!(same > 0.999, "{same}");
 }
 
 /// The newest answers after `frames` frames 1/60 s apart from `t0_s` of a simulation with
