@@ -40,14 +40,19 @@ void main() {
     float k = params.dk * length(vec2(ks));
     float kd = params.depth > 0.0 ? tanh(min(k * params.depth, 20.0)) : 1.0;
     float w = sqrt(G * k * kd);
-    float c = cos(w * params.dt);
-    float s = sin(w * params.dt);
+    // (cos, sin) normalized, and the shift's phase too: Vulkan lets sin and cos be off by 2^-11,
+    // and a rotation whose cos² + sin² is not 1 damps or grows every mode at every step. On
+    // SwiftShader the wake's RMS came out 1.7 % low after the first frame's 400 steps, 2.6 %
+    // off lavapipe's; normalized, 0.2 % (tools/swiftshader compares the dumps).
+    vec2 cs = normalize(vec2(cos(w * params.dt), sin(w * params.dt)));
+    float c = cs.x;
+    float s = cs.y;
     float to_h = w > 0.0 ? w / G * s : 0.0;
     float to_phi = w > 0.0 ? G / w * s : G * params.dt;
     // Turns of the shift's phase, exact in integers (N is a power of two: & is mod N).
     int turns = (ks.x * params.shift.x + ks.y * params.shift.y) & int(n - 1u);
     float phase = 2.0 * PI * float(turns) / float(n);
-    vec2 e = vec2(cos(phase), sin(phase));
+    vec2 e = normalize(vec2(cos(phase), sin(phase)));
     vec2 zk = cmul(z[a], e);
     vec2 zm = cmul(z[b], conj2(e));
     vec2 hk = 0.5 * (zk + conj2(zm));

@@ -32,5 +32,7 @@ sweep_runs() {
     "$fn" "${small[@]}" --preset storm --quality medium
     "$fn" "${small[@]}" --preset calm --camera=-140,-3,-860 --look-at=-150,3,-860
     "$fn" "${small[@]}" --preset calm --wind-speed 1 --camera=-102,0,-582 --look-at=-60,0,-600
+    # The height queries' readback, floating bodies and a boat's wake (its 400 warm-up steps).
+    "$fn" "${small[@]}" --bodies 4 --boat 3,30
     "$fn" bench fft --sizes 64,128 --runs 3
 }
