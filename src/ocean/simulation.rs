@@ -367,6 +367,29 @@ fn boxed<M: WaveModel + 'static>(
     (Box::new(model), bound, sea)
 }
 
+/// The simulation's and the foam's image formats, with the features their uses need.
+fn require_image_formats(ctx: &Context) -> GpuResult<()> {
+    ctx.require_formats(&[
+        FormatUse {
+            format: IMAGE_FORMAT,
+            // Written by the kernels, sampled by the water, cleared, read back (--dump, --stats).
+            features: vk::FormatFeatureFlags::STORAGE_IMAGE
+                | vk::FormatFeatureFlags::SAMPLED_IMAGE
+                | vk::FormatFeatureFlags::TRANSFER_SRC
+                | vk::FormatFeatureFlags::TRANSFER_DST,
+            what: "the ocean simulation images",
+        },
+        FormatUse {
+            format: FOAM_FORMAT,
+            features: vk::FormatFeatureFlags::STORAGE_IMAGE
+                | vk::FormatFeatureFlags::SAMPLED_IMAGE
+                | vk::FormatFeatureFlags::SAMPLED_IMAGE_FILTER_LINEAR
+                | vk::FormatFeatureFlags::TRANSFER_DST,
+            what: "the foam images",
+        },
+    ])
+}
+
 impl Simulation {
     pub fn new(ctx: &Arc<Context>, settings: &OceanSettings) -> anyhow::Result<Simulation> {
         let n = settings.fft_size;
@@ -377,24 +400,8 @@ impl Simulation {
         );
         let cascades = settings.cascade_list();
         let layers = cascades.len() as u32;
-        ctx.require_formats(&[FormatUse {
-            format: IMAGE_FORMAT,
-            // Written by the kernels, sampled by the water, cleared, read back (--dump, --stats).
-            features: vk::FormatFeatureFlags::STORAGE_IMAGE
-                | vk::FormatFeatureFlags::SAMPLED_IMAGE
-                | vk::FormatFeatureFlags::TRANSFER_SRC
-                | vk::FormatFeatureFlags::TRANSFER_DST,
-            what: "the ocean simulation images",
-        }])?;
+        require_image_formats(ctx)?;
         let foam_levels = foam_levels_for(settings);
-        ctx.require_formats(&[FormatUse {
-            format: FOAM_FORMAT,
-            features: vk::FormatFeatureFlags::STORAGE_IMAGE
-                | vk::FormatFeatureFlags::SAMPLED_IMAGE
-                | vk::FormatFeatureFlags::SAMPLED_IMAGE_FILTER_LINEAR
-                | vk::FormatFeatureFlags::TRANSFER_DST,
-            what: "the foam images",
-        }])?;
         let image = |name: String, format: vk::Format, side: usize, layers: u32| {
             Image::new(
                 ctx,
@@ -507,6 +514,18 @@ impl Simulation {
         patch_sizes(&self.cascades)
     }
 
+    /// Every image the simulation writes (the first submission initializes them).
+    fn images(&self) -> Vec<Image> {
+        self.displacement
+            .iter()
+            .chain(&self.normals)
+            .chain(&self.foam)
+            .chain(&self.wake.images)
+            .chain([&self.derivatives])
+            .cloned()
+            .collect()
+    }
+
     /// Submits frame `value`'s simulation at time `time_s` into `slot` on the compute queue,
     /// with the Gerstner window where [`Simulation::place_window`] last put it and the foam
     /// meeting `scene` (its surf and the objects in the water), after the
@@ -548,18 +567,7 @@ impl Simulation {
             window_m: self.settings.patch_size_m,
         };
         let first = !self.initialized;
-        let init: Vec<Image> = if first {
-            self.displacement
-                .iter()
-                .chain(&self.normals)
-                .chain(&self.foam)
-                .chain(&self.wake.images)
-                .chain([&self.derivatives])
-                .cloned()
-                .collect()
-        } else {
-            Vec::new()
-        };
+        let init = if first { self.images() } else { Vec::new() };
         self.initialized = true;
         let warmup = if first {
             self.warmup_steps(&frame)
