@@ -18,6 +18,12 @@
 // Needs common/frame.glsl, common/terrain.glsl and common/underwater.glsl (refracted_sun) included
 // before it (no include guards).
 
+// Whether the pipeline casts shadows at all (`--shadows`, fixed for the run: the water's and
+// the terrain's pipelines are specialized by it, src/render/passes). `frame.light.w == 0`
+// alone returned early but did not save the work on Mesa 22.3's lavapipe, which runs both
+// sides of a branch: the casts cost 7.5 ms a frame at --quality low with the shadows off.
+layout(constant_id = 4) const bool SHADOWS = true;
+
 const int TERRAIN_SHADOW_STEPS = 32;
 // The sun's angular radius, SUN_ANGULAR_RADIUS of common/sky.glsl (Allen: 0.533° across).
 const float SUN_SHADOW_RADIUS = 0.00465;
@@ -135,7 +141,7 @@ float island_share(vec3 p, vec3 l) {
 // term).
 float sun_shadow(vec3 p, int skip) {
     vec3 l = frame.sun_dir.xyz;
-    if (frame.light.w == 0.0 || l.y <= 0.0) {
+    if (!SHADOWS || frame.light.w == 0.0 || l.y <= 0.0) {
         return 1.0;
     }
     float share = 1.0;
@@ -161,7 +167,7 @@ float sun_shadow(vec3 p, int skip) {
 // than the light's path, darkens it in full (the island's share is taken once, at `p`).
 vec2 water_shadow(vec3 p) {
     vec3 l = frame.sun_dir.xyz;
-    if (frame.light.w == 0.0 || l.y <= 0.0) {
+    if (!SHADOWS || frame.light.w == 0.0 || l.y <= 0.0) {
         return vec2(1.0);
     }
     float island = island_share(p, l);

@@ -21,6 +21,12 @@
 // view (src/render/passes/terrain.rs), which sees the sea floor, even without them, and paid
 // 0.7 ms a frame for them at --quality low on lavapipe (which runs untaken branches).
 layout(constant_id = 2) const bool TERRAIN_MATERIALS = true;
+// Whether the pipeline draws pixels seen from under the water: the main view's when the camera
+// is below the surface or at it (src/render/passes/terrain.rs picks the pipeline by the
+// camera's side, as the water does); the reflection, the refraction and the main view from
+// above never do (the reflection's and the refraction's terrain paid about 1 ms a frame for
+// the untaken branch at --quality low on lavapipe).
+layout(constant_id = 5) const bool TERRAIN_UNDERWATER = true;
 
 layout(location = 0) in vec3 in_rel_pos;
 layout(location = 1) in vec3 in_world;
@@ -123,7 +129,8 @@ void main() {
 #ifdef TERRAIN_CAUSTICS
     // The refraction view, or the main view from under the water (above it, the main view's
     // drowned terrain lies under the water's surface); not with --caustics off.
-    bool seen_drowned = (pass.view != 0u || pixel_underwater()) && frame.underwater.z > 0.5;
+    bool seen_drowned = (pass.view != 0u || (TERRAIN_UNDERWATER && pixel_underwater()))
+                        && frame.underwater.z > 0.5;
     if (below > 0.0 && sun_share > 0.0 && seen_drowned) {
         // The point relative to the water grid's centre (camera-relative, as the water's).
         vec2 xz = in_rel_pos.xz + VIEW.eye.xz - frame.views[0].eye.xz + frame.water.xy;
@@ -146,7 +153,7 @@ void main() {
     // Below the water: light attenuated on its way down (Beer-Lambert, depth below the surface).
     vec3 down = exp(-below * ABSORPTION_PER_M);
     colour *= down;
-    if (pass.view == 0u && pixel_underwater()) {
+    if (TERRAIN_UNDERWATER && pass.view == 0u && pixel_underwater()) {
         vec3 dir = in_rel_pos / dist;
         vec3 seen = underwater_fog(colour, blurred * down, dir, dist);
 #ifdef TERRAIN_CAUSTICS

@@ -54,7 +54,14 @@ vec4 ocean_texture(sampler2DArray images, vec3 uv) {
 // The wake's (h, ∂h/∂x, ∂h/∂z, foam) at a point `xz` metres from the water grid's centre
 // (common/frame.glsl's `wake_field`, bilinear as the height queries read it); zero off its grid
 // (its absorbing edge has already taken the wake to zero there) and without a boat.
+// WAKE: the run has a boat (`--boat`; src/render/passes/water.rs specializes the water's
+// pipelines by it). Without one the lookups are left out, not multiplied by frame.wake.w = 0:
+// lavapipe paid 0.5 ms a frame at --quality low for the three of them.
+layout(constant_id = 7) const bool WAKE = true;
 vec4 wake_at(vec2 xz) {
+    if (!WAKE) {
+        return vec4(0.0);
+    }
     vec2 uv = frame.wake.xy + xz * frame.wake.z;
     float inside = step(0.0, uv.x) * step(uv.x, 1.0) * step(0.0, uv.y) * step(uv.y, 1.0);
     return frame.wake.w * inside * ocean_texture(wake_field, vec3(uv, 0.0));

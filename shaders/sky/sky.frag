@@ -10,6 +10,10 @@
 #include "common/sky.glsl"
 #include "common/underwater.glsl"
 
+// Whether this pipeline draws the main view, the one view that can look from under the water
+// (src/render/passes/sky.rs): the reflection's leaves the branch out (lavapipe runs both sides).
+layout(constant_id = 0) const bool SKY_UNDERWATER = true;
+
 layout(location = 0) in vec2 in_uv;
 layout(location = 1) in vec2 in_ndc;
 layout(location = 0) out vec4 out_colour;
@@ -20,7 +24,7 @@ void main() {
         return;
     }
     vec3 dir = view_ray(in_ndc);
-    if (pass.view == 0u && pixel_underwater()) {
+    if (SKY_UNDERWATER && pass.view == 0u && pixel_underwater()) {
         // Under the water nothing is endless but the water itself, and the sun's light it
         // scatters (the light shafts).
         out_colour = target_colour(water_inscatter(dir) + sun_shafts(dir, 1e4));

@@ -348,7 +348,8 @@ pub struct Cli {
 
     /// Caustics: the sun focused on the sea floor by the waves, in the shallows seen from above
     /// and from under the water, and the light shafts under the water (README, Rendering,
-    /// Caustics; Under the water). [default: on]
+    /// Caustics; Under the water). [default: on; at --quality low not in the shallows seen
+    /// from above, unless given]
     #[arg(
         long,
         global = true,
@@ -507,6 +508,9 @@ impl Cli {
                 as f32,
             shadows: self.shadows.map_or(quality.shadows, |s| s == Switch::On),
             caustics: self.caustics != Some(Switch::Off),
+            refraction_caustics: self
+                .caustics
+                .map_or(quality.refraction_caustics, |s| s == Switch::On),
             dudv: self.dudv.clone(),
             skybox: self.skybox.clone(),
             background: self.background,

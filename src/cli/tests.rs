@@ -40,3 +40,27 @@ fn screenshot_every_needs_a_headless_screenshot() {
     let zero = Cli::try_parse_from(["vkocean", "--headless", "--screenshot-every", "0"]);
     assert!(zero.is_err(), "0 frames apart is refused");
 }
+
+/// `--shadows` and the caustics in the refraction view follow the quality level unless given:
+/// off at low (what they cost lavapipe there, README), on at medium and high; `--caustics off`
+/// takes the caustics from every view, `--caustics on` puts them in the refraction at low too.
+#[test]
+fn shadows_and_the_refraction_caustics_follow_the_quality_unless_given() {
+    let scene = |args: &[&str]| {
+        let mut all = vec!["vkocean", "--headless"];
+        all.extend_from_slice(args);
+        let scene = Cli::parse_from(all).settings().unwrap().scene;
+        (scene.shadows, scene.caustics, scene.refraction_caustics)
+    };
+    assert_eq!(scene(&["--quality", "low"]), (false, true, false));
+    assert_eq!(scene(&["--quality", "medium"]), (true, true, true));
+    assert_eq!(scene(&["--quality", "high"]), (true, true, true));
+    assert_eq!(
+        scene(&["--quality", "low", "--caustics", "on", "--shadows", "on"]),
+        (true, true, true)
+    );
+    assert_eq!(
+        scene(&["--quality", "high", "--caustics", "off", "--shadows", "off"]),
+        (false, false, false)
+    );
+}

@@ -125,6 +125,9 @@ pub struct SceneSettings {
     /// `--caustics`: the sun focused on the sea floor, and the light shafts
     /// (shaders/common/caustics.glsl).
     pub caustics: bool,
+    /// The caustics in the refraction view too (the floor seen from above through the water):
+    /// `--caustics on`, or not given at medium and high (`Quality::refraction_caustics`).
+    pub refraction_caustics: bool,
     /// `--dudv FILE.png` instead of the generated map.
     pub dudv: Option<PathBuf>,
     /// `--skybox DIR` (six PNG faces) instead of the analytic sky.
@@ -179,6 +182,7 @@ impl Default for SceneSettings {
             cloud_cover: 0.0,
             shadows: true,
             caustics: true,
+            refraction_caustics: true,
             dudv: None,
             skybox: None,
             background: None,

@@ -248,6 +248,10 @@ impl Renderer {
             geometry: Geometry::resolve(settings.geometry),
             cascades: ocean.cascades,
             manual_filter: !ocean_linear,
+            shadows: settings.shadows,
+            refraction_caustics: settings.caustics && settings.refraction_caustics,
+            // 1×1 without a boat (`Simulation::wake`).
+            wake: ocean.wake.iter().any(|image| image.extent().width > 1),
         };
         let sky_sampler = Sampler::linear(ctx, "sky cube sampler", clamp)?;
         let foam_sampler = Sampler::linear(ctx, "foam sampler (clamp)", clamp)?;

@@ -43,6 +43,10 @@ pub struct Quality {
     /// The sun's shadows (`--shadows`): off at low, where the island's ray march cost the
     /// scene pass twice its time on lavapipe (README, Shadows).
     pub shadows: bool,
+    /// The caustics in the refraction view, the floor seen from above through the water
+    /// (`--caustics` not given): off at low, where they cost 2 ms a frame on lavapipe in a
+    /// quarter-size picture the waves then distort. The view from under the water keeps them.
+    pub refraction_caustics: bool,
 }
 
 pub fn quality_level(q: QualityArg) -> Quality {
@@ -59,6 +63,7 @@ pub fn quality_level(q: QualityArg) -> Quality {
         tess_edge_px,
         terrain_grid,
         shadows: q != QualityArg::Low,
+        refraction_caustics: q != QualityArg::Low,
     }
 }
 

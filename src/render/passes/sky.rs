@@ -7,7 +7,7 @@ use std::sync::Arc;
 
 use ash::vk;
 
-use super::{bind_scene, scene_layout, scene_pipeline, Depth, PerTarget};
+use super::{bind_scene, scene_layout, scene_pipeline, Depth, PerTarget, SceneTarget};
 use crate::gpu::oneshot::upload_image_with;
 use crate::gpu::{
     Bindings, BoundSet, Context, DescriptorSetLayout, GpuResult, GraphicsDesc, Image, ImageDesc,
@@ -95,6 +95,10 @@ impl SkyPass {
                         ),
                         (vk::ShaderStageFlags::FRAGMENT, shaders::SKY_SKY_FRAG),
                     ],
+                    // sky.frag's SKY_UNDERWATER: only the main view can see from under the
+                    // water (the reflection's sky paid 1.6 ms a frame at --quality low on
+                    // lavapipe for the untaken branch).
+                    constants: &[u32::from(matches!(target, SceneTarget::Display(_)))],
                     ..Default::default()
                 },
                 Depth::Background,

@@ -57,8 +57,16 @@ impl TerrainPass {
         ocean: WaterKind,
     ) -> GpuResult<TerrainPass> {
         let layout = scene_layout(ctx, "terrain layout", frame_layout, &[])?;
-        // `materials`: common/terrain_lit.glsl's TERRAIN_MATERIALS.
-        let pipeline = |name: &str, vert: &[u8], frag: &[u8], target, materials: bool| {
+        // `caustics`: terrain_caustics.frag or terrain.frag; `materials`: common/terrain_lit.glsl's
+        // TERRAIN_MATERIALS. Its TERRAIN_UNDERWATER is on only for the one pipeline that can
+        // see from under the water: the caustics' into the main target.
+        let pipeline = |name: &str, vert: &[u8], target, caustics: bool, materials: bool| {
+            let frag = if caustics {
+                shaders::TERRAIN_TERRAIN_CAUSTICS_FRAG
+            } else {
+                shaders::TERRAIN_TERRAIN_FRAG
+            };
+            let underwater = caustics && matches!(target, SceneTarget::Display(_));
             scene_pipeline(
                 ctx,
                 &layout,
@@ -70,12 +78,15 @@ impl TerrainPass {
                     ],
                     // common/water.glsl's CASCADES and OCEAN_MANUAL_FILTER,
                     // common/terrain_lit.glsl's TERRAIN_MATERIALS, terrain.vert's
-                    // TERRAIN_QUADS.
+                    // TERRAIN_QUADS, common/shadow.glsl's SHADOWS,
+                    // common/terrain_lit.glsl's TERRAIN_UNDERWATER.
                     constants: &[
                         ocean.cascades,
                         ocean.manual_filter as u32,
                         materials as u32,
                         quads,
+                        ocean.shadows as u32,
+                        underwater as u32,
                     ],
                     ..Default::default()
                 },
@@ -83,51 +94,42 @@ impl TerrainPass {
                 target,
             )
         };
-        let pair = |label: &str, frag: &[u8], target, materials| -> GpuResult<[Pipeline; 3]> {
-            Ok([
+        let pair = |label: &str, target, caustics, materials| -> GpuResult<[Pipeline; 3]> {
+            let [terrain, objects, bodies] = [
+                ("terrain", shaders::TERRAIN_TERRAIN_VERT),
+                ("objects", shaders::TERRAIN_OBJECTS_VERT),
+                ("floating bodies", shaders::TERRAIN_BODIES_VERT),
+            ]
+            .map(|(what, vert)| {
                 pipeline(
-                    &format!("terrain ({label})"),
-                    shaders::TERRAIN_TERRAIN_VERT,
-                    frag,
+                    &format!("{what} ({label})"),
+                    vert,
                     target,
+                    caustics,
                     materials,
-                )?,
-                pipeline(
-                    &format!("objects ({label})"),
-                    shaders::TERRAIN_OBJECTS_VERT,
-                    frag,
-                    target,
-                    materials,
-                )?,
-                pipeline(
-                    &format!("floating bodies ({label})"),
-                    shaders::TERRAIN_BODIES_VERT,
-                    frag,
-                    target,
-                    materials,
-                )?,
-            ])
+                )
+            });
+            Ok([terrain?, objects?, bodies?])
         };
         let caustics = PerTarget::new(display_format, |target| {
             let label = match target {
                 SceneTarget::Hdr => "refraction",
                 SceneTarget::Display(_) => "main view, under the water",
             };
-            // The refraction view leaves the materials out: it sees the sea floor.
-            let materials = matches!(target, SceneTarget::Display(_));
-            pair(
-                label,
-                shaders::TERRAIN_TERRAIN_CAUSTICS_FRAG,
-                target,
-                materials,
-            )
+            // The refraction view leaves the materials out: it sees the sea floor. Without its
+            // caustics (`WaterKind::refraction_caustics`) it draws without the caustics'
+            // shader, not with their branch off by a uniform: lavapipe runs a branch taken or
+            // not (2 ms a frame at --quality low). The main view from under the water keeps
+            // the shader (`--caustics off` there is the uniform's: its light shafts too).
+            let display = matches!(target, SceneTarget::Display(_));
+            pair(label, target, display || ocean.refraction_caustics, display)
         })?;
         let plain = PerTarget::new(display_format, |target| {
             let label = match target {
                 SceneTarget::Hdr => "reflection",
                 SceneTarget::Display(_) => "main view",
             };
-            pair(label, shaders::TERRAIN_TERRAIN_FRAG, target, true)
+            pair(label, target, false, true)
         })?;
         let meshes = PerTarget::new(display_format, |target| {
             let step = match target {

@@ -245,7 +245,7 @@ impl ClipmapTiles {
     }
 }
 
-/// What the water's pipelines are made for.
+/// What the water's pipelines are made for (and the terrain's, which sample the same images).
 #[derive(Clone, Copy, Debug)]
 pub struct WaterKind {
     /// How the triangles are made (tessellated needs the device's tessellation shaders).
@@ -256,6 +256,17 @@ pub struct WaterKind {
     /// The ocean images are bound with a nearest sampler and the shaders filter them
     /// bilinearly by hand (devices without linear filtering of RGBA32F).
     pub manual_filter: bool,
+    /// The sun's shadows are cast (`--shadows`): common/shadow.glsl's SHADOWS, constant 4 of
+    /// the water's and the terrain's shaders, so a run without them does not pay for their
+    /// untaken branch (lavapipe runs both sides).
+    pub shadows: bool,
+    /// The refraction view draws the caustics (`--caustics`, `Quality::refraction_caustics`):
+    /// without them its terrain is drawn without the caustics' shader
+    /// (src/render/passes/terrain.rs).
+    pub refraction_caustics: bool,
+    /// The run has a boat and its wake (`--boat`): common/water.glsl's WAKE, constant 7 of the
+    /// water's shaders (without it `wake_at` is zero, its lookups left out).
+    pub wake: bool,
 }
 
 impl WaterPass {
@@ -273,6 +284,9 @@ impl WaterPass {
             geometry,
             cascades,
             manual_filter,
+            shadows,
+            wake,
+            ..
         } = kind;
         if geometry == Geometry::Tessellated && !ctx.info.tessellation_shader {
             anyhow::bail!(
@@ -341,7 +355,19 @@ impl WaterPass {
                     topology,
                     patch_control_points,
                     polygon_mode,
-                    constants: &[cascades, manual_filter as u32, side],
+                    // common/water.glsl's CASCADES and OCEAN_MANUAL_FILTER, water.frag's
+                    // UNDERWATER_VIEW, (3 and 5, 6 unused), common/shadow.glsl's SHADOWS,
+                    // common/water.glsl's WAKE.
+                    constants: &[
+                        cascades,
+                        manual_filter as u32,
+                        side,
+                        0,
+                        shadows as u32,
+                        0,
+                        0,
+                        wake as u32,
+                    ],
                     ..Default::default()
                 },
                 Depth::TestWrite,
