@@ -157,9 +157,8 @@ void main() {
         vec3 dir = in_rel_pos / dist;
         vec3 seen = underwater_fog(colour, blurred * down, dir, dist);
 #ifdef TERRAIN_CAUSTICS
+        // (terrain.frag's pipelines never see from under the water: TERRAIN_UNDERWATER off.)
         seen += sun_shafts(dir, dist);
-#else
-        seen += sun_scatter(dir, 0.0, dist);
 #endif
         out_colour = target_colour(seen);
         return;

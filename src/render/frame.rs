@@ -17,7 +17,8 @@
 //!    light shafts  from under the water or at the waterline (caustics on): the caustics'
 //!                means along the camera's rays at 256x144   writes the light shafts image
 //!    refraction  island + objects below the water, with the caustics (they sample the
-//!                simulation's normal images)      writes refraction colour + depth
+//!                simulation's normal images; at low only with --caustics on)
+//!                                                 writes refraction colour + depth
 //!    scene       island + objects (main camera; caustics from under the water)
 //!                                                        writes main colour + depth
 //!    water       tessellated patches; samples reflection, refraction (colour and depth) and,

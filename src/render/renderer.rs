@@ -514,6 +514,9 @@ impl Renderer {
             || s.dudv != new.dudv
             || s.skybox != new.skybox
             || (new.view == ViewMode::Wireframe && s.view != ViewMode::Wireframe)
+            // Specialization constants of the water's and the terrain's pipelines.
+            || s.shadows != new.shadows
+            || (s.caustics && s.refraction_caustics) != (new.caustics && new.refraction_caustics)
     }
 
     /// Takes settings that change only uniforms (`needs_rebuild` is false): the next frame

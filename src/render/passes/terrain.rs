@@ -35,8 +35,9 @@ pub struct TerrainPass {
     /// runs on one CPU thread, so this matters in every view). The main view's cells are one
     /// lattice step wide, the HDR views' (reflection, refraction) two.
     meshes: PerTarget<Mesh>,
-    /// Island and objects with the caustics (terrain_caustics.frag): into HDR (refraction)
-    /// and into the main target (from under the water). They sample the simulation's images.
+    /// Island and objects with the caustics (terrain_caustics.frag): into HDR (refraction;
+    /// terrain.frag when it draws none, `WaterKind::refraction_caustics`) and into the main
+    /// target (from under the water). They sample the simulation's images.
     caustics: PerTarget<[Pipeline; 3]>,
     /// Island and objects without them (terrain.frag): the reflection, which reads nothing the
     /// simulation wrote, so it draws before the simulation is waited for (graphics 1), and the
@@ -148,8 +149,8 @@ impl TerrainPass {
 
     /// What `record` binds for `view`: the island's, the objects' and the floating bodies'
     /// pipelines with `sets`
-    /// (the frame set); the caustics in the refraction, and in the main view when the camera
-    /// is `underwater`.
+    /// (the frame set); the caustics in the refraction (where it draws them), and in the main
+    /// view when the camera is `underwater`.
     pub fn draws<'a>(
         &'a self,
         sets: &'a [&'a BoundSet],
