@@ -63,4 +63,8 @@ fn shadows_and_the_refraction_caustics_follow_the_quality_unless_given() {
         scene(&["--quality", "high", "--caustics", "off", "--shadows", "off"]),
         (false, false, false)
     );
+    assert_eq!(
+        scene(&["--quality", "medium", "--caustics", "off"]),
+        (true, false, false)
+    );
 }

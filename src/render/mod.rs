@@ -126,7 +126,8 @@ pub struct SceneSettings {
     /// (shaders/common/caustics.glsl).
     pub caustics: bool,
     /// The caustics in the refraction view too (the floor seen from above through the water):
-    /// `--caustics on`, or not given at medium and high (`Quality::refraction_caustics`).
+    /// `--caustics on`, or not given at medium and high (`Quality::refraction_caustics`);
+    /// never without `caustics`.
     pub refraction_caustics: bool,
     /// `--dudv FILE.png` instead of the generated map.
     pub dudv: Option<PathBuf>,

@@ -249,7 +249,7 @@ impl Renderer {
             cascades: ocean.cascades,
             manual_filter: !ocean_linear,
             shadows: settings.shadows,
-            refraction_caustics: settings.caustics && settings.refraction_caustics,
+            refraction_caustics: settings.refraction_caustics,
             // 1×1 without a boat (`Simulation::wake`).
             wake: ocean.wake.iter().any(|image| image.extent().width > 1),
         };
@@ -516,7 +516,7 @@ impl Renderer {
             || (new.view == ViewMode::Wireframe && s.view != ViewMode::Wireframe)
             // Specialization constants of the water's and the terrain's pipelines.
             || s.shadows != new.shadows
-            || (s.caustics && s.refraction_caustics) != (new.caustics && new.refraction_caustics)
+            || s.refraction_caustics != new.refraction_caustics
     }
 
     /// Takes settings that change only uniforms (`needs_rebuild` is false): the next frame
