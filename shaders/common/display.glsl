@@ -13,10 +13,34 @@
 // 2 = display colour into a UNORM format (a window surface without an 8-bit sRGB format):
 // encoded here with the sRGB transfer function (IEC 61966-2-1).
 layout(constant_id = 8) const int DISPLAY_TARGET = 0;
+// Where the tone map starts keeping the hue (the brightest channel's exposed radiance) and where
+// it keeps it fully.
+const float TONE_HUE_FROM = 0.4;
+const float TONE_HUE_FULL = 1.5;
+// Where it starts turning white, where it is as white as it gets, and how white that is: a
+// sun low enough to be orange keeps some of its colour.
+const float TONE_WHITE_FROM = 3.0;
+const float TONE_WHITE_FULL = 12.0;
+const float TONE_WHITE_SHARE = 0.7;
 
 vec3 aces_fit(vec3 x) {
     const float a = 2.51, b = 0.03, c = 2.43, d = 0.59, e = 0.14;
     return clamp((x * (a * x + b)) / (x * (c * x + d) + e), 0.0, 1.0);
+}
+
+// The curve on each channel, as the fit is meant, where the colour is dark or mid-grey; in the
+// highlights the brightest channel's curve scales all three, so a bright colour keeps its hue:
+// per channel, an orange sky near a low sun (linear (4, 1.6, 0.3)) would map to a lemon
+// yellow (0.95, 0.87, 0.37) as its red and green both near 1. Far brighter light (the sun's
+// disc and its glitter) turns white, as it does in the eye and on film.
+vec3 tone_map(vec3 x) {
+    const float a = 2.51, b = 0.03, c = 2.43, d = 0.59, e = 0.14;
+    float peak = max(max(x.r, x.g), x.b);
+    float top = min((peak * (a * peak + b)) / (peak * (c * peak + d) + e), 1.0);
+    vec3 hue_kept = x * (top / max(peak, 1e-6));
+    vec3 display = mix(aces_fit(x), hue_kept, smoothstep(TONE_HUE_FROM, TONE_HUE_FULL, peak));
+    float white = TONE_WHITE_SHARE * smoothstep(TONE_WHITE_FROM, TONE_WHITE_FULL, peak);
+    return mix(display, vec3(top), white);
 }
 
 vec3 srgb_encode(vec3 c) {
@@ -27,7 +51,7 @@ vec4 target_colour(vec3 radiance) {
     if (DISPLAY_TARGET == 0) {
         return vec4(radiance, 1.0);
     }
-    vec3 display = aces_fit(max(radiance * frame.sky_light.w, vec3(0.0)));
+    vec3 display = tone_map(max(radiance * frame.sky_light.w, vec3(0.0)));
     return vec4(DISPLAY_TARGET == 2 ? srgb_encode(display) : display, 1.0);
 }
 

@@ -1,4 +1,4 @@
-// The sky: sunlight scattered once by the Earth's air and aerosols (Rayleigh and Mie), seen
+// The sky: sunlight scattered by the Earth's air and aerosols (Rayleigh and Mie), seen
 // through a layer of clouds, or the grey of an overcast. sky/sky_cube.frag renders it into the
 // sky cube when the sun or the cloud cover changes; every pass looks the cube up (reflections,
 // the haze toward the horizon, the ambient light of terrain and foam), so they all agree. The
@@ -60,8 +60,26 @@ vec3 sun_transmittance(float r, float mu_s) {
     return exp(-depth * len / float(STEPS));
 }
 
-// Single scattering toward the eye (SKY_EYE_ALTITUDE_M up) along `dir`, for a sun of unit
-// irradiance along `sun`: ∫ T(eye, p) [β_R ρ_R P_R(ν) + β_M ρ_M P_M(ν)] T_sun(p) dt. Samples
+// The light scattered more than once, Ψ_ms(h, μs) of Hillaire (2020) for a sun of unit
+// irradiance (src/render/multiple_scattering.rs computes the table once and describes it):
+// its texel centres span the altitude as √(h / height) and the sun's zenith cosine μs.
+// Whoever includes this file with SKY_MULTIPLE_SCATTERING defined declares the table,
+// `sky_multiple_scattering` (sky/sky_cube.frag); without it the sky is single scattering.
+vec3 multiple_scattering(float h, float mu_s) {
+#ifdef SKY_MULTIPLE_SCATTERING
+    float side = float(textureSize(sky_multiple_scattering, 0).x);
+    float u = sqrt(clamp(h / (ATMOSPHERE_TOP_M - EARTH_RADIUS_M), 0.0, 1.0));
+    float v = clamp(mu_s * 0.5 + 0.5, 0.0, 1.0);
+    vec2 uv = (0.5 + vec2(u, v) * (side - 1.0)) / side;
+    return texture(sky_multiple_scattering, uv).rgb;
+#else
+    return vec3(0.0);
+#endif
+}
+
+// The light scattered toward the eye (SKY_EYE_ALTITUDE_M up) along `dir`, for a sun of unit
+// irradiance along `sun`: once, ∫ T(eye, p) [β_R ρ_R P_R(ν) + β_M ρ_M P_M(ν)] T_sun(p) dt,
+// and more often, ∫ T(eye, p) (β_R ρ_R + β_M ρ_M) Ψ_ms dt (Hillaire 2020, eq. 11). Samples
 // crowd toward the eye (t ∝ u²), where the air is dense. Below the horizon the sea hides the
 // sky: the horizon's light stands in (the water's own colour is drawn over it).
 vec3 clear_sky(vec3 dir, vec3 sun) {
@@ -76,6 +94,7 @@ vec3 clear_sky(vec3 dir, vec3 sun) {
     vec3 depth = vec3(0.0);
     vec3 rayleigh = vec3(0.0);
     vec3 mie = vec3(0.0);
+    vec3 multiple = vec3(0.0);
     const int STEPS = 16;
     for (int i = 0; i < STEPS; ++i) {
         float u0 = float(i) / float(STEPS);
@@ -86,12 +105,16 @@ vec3 clear_sky(vec3 dir, vec3 sun) {
         float rp = length(p);
         vec3 density = air_density(rp - EARTH_RADIUS_M);
         vec3 ext = extinction(density);
-        vec3 light = exp(-(depth + 0.5 * ext * dt)) * sun_transmittance(rp, dot(p, sun) / rp);
+        vec3 seen = exp(-(depth + 0.5 * ext * dt));
+        float mu_s = dot(p, sun) / rp;
+        vec3 light = seen * sun_transmittance(rp, mu_s);
         rayleigh += light * density.x * dt;
         mie += light * density.y * dt;
+        vec3 scattering = RAYLEIGH_SCATTERING * density.x + MIE_SCATTERING * density.y;
+        multiple += seen * scattering * multiple_scattering(rp - EARTH_RADIUS_M, mu_s) * dt;
         depth += ext * dt;
     }
-    return rayleigh * RAYLEIGH_SCATTERING * phase_r + mie * MIE_SCATTERING * phase_m;
+    return rayleigh * RAYLEIGH_SCATTERING * phase_r + mie * MIE_SCATTERING * phase_m + multiple;
 }
 
 // Value noise in [0, 1] and its fractal sum (5 octaves), for the clouds' shapes.

@@ -3,6 +3,9 @@
 // cube-face selection (spec table "Cube map face selection"), then the sky (common/sky.glsl):
 // rgb its radiance, a the share of sunlight its clouds let through. Run for the six faces when
 // the sun or the cloud cover changes.
+// The multiple scattering's table (src/render/multiple_scattering.rs), read by common/sky.glsl.
+layout(set = 0, binding = 0) uniform sampler2D sky_multiple_scattering;
+#define SKY_MULTIPLE_SCATTERING
 #include "common/sky.glsl"
 
 // sky: x the cloud cover (0–1), y the sun's irradiance; sunlight and zenith: the sun's light at

@@ -76,8 +76,9 @@ impl Sky {
 pub const DEFAULT_CLOUD_COVER: f64 = 0.3;
 
 /// The irradiance (luminance) on the sea at which the exposure is 1: the default day's, sun
-/// 11.7° up, 0.3 of the sky clouded (1.45; `the_default_day_has_exposure_one`).
-pub const REFERENCE_IRRADIANCE: f64 = 1.45;
+/// 11.7° up, 0.3 of the sky clouded (1.52 with the multiple scattering, 1.45 without;
+/// `the_default_day_has_exposure_one`).
+pub const REFERENCE_IRRADIANCE: f64 = 1.52;
 
 /// The default day's global irradiance (`global_irradiance`), under which deep water looks
 /// `WATER_COLOUR`.
@@ -93,8 +94,19 @@ pub fn reference_light() -> [f64; 3] {
 }
 
 /// The radiance of the clear sky at the zenith for a sun of unit irradiance along `sun`:
-/// single scattering, the twin of `clear_sky` in shaders/common/sky.glsl.
+/// scattered once and more often (src/render/multiple_scattering.rs), the twin of `clear_sky`
+/// in shaders/common/sky.glsl.
 pub fn clear_sky_zenith(sun: glam::DVec3) -> [f64; 3] {
+    zenith(sun, true)
+}
+
+/// `clear_sky_zenith` scattered once only (tests weigh the higher orders against it).
+#[cfg(test)]
+pub fn clear_sky_zenith_once(sun: glam::DVec3) -> [f64; 3] {
+    zenith(sun, false)
+}
+
+fn zenith(sun: glam::DVec3, multiple: bool) -> [f64; 3] {
     use crate::shared::{MIE_G, MIE_SCATTERING};
     let r = EARTH_RADIUS_M as f64 + SKY_EYE_ALTITUDE_M as f64;
     let len = ATMOSPHERE_TOP_M as f64 - r;
@@ -120,14 +132,24 @@ pub fn clear_sky_zenith(sun: glam::DVec3) -> [f64; 3] {
         // The sun seen from the sample: elevation from its zenith cosine there (the sample is
         // straight above the eye, so the local vertical is the eye's).
         let sun_t = sun_transmittance_from(h, sun.y.clamp(-1.0, 1.0).asin());
+        let multiple = if multiple {
+            crate::render::multiple_scattering::at(h, sun.y)
+        } else {
+            [0.0; 3]
+        };
         for c in 0..3 {
             let ext = RAYLEIGH_SCATTERING[c] as f64 * rho[0]
                 + MIE_EXTINCTION as f64 * rho[1]
                 + OZONE_ABSORPTION[c] as f64 * rho[2];
-            let light = (-(depth[c] + 0.5 * ext * dt)).exp() * sun_t[c];
+            let seen = (-(depth[c] + 0.5 * ext * dt)).exp();
+            let light = seen * sun_t[c];
             sum[c] += light
                 * (RAYLEIGH_SCATTERING[c] as f64 * rho[0] * phase_r
                     + MIE_SCATTERING as f64 * rho[1] * phase_m)
+                * dt;
+            sum[c] += seen
+                * (RAYLEIGH_SCATTERING[c] as f64 * rho[0] + MIE_SCATTERING as f64 * rho[1])
+                * multiple[c]
                 * dt;
             depth[c] += ext * dt;
         }
@@ -273,5 +295,37 @@ mod tests {
         // Overhead the sea gets most of it (Rayleigh τ(550 nm) = 0.108 + aerosols + ozone).
         assert!(high[1] > 0.8 && high[1] < 0.9, "{high:?}");
         assert_eq!(sun_transmittance(-5f64.to_radians()), [0.0; 3]);
+    }
+
+    /// The zenith's radiance with the table (the CPU twin of the sky cube) over the same
+    /// without it, for a sun `elevation_deg` up: the multiple scattering's share.
+    fn zenith_gain(elevation_deg: f64) -> [f64; 3] {
+        let e = elevation_deg.to_radians();
+        let sun = glam::DVec3::new(e.cos(), e.sin(), 0.0);
+        let all = clear_sky_zenith(sun);
+        let once = clear_sky_zenith_once(sun);
+        std::array::from_fn(|c| all[c] / once[c])
+    }
+
+    #[test]
+    fn the_multiple_scattering_brightens_the_sky_and_lights_the_twilight() {
+        // By day the higher orders add a part to the sky overhead, more in the blue, which
+        // the air scatters most (measured at 60°: red +14 %, green +21 %, blue +40 %).
+        let start = std::time::Instant::now();
+        let noon = zenith_gain(60.0);
+        eprintln!(
+            "zenith with / without the multiple scattering: 60° {noon:?} (table and zenith in {:.3} s)",
+            start.elapsed().as_secs_f64()
+        );
+        assert!(
+            noon[0] > 1.05 && noon[2] > 1.2 && noon[2] < 1.6 && noon[2] > noon[1],
+            "{noon:?}"
+        );
+        // With the sun 4° below the horizon the air overhead up to about 20 km is in the
+        // Earth's shadow; light scattered again from the sunlit air above and toward the sun
+        // lights it: a third more red, more than twice the blue (measured 1.36, 1.82, 2.46).
+        let dusk = zenith_gain(-4.0);
+        eprintln!("at -4°: {dusk:?}");
+        assert!(dusk[0] > 1.25 && dusk[2] > 2.0, "{dusk:?}");
     }
 }

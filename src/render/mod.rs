@@ -5,6 +5,7 @@ pub mod atmosphere;
 pub mod camera;
 pub mod clipmap;
 pub mod frame;
+pub mod multiple_scattering;
 pub mod passes;
 pub mod renderer;
 pub mod scene;

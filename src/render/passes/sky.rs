@@ -8,14 +8,15 @@ use std::sync::Arc;
 use ash::vk;
 
 use super::{bind_scene, scene_layout, scene_pipeline, Depth, PerTarget, SceneTarget};
-use crate::gpu::oneshot::upload_image_with;
+use crate::gpu::oneshot::{upload_image, upload_image_with};
 use crate::gpu::{
-    Bindings, BoundSet, Context, DescriptorSetLayout, GpuResult, GraphicsDesc, Image, ImageDesc,
-    Load, Pipeline, PipelineLayout, Recorder, Target,
+    Bind, Bindings, BoundSet, Context, DescriptorSetLayout, GpuResult, GraphicsDesc, Image,
+    ImageDesc, Load, Order, Pipeline, PipelineLayout, Recorder, Sampler, Target,
 };
 use crate::input::{decode_png_rgba8, png_size, regular_file, InputError};
 use crate::pass_names as names;
 use crate::render::atmosphere::{Sky, SUN_IRRADIANCE};
+use crate::render::multiple_scattering;
 use crate::render::targets::HDR_FORMAT;
 use crate::render::uniforms::ViewIndex;
 use crate::shaders;
@@ -142,7 +143,7 @@ struct FacePush {
 pub struct SkyCube {
     pub image: Image,
     /// Renders the analytic sky; `None` for a loaded skybox.
-    render: Option<(PipelineLayout, Pipeline)>,
+    render: Option<Render>,
     /// The sky (sun and clouds) the cube was last rendered for.
     rendered_for: Option<Sky>,
 }
@@ -151,10 +152,11 @@ impl SkyCube {
     /// A cube the analytic sky is rendered into (`update`).
     pub fn analytic(ctx: &Arc<Context>) -> GpuResult<SkyCube> {
         let image = cube_image(ctx, "sky cube", CUBE_SIDE, HDR_FORMAT, RENDERED)?;
+        let (set_layout, set) = multiple_scattering_table(ctx)?;
         let layout = PipelineLayout::new(
             ctx,
             "sky cube layout",
-            &[],
+            &[&set_layout],
             Some((
                 vk::ShaderStageFlags::FRAGMENT,
                 std::mem::size_of::<FacePush>() as u32,
@@ -178,7 +180,11 @@ impl SkyCube {
         )?;
         Ok(SkyCube {
             image,
-            render: Some((layout, pipeline)),
+            render: Some(Render {
+                pipeline,
+                set,
+                _layouts: (layout, set_layout),
+            }),
             rendered_for: None,
         })
     }
@@ -214,7 +220,7 @@ impl SkyCube {
     /// (same queue); the passes that sample it next wait for it at the stages their shaders
     /// read it in (`Recorder::rendering`).
     pub fn update(&mut self, rec: &Recorder, sky: &Sky) {
-        let Some((_, pipeline)) = &self.render else {
+        let Some(Render { pipeline, set, .. }) = &self.render else {
             return;
         };
         // What every texel's sky shares, once (common/sky.glsl `sky_radiance`).
@@ -224,7 +230,7 @@ impl SkyCube {
         // cube: every face is written anew).
         let draw = Bindings {
             pipeline,
-            sets: &[],
+            sets: &[set],
         };
         // Bound once for the six scopes (a binding outlives a rendering scope; each scope
         // declares it): Best Practices' Pipeline-SortAndBind counted each face's rebinding.
@@ -255,6 +261,59 @@ impl SkyCube {
         }
         self.rendered_for = Some(*sky);
     }
+}
+
+/// What renders the analytic sky into the cube: its pipeline and the multiple scattering's
+/// table it samples.
+struct Render {
+    pipeline: Pipeline,
+    set: BoundSet,
+    /// Kept alive with the pipeline and the set made from them.
+    _layouts: (PipelineLayout, DescriptorSetLayout),
+}
+
+/// The multiple scattering's table (src/render/multiple_scattering.rs), uploaded once, in a
+/// set for shaders/sky/sky_cube.frag (binding 0, filtered linearly, clamped at its edges).
+fn multiple_scattering_table(ctx: &Arc<Context>) -> GpuResult<(DescriptorSetLayout, BoundSet)> {
+    let side = multiple_scattering::SIDE as u32;
+    let table = Image::new(
+        ctx,
+        &ImageDesc {
+            name: "sky multiple scattering",
+            extent: vk::Extent2D {
+                width: side,
+                height: side,
+            },
+            format: vk::Format::R16G16B16A16_SFLOAT,
+            usage: vk::ImageUsageFlags::SAMPLED | vk::ImageUsageFlags::TRANSFER_DST,
+            layers: 1,
+            array_view: false,
+            shared: false,
+            cube: false,
+        },
+    )?;
+    upload_image(ctx, &table, &multiple_scattering::lut_rgba16f())?;
+    let sampler = Sampler::linear(
+        ctx,
+        "sky multiple scattering sampler",
+        vk::SamplerAddressMode::CLAMP_TO_EDGE,
+    )?;
+    let layout = DescriptorSetLayout::new(
+        ctx,
+        "sky cube set layout",
+        &[(
+            0,
+            vk::DescriptorType::COMBINED_IMAGE_SAMPLER,
+            vk::ShaderStageFlags::FRAGMENT,
+        )],
+    )?;
+    let set = BoundSet::new(
+        ctx,
+        &layout,
+        "sky cube set",
+        &[(0, Bind::Sampled(&table, &sampler, Order::Tracked))],
+    )?;
+    Ok((layout, set))
 }
 
 /// How a cube's faces are filled: rendered (the analytic sky) or uploaded (`--skybox`).
