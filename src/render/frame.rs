@@ -303,7 +303,7 @@ pub fn record_frame(
             let draws = pass.draws(&aa_set);
             let scope = rec.rendering(names::ANTI_ALIASING, &target, Some(mask), &draws);
             profiler.pass(&rec, names::ANTI_ALIASING, || {
-                scope.record(|| pass.record(&rec, &draws))
+                scope.record(|| pass.record(&rec, &draws, r.settings.sharpen))
             });
         }
         profiler.pass(&rec, names::OUTPUT, || {

@@ -104,6 +104,9 @@ pub struct SceneSettings {
     pub fresnel: FresnelModel,
     /// Applies to `--view final` only (`anti_aliased`).
     pub aa: AntiAliasing,
+    /// `--sharpen`: how much the anti-aliasing pass sharpens the pixels off the edges (0 to 1;
+    /// shaders/post/fxaa_edges.frag), before the output pass scales the picture up.
+    pub sharpen: f32,
     /// Reflection and refraction target size relative to the output (0 < s <= 1).
     pub rtt_scale: f32,
     /// Main (scene and water) target size relative to the output (0 < s <= 1); the output pass
@@ -174,6 +177,7 @@ impl Default for SceneSettings {
             view: ViewMode::Final,
             fresnel: FresnelModel::Schlick,
             aa: AntiAliasing::default(),
+            sharpen: 0.0,
             rtt_scale: 0.5,
             render_scale: 1.0,
             terrain_grid: 160,

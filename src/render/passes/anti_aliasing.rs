@@ -1,8 +1,9 @@
 //! Anti-aliasing pass (`--aa fxaa`): FXAA (Lottes 2009) over the main colour into the
 //! anti-aliased colour, a target of the same size and format, which the output pass then copies
 //! or scales into the output instead of the main colour. Two draws in one rendering scope:
-//! `edges` (shaders/post/fxaa_edges.frag) copies every pixel and marks those on an edge in the
-//! main depth buffer (free once the sky is drawn), then `fxaa` (shaders/post/fxaa.frag),
+//! `edges` (shaders/post/fxaa_edges.frag) copies every pixel, sharpened where it is not on an
+//! edge (`--sharpen`, a contrast-adaptive sharpening for the upscale that follows), and marks
+//! those on an edge in the main depth buffer (free once the sky is drawn), then `fxaa` (shaders/post/fxaa.frag),
 //! depth-tested against the mark, anti-aliases only those. Lavapipe runs every pixel of a 4x4
 //! block through the whole shader whatever its branches, but skips a block no pixel of which
 //! passes the early depth test: one draw with FXAA's early exit cost 7.8 ms at 640x360, the two
@@ -52,7 +53,13 @@ impl AntiAliasingPass {
             )],
         )?;
         let set = Self::set(ctx, &set_layout, main, sampler)?;
-        let layout = PipelineLayout::new(ctx, "anti-aliasing layout", &[&set_layout], None)?;
+        // The edges draw's push constant: the sharpening (`--sharpen`, 0 to 1).
+        let layout = PipelineLayout::new(
+            ctx,
+            "anti-aliasing layout",
+            &[&set_layout],
+            Some((vk::ShaderStageFlags::FRAGMENT, 4)),
+        )?;
         // The shaders' DISPLAY_TARGET: whether samples come decoded (sRGB) or encoded (UNORM).
         let display_mode = SceneTarget::Display(main.format()).display_mode();
         let pipeline = |name, fragment, depth_compare, depth_write| {
@@ -127,10 +134,14 @@ impl AntiAliasingPass {
 
     /// Draws the anti-aliased picture, inside a rendering scope whose colour attachment is the
     /// anti-aliased colour and whose depth attachment (contents not loaded) has its size, and
-    /// which declared `draws`.
-    pub fn record(&self, rec: &Recorder, draws: &[Bindings; 2]) {
-        for draw in draws {
+    /// which declared `draws`; the pixels off the edges sharpened by `sharpen` (0 to 1: a copy
+    /// at 0).
+    pub fn record(&self, rec: &Recorder, draws: &[Bindings; 2], sharpen: f32) {
+        for (i, draw) in draws.iter().enumerate() {
             rec.bind(draw);
+            if i == 0 {
+                rec.push_constants(&self.edges, &sharpen);
+            }
             rec.draw(3, 1);
         }
     }
