@@ -504,11 +504,14 @@ impl Cli {
             aa: self.aa,
             rtt_scale: self.rtt_scale.unwrap_or(quality.rtt_scale) as f32,
             render_scale: render_scale as f32,
-            sharpen: self.sharpen.unwrap_or(if render_scale < 1.0 {
-                DEFAULT_SHARPEN
-            } else {
-                0.0
-            }) as f32,
+            // Nothing sharpens without the anti-aliasing pass (given, that is refused above).
+            sharpen: self.sharpen.unwrap_or(
+                if render_scale < 1.0 && self.aa == AntiAliasing::Fxaa {
+                    DEFAULT_SHARPEN
+                } else {
+                    0.0
+                },
+            ) as f32,
             terrain_grid: self.terrain_grid.unwrap_or(quality.terrain_grid),
             tess_edge_px: self.tess_edge.unwrap_or(quality.tess_edge_px) as f32,
             geometry: self.geometry,

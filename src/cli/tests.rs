@@ -68,3 +68,31 @@ fn shadows_and_the_refraction_caustics_follow_the_quality_unless_given() {
         (true, false, false)
     );
 }
+
+/// `--sharpen` follows the scale unless given: DEFAULT_SHARPEN where the scene target is scaled
+/// up (low and medium), none at full size; given with `--aa off` it is a usage error (the
+/// anti-aliasing pass sharpens), not given it is simply off there.
+#[test]
+fn the_sharpening_follows_the_render_scale_unless_given() {
+    let sharpen = |args: &[&str]| {
+        let mut all = vec!["vkocean", "--headless"];
+        all.extend_from_slice(args);
+        Cli::parse_from(all).settings().map(|s| s.scene.sharpen)
+    };
+    let default = DEFAULT_SHARPEN as f32;
+    assert_eq!(sharpen(&["--quality", "low"]).unwrap(), default);
+    assert_eq!(sharpen(&["--quality", "medium"]).unwrap(), default);
+    assert_eq!(sharpen(&["--quality", "high"]).unwrap(), 0.0);
+    assert_eq!(
+        sharpen(&["--quality", "high", "--render-scale", "0.5"]).unwrap(),
+        default
+    );
+    assert_eq!(
+        sharpen(&["--quality", "low", "--sharpen", "0.2"]).unwrap(),
+        0.2
+    );
+    assert_eq!(sharpen(&["--quality", "low", "--aa", "off"]).unwrap(), 0.0);
+    let refused = sharpen(&["--aa", "off", "--sharpen", "0.5"]).unwrap_err();
+    assert!(refused.0.contains("--aa fxaa"), "{}", refused.0);
+    assert!(Cli::try_parse_from(["vkocean", "--sharpen", "1.5"]).is_err());
+}
