@@ -190,13 +190,13 @@ fn water_gradient(p: &[u8], w: usize) -> f64 {
 }
 
 #[test]
-fn the_sharpening_brings_the_scaled_up_water_toward_the_full_size_picture() {
+fn the_sharpening_gives_the_scaled_up_water_part_of_the_full_size_picture_s_contrast() {
     // The default view at 1280x720, the scene drawn at half size (`low`) and scaled up
     // bilinearly by the output pass, without and with the sharpening, against the same scene
-    // drawn at full size. Measured: the water's mean luma step 1.58 (bilinear), 2.00 (--sharpen
-    // 0.75, the default when scaling), 2.52 (full size); the mean difference from the full-size
-    // picture 2.55 and 2.79 grey levels (the scaled pictures miss the same detail; the
-    // sharpening must not add much that is not there).
+    // drawn at full size. Measured: the water's mean luma step 1.57 (bilinear), 1.99 (--sharpen
+    // 0.75, the default when scaling), 2.50 (full size); the mean difference from the full-size
+    // picture 2.49 and 2.71 grey levels: the sharpening restores contrast, not detail (the
+    // scaled pictures miss the same), and must not add much that is not there.
     let size = (1280u32, 720u32);
     let at = |name: &str, args: &[&str]| {
         let mut all = vec!["--quality", "low", "--time", "3"];
@@ -219,8 +219,8 @@ fn the_sharpening_brings_the_scaled_up_water_toward_the_full_size_picture() {
     );
     eprintln!("water's luma step: bilinear {g0:.3}, sharpened {g1:.3}, full size {gf:.3}; from full size: {d0:.3} and {d1:.3}");
     assert!(
-        g1 >= 1.15 * g0 && g1 <= 1.05 * gf,
-        "luma step: sharpened {g1:.3} against bilinear {g0:.3} (≥ 1.15×) and full size {gf:.3} (≤ 1.05×)"
+        g1 >= 1.15 * g0 && g1 <= 0.95 * gf,
+        "luma step: sharpened {g1:.3} against bilinear {g0:.3} (≥ 1.15×) and full size {gf:.3} (≤ 0.95×)"
     );
     assert!(
         d1 <= 1.15 * d0,

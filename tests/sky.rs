@@ -84,7 +84,7 @@ fn sunset_and_overcast_skies_differ_from_noon_as_real_ones_do() {
     // channel, a bright orange's red and green both neared 1: the band's hue was 53°, the
     // brightest pixel near the sun 49° at saturation 0.20. The tone map keeps the hue in the
     // highlights and whitens the brightest only in part (common/display.glsl), and the sky
-    // scatters more than once: the band 32°, the sun 15° at 0.13 (a warm white).
+    // scatters more than once: the band 32°, the sun 11° at 0.11 (a warm white).
     let low_band = hue(mean_rgb(&sunset, H / 2 - 7..H / 2 - 2));
     let near_sun =
         (H / 2 - 20..H / 2 - 2).flat_map(|y| (W / 2 - 20..W / 2 + 20).map(move |x| (y, x)));
@@ -360,8 +360,8 @@ fn backlit_crests_glow_turquoise_and_not_with_the_sun_behind() {
     // crests, their facets turn less of the low sun toward the eye: 0.38 of the troughs'
     // glitter on the crests over the whole width, measured). Issue 34's bounds: crests at least 1.2 times as
     // bright as the troughs and greener (green/blue +0.05 or more) with the sun ahead; at
-    // most 1.1 times with it behind. Measured on lavapipe: ahead 1.27 and +0.147 (0.77 and
-    // −0.097 without the crests' light), behind 0.85 and −0.035.
+    // most 1.1 times with it behind. Measured on lavapipe: ahead 1.24 and +0.150 (0.77 and
+    // −0.097 without the crests' light), behind 0.85 and −0.034.
     const W: usize = 640;
     const H: usize = 360;
     let view = |sun: &str, view: &str| {

@@ -305,7 +305,7 @@ pub struct Cli {
           value_parser = |s: &str| parse_in(s, 0.25, 1.0), help_heading = "Scene")]
     pub render_scale: Option<f64>,
 
-    /// Sharpening of the scene target before it is scaled up to the output (0 to 1; 0: none): a contrast-adaptive sharpening of the pixels off the edges, in the anti-aliasing pass (so only with --aa fxaa). [default: 0.75 when the scene target is scaled up (--render-scale below 1), 0 at 1]
+    /// Sharpening of the scene target before it is scaled up to the output (0 to 1; 0: none): a contrast-adaptive sharpening of the pixels off the edges, in the anti-aliasing pass (so only with --aa fxaa). [default: 0.75 when the scene target is scaled up (--render-scale below 1) with --aa fxaa, else 0]
     #[arg(long, global = true, value_name = "S", allow_hyphen_values = true,
           value_parser = |s: &str| parse_in(s, 0.0, 1.0), help_heading = "Scene")]
     pub sharpen: Option<f64>,

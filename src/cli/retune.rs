@@ -8,7 +8,7 @@ use super::presets::{quality_level, sea_preset, DEFAULT_SEA};
 use super::tuning::Tunables;
 use super::{Cli, UsageError, WavesArg};
 use crate::frontend::Retune;
-use crate::render::default_sun_dir;
+use crate::render::{default_sun_dir, AntiAliasing};
 
 impl Cli {
     /// The tunables this command line resolves to (a preset's and the quality level's
@@ -75,6 +75,11 @@ impl Cli {
         cli.view = t.view;
         cli.fresnel = t.fresnel;
         cli.aa = t.aa;
+        // A live `aa = off` takes the sharpening with the pass that does it (given with
+        // `--aa off`, --sharpen is refused).
+        if t.aa == AntiAliasing::Off {
+            cli.sharpen = None;
+        }
         cli.sun = Some(t.sun);
         cli.clouds = Some(t.clouds);
         cli.time_scale = t.time_scale;

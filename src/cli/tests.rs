@@ -96,3 +96,23 @@ fn the_sharpening_follows_the_render_scale_unless_given() {
     assert!(refused.0.contains("--aa fxaa"), "{}", refused.0);
     assert!(Cli::try_parse_from(["vkocean", "--sharpen", "1.5"]).is_err());
 }
+
+/// A live `aa = off` (the overlay, `--live-set`) after `--sharpen` was given drops the
+/// sharpening with its pass instead of being refused.
+#[test]
+fn a_live_aa_off_takes_a_given_sharpening_with_it() {
+    let cli = Cli::parse_from([
+        "vkocean",
+        "--headless",
+        "--quality",
+        "low",
+        "--sharpen",
+        "0.5",
+    ]);
+    let mut t = cli.tunables();
+    t.aa = AntiAliasing::Off;
+    let scene = cli.retuned(&t).settings().unwrap().scene;
+    assert_eq!((scene.aa, scene.sharpen), (AntiAliasing::Off, 0.0));
+    t.aa = AntiAliasing::Fxaa;
+    assert_eq!(cli.retuned(&t).settings().unwrap().scene.sharpen, 0.5);
+}

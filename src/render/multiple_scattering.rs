@@ -54,10 +54,12 @@ pub fn lut() -> &'static [[f32; 3]] {
     })
 }
 
-/// The altitude (m) and sun zenith cosine at texel centre (x, y): the inverse of `coords`.
+/// The altitude (m) and sun zenith cosine at texel centre (x, y): the inverse of `coords`, which
+/// puts the first and last texels' centres at the ends of each range (h = 0 and the top,
+/// μs = −1 and 1).
 fn texel_at(x: usize, y: usize) -> (f64, f64) {
-    let u = (x as f64 + 0.5) / SIDE as f64;
-    let v = (y as f64 + 0.5) / SIDE as f64;
+    let u = x as f64 / (SIDE - 1) as f64;
+    let v = y as f64 / (SIDE - 1) as f64;
     (u * u * height(), v * 2.0 - 1.0)
 }
 
@@ -130,7 +132,7 @@ fn ray_length(r: f64, mu: f64) -> (f64, bool) {
 }
 
 /// The sunlight's transmittance from altitude h toward zenith cosine μ, tabulated (the table
-/// is marched once; Ψ_ms looks it up 80,000 times a texel row).
+/// is marched once; Ψ_ms looks it up 1,280 times a texel, 1.3 million times in all).
 struct Transmittance {
     table: Vec<[f64; 3]>,
 }
@@ -259,7 +261,9 @@ pub fn lut_rgba16f() -> Vec<u8> {
         .collect()
 }
 
-/// IEEE 754 binary16 of a finite `x` (round half up; beyond 65504 infinity).
+/// IEEE 754 binary16 of a finite `x`, rounded to nearest with ties away from zero (IEEE's
+/// default breaks ties to even: at most one unit in the last place apart, on ties only);
+/// beyond 65504 infinity.
 fn half_bits(x: f32) -> u16 {
     let bits = x.to_bits();
     let sign = ((bits >> 16) & 0x8000) as u16;
@@ -286,7 +290,7 @@ mod tests {
     use super::*;
 
     #[test]
-    fn half_floats_round_as_ieee_754_binary16() {
+    fn half_floats_are_binary16_rounded_to_nearest() {
         assert_eq!(half_bits(1.0), 0x3c00);
         assert_eq!(half_bits(0.5), 0x3800);
         assert_eq!(half_bits(-2.0), 0xc000);
@@ -296,7 +300,7 @@ mod tests {
         assert_eq!(half_bits(2f32.powi(-24)), 0x0001);
         assert_eq!(half_bits(3.0 * 2f32.powi(-24)), 0x0003);
         assert_eq!(half_bits(1e-9), 0);
-        // 1 + 2^-11 lies halfway between 1 and the next half: rounds up.
+        // 1 + 2^-11 lies halfway between 1 and the next half: the tie goes away from zero.
         assert_eq!(half_bits(1.0 + 2f32.powi(-11)), 0x3c01);
     }
 
