@@ -9,6 +9,7 @@ struct View {
 };
 
 #include "shared.glsl"
+#include "clouds.glsl"
 
 layout(set = 0, binding = 0, std140) uniform FrameUniforms {
     View views[3];       // 0: camera, 1: reflection (mirrored about the water), 2: refraction
@@ -118,8 +119,19 @@ mat3 buoy_to_world() {
 }
 
 // The sun's light on a surface facing it: through the air, and through the clouds (the sky
-// cube's alpha toward the sun; 1 for a --skybox).
+// cube's alpha toward the sun, what they let through to the origin; 1 for a --skybox).
 vec3 sun_light() { return frame.sun_light.rgb * textureLod(sky_cube, frame.sun_dir.xyz, 0.0).a; }
+
+// The sun's light on a surface facing it at world point `p` (m): through the air, and through
+// the broken clouds above p toward the sun (common/clouds.glsl), so their shadows lie on the
+// sea and the island where the layer the sky draws casts them. Evaluated per vertex (the
+// noise's finest cells are 150 m: the vertices resolve them), and without the cube: a
+// --skybox (light.x = 0) has no layer, and lets all of it through as its cube's alpha does.
+// (No branch on the uniform: see common/water.glsl's ocean_displacement_at for lavapipe's.)
+vec3 sun_light_at(vec3 p) {
+    float through = cloud_through(p, frame.sun_dir.xyz, frame.sun_light.w);
+    return frame.sun_light.rgb * mix(1.0, through, step(1e-30, frame.light.x));
+}
 
 // The sky's light on a surface whose normal is n (irradiance / π): the sky cube along the normal
 // and toward the zenith, a cheap stand-in for the cosine-weighted hemisphere.

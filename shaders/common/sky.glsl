@@ -13,6 +13,7 @@
 // "A scalable and production ready sky and atmosphere rendering technique"), evaluated here by
 // marching the ray instead of from their lookup tables: the cube is rendered once per sun.
 #include "shared.glsl"
+#include "clouds.glsl"
 
 const float SKY_PI = 3.14159265;
 // The sun's mean apparent diameter is 0.533° (Allen's Astrophysical Quantities, 4th ed., §14.1):
@@ -117,30 +118,6 @@ vec3 clear_sky(vec3 dir, vec3 sun) {
     return rayleigh * RAYLEIGH_SCATTERING * phase_r + mie * MIE_SCATTERING * phase_m + multiple;
 }
 
-// Value noise in [0, 1] and its fractal sum (5 octaves), for the clouds' shapes.
-float sky_hash(vec2 p) {
-    vec3 q = fract(vec3(p.xyx) * 0.1031);
-    q += dot(q, q.yzx + 33.33);
-    return fract((q.x + q.y) * q.z);
-}
-float sky_noise(vec2 q) {
-    vec2 i = floor(q);
-    vec2 f = q - i;
-    vec2 u = f * f * (3.0 - 2.0 * f);
-    return mix(mix(sky_hash(i), sky_hash(i + vec2(1.0, 0.0)), u.x),
-               mix(sky_hash(i + vec2(0.0, 1.0)), sky_hash(i + 1.0), u.x), u.y);
-}
-float cloud_shape(vec2 q) {
-    float sum = 0.0;
-    float amplitude = 0.5;
-    for (int i = 0; i < 5; ++i) {
-        sum += amplitude * sky_noise(q);
-        q = mat2(1.6, 1.2, -1.2, 1.6) * q + 7.3;
-        amplitude *= 0.5;
-    }
-    return sum / 0.96875;
-}
-
 // The sky along `dir` with `cover` (0–1) of it clouded, for a sun of irradiance `irradiance`
 // toward `sun`: rgb the radiance, a the share of the sun's light the clouds let through along
 // `dir` (the sun's disc and the direct light on the scene are multiplied by it at `sun`).
@@ -159,13 +136,10 @@ vec4 sky_radiance(vec3 dir, vec3 sun, float cover, float irradiance, vec3 sunlig
     float elevation = max(dir.y, 0.0);
     vec3 overcast = overcast_zenith * (1.0 + 2.0 * elevation) / 3.0;
 
-    // Broken clouds: where the ray meets the layer, a coverage from the shape's noise; past
-    // ~20 km their texture is finer than the cube resolves and only the mean cover is left.
+    // Broken clouds: where the ray meets the layer, a coverage from the shape's noise.
+    // The layer is common/clouds.glsl's, seen from the origin.
     float dist = CLOUD_BASE_M / max(dir.y, 1e-3);
-    float shape = cloud_shape(dir.xz * dist / 2500.0);
-    float local = smoothstep(1.0 - cover, 1.0 - cover + 0.3, shape);
-    float far = smoothstep(15e3, 60e3, dist);
-    float alpha = mix(local, cover, far) * step(0.0, dir.y) * min(cover * 8.0, 1.0);
+    float alpha = cloud_alpha(dir.xz * dist, dist, cover) * step(0.0, dir.y);
     // Cloud lit from above and through (forward scattering toward the sun), and by the sky.
     float nu = max(dot(dir, sun), 0.0);
     vec3 cloud = sunlight * (0.12 * max(sun.y, 0.0) + 0.1 * pow(nu, 6.0)) + 1.4 * zenith;

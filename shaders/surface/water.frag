@@ -26,8 +26,8 @@ layout(location = 0) in vec3 in_rel_pos;
 layout(location = 1) in vec2 in_xz;
 layout(location = 2) in vec3 in_displacement;
 layout(location = 3) in vec2 in_shore; // water.tese: the water's depth (m) and K_s
-layout(location = 4) flat in vec3 in_sun_light; // water.tese: sun_light(), the frame's
-layout(location = 5) flat in vec3 in_sky_zenith; // and the sky's radiance at the zenith
+layout(location = 4) in vec3 in_sun_light; // water_vertex.glsl: the sun's light (clouds' shadows)
+layout(location = 5) flat in vec3 in_sky_zenith; // and the frame's sky radiance at the zenith
 layout(location = 6) in vec4 in_surf; // water_vertex.glsl: the bores' phase, share, gradient
 layout(location = 0) out vec4 out_colour;
 
@@ -57,31 +57,41 @@ const float FOAM_RELIEF_M = 0.15;
 
 // The summed normal, its slopes scaled as the shallows scale the waves (`scale`), and the
 // whitecap field (layer 0's foam: the whole surface's, see src/ocean/foam.rs), faded with the
-// largest cascade. `resolved`: the mean-square slope those faded, scaled cascades carry.
-// A cascade's slopes also fade where the pixel's footprint on the water (`pixel_m`) passes
-// its shortest wavelength (gone at twice that), before they alias into shimmer: its band ends
-// at 6 waves per next patch (L_{c+1}/6 = L_c/26, spectrum.rs's cascades), the last one at its
-// Nyquist limit (2 texels). What fades out joins the glitter's unresolved slopes.
+// largest cascade. `resolved`: the mean-square slope those faded, scaled cascades carry along
+// the view (x) and across it (y), each cascade's split evenly between the two (its waves come
+// from all around the wind).
+// A cascade's slopes also fade where the pixel's footprint on the water passes its shortest
+// wavelength (gone at twice that), before they alias into shimmer: its band ends at 6 waves
+// per next patch (L_{c+1}/6 = L_c/26, spectrum.rs's cascades), the last one at its Nyquist
+// limit (2 texels). The footprint is longer along the view than across it (`footprint`: x
+// along, y across, m; `along`: the view's direction over the water), 1/sin e times at an
+// elevation e: the slopes along the view fade by the one, those across by the other (an
+// anisotropic filter, as LEAN mapping's per-axis variances; Bruneton, Neyret & Holzschuch 2010
+// filter along and across the view alike). With one footprint for both (their geometric
+// mean), grazing views kept slopes along the view that their pixels cannot hold, and the sea
+// a few hundred metres out broke into one-pixel filaments. What fades out joins the glitter's
+// unresolved slopes, per direction.
 // `compression`: how much the waves whose crests the light can cross squeeze the water
 // together here, Σ w_c (1 − J_c) (J_c each cascade's Jacobian, 0 on a flat sea): cascade 1
 // (waves of 3.5–15 m at the default 400 m patch, crests a few metres thick) in full, cascade
 // 0 (15–400 m) at half, the smaller ones not at all (their ripples hold too little water to
 // glow, and their compression drew the glow as a sparkling net).
-vec4 ocean_normal_foam(vec2 xz, float dist, float pixel_m, float scale, out float resolved,
-                       out float compression) {
+vec4 ocean_normal_foam(vec2 xz, float dist, vec2 footprint, vec2 along, float scale,
+                       out vec2 resolved, out float compression) {
+    vec2 across = vec2(-along.y, along.x);
     vec2 slope = vec2(0.0);
     compression = 0.0;
     float foam = 0.0;
-    resolved = 0.0;
+    resolved = vec2(0.0);
     float texels = float(textureSize(ocean_normals, 0).x);
     for (int c = 0; c < CASCADES; ++c) {
         float weight;
         vec3 uv = ocean_uv(xz, c, dist, weight);
         vec4 s = ocean_texture(ocean_normals, uv);
-        float slope_weight = weight * clamp(2.0 - pixel_m / cascade_shortest_m(c, texels), 0.0, 1.0);
-        slope += slope_weight * s.xy;
+        vec2 w = weight * clamp(2.0 - footprint / cascade_shortest_m(c, texels), 0.0, 1.0);
+        slope += w.x * dot(s.xy, along) * along + w.y * dot(s.xy, across) * across;
         foam += c == 0 ? weight * s.w : 0.0;
-        resolved += slope_weight * slope_weight * frame.slope_variance[c];
+        resolved += w * w * (0.5 * frame.slope_variance[c]);
         compression += (c == 0 ? 0.5 : (c == 1 ? 1.0 : 0.0)) * weight * (1.0 - s.z);
     }
     slope += wake_at(xz).yz;
@@ -108,24 +118,36 @@ vec3 blurred_reflection(vec2 uv, float layer, float h) {
     return textureLod(reflection_colour, vec3(uv.x, y, layer), 0.0).rgb;
 }
 
-// Smith's masking for the Beckmann distribution of mean-square slope m2, at a direction whose
-// cosine to the normal is `c` (Walter et al. 2007's rational fit, eq. 27).
-float smith_g1(float c, float m2) {
-    float a = c / sqrt(m2 * max(1.0 - c * c, 1e-6));
+// Smith's masking for the Beckmann distribution, at a direction whose cosine to the normal is
+// `c`, from the mean-square slope σ² of the facets in that direction's plane (Walter et al.
+// 2007's rational fit, eq. 27, with their α² = 2σ²).
+float smith_g1(float c, float sigma2) {
+    float a = c / sqrt(2.0 * sigma2 * max(1.0 - c * c, 1e-6));
     return a < 1.6 ? (3.535 * a + 2.181 * a * a) / (1.0 + 2.276 * a + 2.577 * a * a) : 1.0;
 }
 
 // The sun's reflection off the slopes a pixel does not resolve (Bruneton, Neyret & Holzschuch
 // 2010): the facets around the drawn normal n have Gaussian (Beckmann) slopes of mean square
-// m2, so the radiance toward v is E·F(v·h)·D(h)·G/(4 n·v), D = exp(−tan²θ_h/m2)/(π m2 cos⁴θ_h).
-float sun_glitter(vec3 n, vec3 v, vec3 l, float m2) {
+// m2.x along the view (the direction `along` over the water) and m2.y across it, so the
+// radiance toward v is E·F(v·h)·D(h)·G/(4 n·v), with the half vector h's slopes x_a, x_c
+// along the two axes (tangent to n), D = exp(−(x_a²/m2.x + x_c²/m2.y)/2)/(2π √(m2.x m2.y)
+// cos⁴θ_h) and each direction's masking from the mean square in its plane.
+float sun_glitter(vec3 n, vec3 v, vec3 l, vec2 along, vec2 m2) {
     vec3 h = normalize(v + l);
     float nh = max(dot(n, h), 1e-4);
     float nv = max(dot(n, v), 1e-4);
     float nl = max(dot(n, l), 0.0);
+    vec3 a = vec3(along.x, 0.0, along.y);
+    vec3 t_along = normalize(a - n * dot(a, n));
+    vec3 t_across = cross(n, t_along);
+    vec2 x = vec2(dot(h, t_along), dot(h, t_across)) / nh;
     float c2 = nh * nh;
-    float d = exp(-(1.0 - c2) / (c2 * m2)) / (PI * m2 * c2 * c2);
-    float g = smith_g1(nv, m2) * smith_g1(max(nl, 1e-4), m2) * step(1e-4, nl);
+    float d = exp(-0.5 * dot(x * x, 1.0 / m2)) / (2.0 * PI * sqrt(m2.x * m2.y) * c2 * c2);
+    // The sun's azimuth from the view's: its plane's mean square.
+    vec2 l_flat = l.xz / max(length(l.xz), 1e-6);
+    float cos_l = dot(l_flat, along);
+    float sigma2_l = mix(m2.y, m2.x, cos_l * cos_l);
+    float g = smith_g1(nv, m2.x) * smith_g1(max(nl, 1e-4), sigma2_l) * step(1e-4, nl);
     return fresnel(clamp(dot(v, h), 0.0, 1.0)) * d * g / (4.0 * nv);
 }
 
@@ -441,11 +463,17 @@ void main() {
     // cost lavapipe 0.8 ms a frame at --quality low: it runs both sides of a branch).
     vec3 shore = shore_waves_at(in_shore.y, in_shore.x);
     // The pixel's footprint on the water: dist / focal length across the view, stretched by
-    // 1/sin(elevation) along it (the geometric mean of the two).
-    float pixel_m = dist / (frame.lod.x * sqrt(max(v.y, 0.01)));
-    float resolved;
+    // 1/sin(elevation) along it; `pixel_m` the geometric mean of the two (the foam's lace, the
+    // surf's front: patterns of no direction).
+    float across_m = dist / frame.lod.x;
+    vec2 footprint = vec2(across_m / max(v.y, 0.01), across_m);
+    float pixel_m = across_m / sqrt(max(v.y, 0.01));
+    // The view's direction over the water, away from the eye (any, looking straight down).
+    float flat_len = length(v.xz);
+    vec2 along = flat_len > 1e-5 ? -v.xz / flat_len : vec2(1.0, 0.0);
+    vec2 resolved;
     float compression;
-    vec4 nf = ocean_normal_foam(in_xz, dist, pixel_m, shore.x, resolved, compression);
+    vec4 nf = ocean_normal_foam(in_xz, dist, footprint, along, shore.x, resolved, compression);
     nf.w = foam_at(in_xz, nf.w);
     vec3 n = nf.xyz;
     // The surf (common/shore.glsl). Where the waves have broken, a share in_surf.y of the sea
@@ -501,9 +529,9 @@ void main() {
         // image far: they take the slopes a MIRROR_BLUR times wider footprint resolves (our
         // choice, 32: at 1 the floor's image broke into sparkles pixel by pixel at --quality
         // high, at 8 it still did far off; a pixel sees the mean of its many facets' images).
-        float unused_resolved;
+        vec2 unused_resolved;
         float unused_compression;
-        vec3 smooth_n = ocean_normal_foam(in_xz, dist, MIRROR_BLUR * pixel_m, shore.x,
+        vec3 smooth_n = ocean_normal_foam(in_xz, dist, MIRROR_BLUR * footprint, along, shore.x,
                                           unused_resolved, unused_compression).xyz;
         under_colour = from_below(n, smooth_n, v, dist);
         if (UNDERWATER_VIEW == 1) {
@@ -532,14 +560,16 @@ void main() {
     // drawn here carry) scatter the reflected ray: a facet tilted by s in the plane of
     // incidence turns it by 2s up or down, one tilted across it by 2s·cos θ sideways (θ the
     // angle of incidence, near 90° where the sea meets the sky). So the mirror image spreads
-    // by 2σ·f texels up and down (σ² the unresolved mean square, f the reflection's texels
-    // per radian): vertical streaks. The reflection's layers blur it over 2^l rows (a kernel
-    // of standard deviation 2^l / 2 once filtered), so the lookup blends the two layers around
-    // l = log2(2 · 2σf). The sideways spread is left out (small but near the camera).
+    // by 2σ·f texels up and down (σ² the unresolved mean square along the view, f the
+    // reflection's texels per radian): vertical streaks. The reflection's layers blur it over
+    // 2^l rows (a kernel of standard deviation 2^l / 2 once filtered), so the lookup blends the
+    // two layers around l = log2(2 · 2σf). The sideways spread is left out (small but near the
+    // camera). `unresolved`: Cox & Munk's mean square split evenly along and across the view,
+    // less what the cascades drawn here carry in each direction.
     vec3 reflection_size = vec3(textureSize(reflection_colour, 0));
-    float unresolved = max(frame.light.y - resolved, 2e-3);
+    vec2 unresolved = max(0.5 * frame.light.y - resolved, 1e-3);
     float texels_per_rad = frame.lod.x * reflection_size.y * frame.viewport.w;
-    float spread = 2.0 * sqrt(unresolved) * texels_per_rad;
+    float spread = 2.0 * sqrt(unresolved.x) * texels_per_rad;
     float layer = clamp(log2(max(2.0 * spread, 1.0)), 0.0, reflection_size.z - 1.0);
     vec2 reflect_uv = clamp(mirror_uv + offset, 0.001, 0.999);
     float below = floor(layer);
@@ -568,20 +598,24 @@ void main() {
     // In a shadow (common/shadow.glsl: `water_shadow`) the sun's share of that irradiance is
     // gone from the water body (y); the sun's other terms below take `sunlight`, the sun's light
     // past the casters at the surface (x).
+    // Under a cloud's shadow (in_sun_light: the sun's light past the clouds above the point,
+    // `through` of the clear sky's) the sun's share is gone from it too.
     vec2 shadow = water_shadow(in_rel_pos + VIEW.eye.xyz);
     vec3 sunlight = in_sun_light * shadow.x;
-    vec3 sun_on_sea = in_sun_light * max(sun.y, 0.0);
     const vec3 LUMA = vec3(0.2126, 0.7152, 0.0722);
-    float sun_share = dot(sun_on_sea, LUMA) / max(dot(sun_on_sea + PI * in_sky_zenith, LUMA), 1e-6);
-    vec3 deep = WATER_COLOUR * frame.sky_light.rgb * (1.0 - sun_share * (1.0 - shadow.y));
+    float clear_sun = max(dot(frame.sun_light.rgb, LUMA), 1e-6);
+    float through = clamp(dot(in_sun_light, LUMA) / clear_sun, 0.0, 1.0);
+    float sun_on_sea = clear_sun * max(sun.y, 0.0);
+    float sun_share = sun_on_sea / max(sun_on_sea + PI * dot(in_sky_zenith, LUMA), 1e-6);
+    vec3 deep = WATER_COLOUR * frame.sky_light.rgb * (1.0 - sun_share * (1.0 - shadow.y * through));
     vec3 transmitted = mix(deep, c_refract, exp(-thickness * ABSORPTION_PER_M));
     // The light through the crests (crest_light), scaled as the shallows scale the waves.
     transmitted += crest_light(v, sun, sunlight, in_displacement.y, shore.z,
                                compression * shore.x);
 
     float cos_theta = clamp(dot(n, v), 0.0, 1.0);
-    // The unresolved slopes' spread along the view: half their mean square (isotropic).
-    float f = sea_fresnel(cos_theta, sqrt(0.5 * unresolved));
+    // The unresolved slopes' spread along the view.
+    float f = sea_fresnel(cos_theta, sqrt(unresolved.x));
     vec3 colour = mix(transmitted, c_reflect, f);
 
     // Whitecaps: a layer of foam of reflectance R over the water (foam_layer), lit as a
@@ -609,7 +643,7 @@ void main() {
     colour = mix(colour, foam_light(foam_n, v, sun, sunlight, behind, lace), opacity);
     // c_h: the sun's glitter from the slopes the normal does not resolve (the sea's mean-square
     // slope, Cox & Munk 1954, less what the cascades drawn here carry), none on the foam.
-    float glitter = sun_glitter(n, v, sun, unresolved) * (1.0 - opacity);
+    float glitter = sun_glitter(n, v, sun, along, unresolved) * (1.0 - opacity);
     colour += sunlight * glitter;
 
     vec3 haze = aerial_haze(dist);

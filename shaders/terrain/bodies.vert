@@ -17,6 +17,8 @@ layout(location = 0) out vec3 out_rel_pos;
 layout(location = 1) out vec3 out_world;
 layout(location = 2) out vec3 out_normal;
 layout(location = 3) flat out int out_object;
+// The sun's light through the air and the clouds above the vertex (frame.glsl's `sun_light_at`).
+layout(location = 4) out vec3 out_sun_light;
 
 const uint SEGMENTS = 12u;
 const float TAU = 6.28318530718;
@@ -104,6 +106,7 @@ void main() {
     }
     out_normal = rotate(q, n);
     out_world = world;
+    out_sun_light = sun_light_at(world);
     out_object = 4 + int(shape);
     out_rel_pos = world - VIEW.eye.xyz;
     gl_ClipDistance[0] = dot(VIEW.clip_plane, vec4(world, 1.0));
