@@ -113,6 +113,9 @@ shared_constants! {
     /// Height of the cloud layer (m): cumulus and stratocumulus bases over the sea lie at
     /// 0.5–2 km (WMO International Cloud Atlas).
     CLOUD_BASE_M: f32 = 1500.0;
+    /// Horizontal scale of the clouds' noise (m): its first octave's cells
+    /// (shaders/common/clouds.glsl, src/render/clouds.rs).
+    CLOUD_SCALE_M: f32 = 2500.0;
     /// The smallest Jacobian the exact normal divides by (shaders/ocean/assemble.comp and
     /// src/ocean/cpu.rs): where the choppy surface folds (J ≤ 0) its true normal points down,
     /// and the stored slopes stay those of a steep (J = 0.05) face.

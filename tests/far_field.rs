@@ -7,8 +7,7 @@ mod common;
 
 use common::linear;
 use glam::Vec3;
-use vkocean::render::Camera;
-use vkocean::shared::CLOUD_BASE_M;
+use vkocean::render::{clouds, Camera};
 
 /// Linear Rec. 709 luminance of each RGBA pixel.
 fn linear_luma(p: &[u8]) -> Vec<f64> {
@@ -59,8 +58,8 @@ fn a_grazing_view_away_from_the_sun_holds_no_more_detail_than_a_supersampled_one
     // 4x4 blocks (in linear light) to 320x180, the reference each pixel should approach. Seen
     // this low, a pixel's footprint on the water is up to 100 times longer along the view
     // than across it; slopes filtered by one footprint for both directions (their geometric
-    // mean, before) were too fine along the view for the pixels to hold, and the sea 30 m to
-    // the horizon broke into one-pixel filaments: 1.37x the reference's detail one pixel high
+    // mean, before) were too fine along the view for the pixels to hold, and the sea from
+    // about 30 m out to the horizon broke into one-pixel filaments: 1.37x the reference's detail one pixel high
     // there (measured on the build before). Filtered by the footprint in each direction: 1.03x.
     let (w, h) = (320usize, 180usize);
     let args = [
@@ -97,12 +96,12 @@ fn a_grazing_view_away_from_the_sun_holds_no_more_detail_than_a_supersampled_one
             encoded(sum / 16.0)
         })
         .collect();
+    // The horizon found in the picture drawn at 320x180 (the averaged one's may fall a row
+    // apart); rows 1-14 below it: the water from about 30 m out to the horizon.
     let horizon = horizon_row(&small, w, h);
-    assert_eq!(horizon, horizon_row(&reference, w, h), "the same horizon");
-    // Rows 1-15 below the horizon: the water about 40 m out to the horizon.
     let far = horizon + 1..horizon + 15;
     let ratio = vertical_detail(&small, w, far.clone()) / vertical_detail(&reference, w, far);
-    println!("detail one pixel high, 40 m to the horizon: {ratio:.2}x the supersampled picture's");
+    println!("detail one pixel high, 30 m to the horizon: {ratio:.2}x the supersampled picture's");
     assert!(
         ratio <= 1.25,
         "the far sea aliases: {ratio:.2}x the supersampled picture's one-pixel detail"
@@ -113,60 +112,17 @@ fn a_grazing_view_away_from_the_sun_holds_no_more_detail_than_a_supersampled_one
     );
 }
 
-// A twin of shaders/common/clouds.glsl in f32, as the GPU evaluates it.
-fn fract(x: f32) -> f32 {
-    x - x.floor()
-}
-fn cloud_hash(px: f32, py: f32) -> f32 {
-    let mut q = [fract(px * 0.1031), fract(py * 0.1031), fract(px * 0.1031)];
-    let d = q[0] * (q[1] + 33.33) + q[1] * (q[2] + 33.33) + q[2] * (q[0] + 33.33);
-    q = q.map(|v| v + d);
-    fract((q[0] + q[1]) * q[2])
-}
-fn cloud_noise(x: f32, y: f32) -> f32 {
-    let (ix, iy) = (x.floor(), y.floor());
-    let (fx, fy) = (x - ix, y - iy);
-    let (ux, uy) = (fx * fx * (3.0 - 2.0 * fx), fy * fy * (3.0 - 2.0 * fy));
-    let mix = |a: f32, b: f32, t: f32| a + (b - a) * t;
-    mix(
-        mix(cloud_hash(ix, iy), cloud_hash(ix + 1.0, iy), ux),
-        mix(cloud_hash(ix, iy + 1.0), cloud_hash(ix + 1.0, iy + 1.0), ux),
-        uy,
-    )
-}
-fn cloud_shape(mut x: f32, mut y: f32) -> f32 {
-    let (mut sum, mut amplitude) = (0.0, 0.5);
-    for _ in 0..5 {
-        sum += amplitude * cloud_noise(x, y);
-        (x, y) = (1.6 * x - 1.2 * y + 7.3, 1.2 * x + 1.6 * y + 7.3);
-        amplitude *= 0.5;
-    }
-    sum / 0.96875
-}
-fn smoothstep(e0: f32, e1: f32, x: f32) -> f32 {
-    let t = ((x - e0) / (e1 - e0)).clamp(0.0, 1.0);
-    t * t * (3.0 - 2.0 * t)
-}
-/// The share of the sun's light the broken clouds let through to the sea at world (x, z).
-fn cloud_through(x: f32, z: f32, sun: Vec3, cover: f32) -> f32 {
-    let dist = CLOUD_BASE_M / sun.y.max(1e-3);
-    let shape = cloud_shape((x + sun.x * dist) / 2500.0, (z + sun.z * dist) / 2500.0);
-    let local = smoothstep(1.0 - cover, 1.3 - cover, shape);
-    let far = smoothstep(15e3, 60e3, dist);
-    let alpha = (local + (cover - local) * far) * (cover * 8.0).min(1.0);
-    (1.0 - alpha) * (1.0 - smoothstep(0.85, 1.0, cover))
-}
-
 #[test]
 fn the_clouds_shadows_take_the_sun_off_the_sea_where_the_sky_casts_them() {
     // The default sun (11.7 deg up), a sky 0.6 clouded, from 20 m at a point 750 m south of
-    // the origin, looking along the sun's path on the water: the twin above puts the path's
-    // first 300 m in the sun and its last kilometres under a cloud. The same view under a
-    // clear sky is the reference: pixel by pixel, what the clouds take away is the sky's
-    // change (the same for every pixel, near enough) plus, under a cloud, the sun's glitter.
-    // Measured: the lit path loses -1 % (the sky's change), the shaded 17 %. With one sun for
-    // the whole sea (the cube's alpha toward the sun from the origin, the build before), the
-    // lit part lost 24 % and the shaded 9 %: the clouds in the sky had no shadows.
+    // the origin, looking along the sun's path on the water: src/render/clouds.rs (the
+    // layer's CPU twin) puts the path's first 200 m in the sun and its last kilometres under
+    // a cloud. The same view under a clear sky is the reference: pixel by pixel, what the
+    // clouds change is the sky's and the exposure's (about the same for every pixel) and,
+    // under a cloud, the sun's light on the water. So the shaded pixels' share of their clear
+    // light over the lit pixels' share must fall well below 1. Measured: 0.82 (the lit path
+    // keeps 101 % of its clear light, the shaded 83 %); with one sun for the whole sea (the
+    // cube's alpha toward the sun from the origin, the build before) 1.20.
     let (w, h) = (640usize, 360usize);
     let (az, el) = ((-70.7f32).to_radians(), 11.7f32.to_radians());
     let sun = Vec3::new(el.cos() * az.cos(), el.sin(), el.cos() * az.sin());
@@ -205,7 +161,7 @@ fn the_clouds_shadows_take_the_sun_off_the_sea_where_the_sky_casts_them() {
             let Some([px, pz]) = view.water_point(ndc, aspect, 0.0, 20e3) else {
                 continue;
             };
-            let t = cloud_through(px, pz, sun, 0.6);
+            let t = clouds::through(Vec3::new(px, 0.0, pz), sun, 0.6);
             let i = y * w + x;
             if t > 0.9 {
                 lit[0] += clouded[i];
@@ -222,23 +178,16 @@ fn the_clouds_shadows_take_the_sun_off_the_sea_where_the_sky_casts_them() {
         n_lit >= 2000 && n_shaded >= 300,
         "the view holds both: {n_lit} lit and {n_shaded} shaded pixels of the path"
     );
-    let lit_loss = 1.0 - lit[0] / lit[1];
-    let shaded_loss = 1.0 - shaded[0] / shaded[1];
+    let (lit_share, shaded_share) = (lit[0] / lit[1], shaded[0] / shaded[1]);
+    let ratio = shaded_share / lit_share;
     println!(
-        "the sun's path under the clouds loses {:.1} % of its light where it is lit ({n_lit} px), \
-         {:.1} % in a cloud's shadow ({n_shaded} px)",
-        100.0 * lit_loss,
-        100.0 * shaded_loss
+        "the sun's path under the clouds keeps {:.1} % of its clear light where it is lit \
+         ({n_lit} px), {:.1} % in a cloud's shadow ({n_shaded} px): {ratio:.2}",
+        100.0 * lit_share,
+        100.0 * shaded_share
     );
     assert!(
-        shaded_loss >= 0.10,
-        "the shadow takes only {:.1} % of the path's light",
-        100.0 * shaded_loss
-    );
-    assert!(
-        shaded_loss >= 4.0 * lit_loss.max(0.0),
-        "the shadow ({:.1} %) is no darker than the lit path ({:.1} %)",
-        100.0 * shaded_loss,
-        100.0 * lit_loss
+        ratio <= 0.9,
+        "the cloud's shadow keeps {ratio:.2} of the lit path's share of its clear light"
     );
 }

@@ -143,7 +143,11 @@ float caustic(vec2 xz, float depth, float dist, float pixel_m) {
 // along the sun the shafts keep the caustics' detail and across it they do not alias. The ratio
 // comes from the level sea's surface point (no fixed-point step: soft shafts need less than
 // the floor) and is capped at SHAFT_MAX_RATIO, a sharp focus being a thin sheet the stretch
-// mostly misses (our choice: without it single samples speckle).
+// mostly misses (our choice: without it single samples speckle). With SHAFT_SHADOWS defined
+// (shaders/underwater/shafts.frag, which includes common/shadow.glsl) each sample also takes
+// the share of the sun the casters leave its point (`sun_shadow`: the refracted sun's way up
+// past the pillars and the buoy, then the island): the shadows of the objects and the island
+// cut dark slabs out of the shafts, as they do in the water around a pier.
 const int SHAFT_STEPS = 12;
 const float SHAFT_MAX_RATIO = 3.0;
 
@@ -165,6 +169,9 @@ vec4 shaft_means(vec3 dir, float jitter) {
             float pixel_m = max(across, s / frame.lod.x);
             ratio = min(caustic_ratio(frame.water.xy + s * dir.xz, depth, s, pixel_m, 1),
                         SHAFT_MAX_RATIO);
+#ifdef SHAFT_SHADOWS
+            ratio *= sun_shadow(frame.views[0].eye.xyz + s * dir, -1);
+#endif
         }
         light += ratio * w;
         gathered += w;

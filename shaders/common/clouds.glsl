@@ -8,9 +8,7 @@
 #ifndef CLOUDS_GLSL
 #define CLOUDS_GLSL
 #include "shared.glsl"
-
-// Horizontal scale of the clouds' noise (m): its first octave's cells.
-const float CLOUD_SCALE_M = 2500.0;
+// CLOUD_SCALE_M (src/shared.rs): the horizontal scale of the noise's first octave's cells.
 
 // Value noise in [0, 1] and its fractal sum (5 octaves), for the clouds' shapes.
 float sky_hash(vec2 p) {

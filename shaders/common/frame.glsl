@@ -15,7 +15,8 @@ layout(set = 0, binding = 0, std140) uniform FrameUniforms {
     View views[3];       // 0: camera, 1: reflection (mirrored about the water), 2: refraction
     uvec4 modes;         // x: debug view (VIEW_*); y: Fresnel model (FRESNEL_*); z: 1 = bounded
                          // ocean window (Gerstner); w: 1 = solid test background
-    vec4 sun_dir;        // xyz: unit vector toward the sun; w: unused (the sun's light: `light`)
+    vec4 sun_dir;        // xyz: unit vector toward the sun; w: the share of its light the
+                         // clouds let through to the sea on average (src/render/clouds.rs)
     vec4 viewport;       // xy: main target size (px); zw: 1 / size
     vec4 patch_m;        // side of each ocean cascade's patch (m), cascades 0..3
     vec4 lod;            // x: focal length (px); y: target edge (px); z: max displacement (m)
@@ -45,7 +46,7 @@ layout(set = 0, binding = 0, std140) uniform FrameUniforms {
     vec4 slope_variance; // mean-square slope of cascade c's waves (Σ k²E), c = 0..3
     vec4 curvature_variance; // mean square of the Laplacian of cascade c's height (Σ k⁴E)
     vec4 sun_light;      // rgb: the sun's irradiance at the sea through the clear air (times
-                         // sun_visibility(): what the clouds let through); w: cloud cover
+                         // what the clouds let through: `sun_light_at`); w: cloud cover
     vec4 sky_light;      // rgb: the irradiance on the sea over the default day's; w: the
                          // display's exposure (the eye's adaptation to the light)
     vec4 underwater;     // x: 1 when the camera's near plane is all under the water; y: the

@@ -2,11 +2,12 @@
 // pillars and the buoy. The casters are all analytic (the island is terrain_height, the objects
 // are the cylinders of terrain/objects.vert), so the shadow is a ray cast toward the sun in the
 // fragment shader rather than a shadow map: no map to render, no resolution to run out of over
-// the island's 2 km, no acne from a depth bias, and the same answer in every pass drawn from
-// above the water (the main view, the reflection, the refraction; the view from under the
-// water, water.frag's `from_below`, has no shadows yet). Every pass that lights with the sun multiplies the
-// sun's light by it: the terrain and the objects (terrain.frag) and the water's sun terms
-// (water.frag). `frame.light.w` is 0 with `--shadows off`.
+// the island's 2 km, no acne from a depth bias, and the same answer in every pass (the main
+// view, the reflection, the refraction, and from under the water). Every pass that lights with
+// the sun multiplies the sun's light by it: the terrain and the objects (terrain.frag), the
+// water's sun terms (water.frag), the floor the surface mirrors from below (water.frag's
+// `mirrored_floor`) and the light shafts (shaders/underwater/shafts.frag). `frame.light.w` is
+// 0 with `--shadows off`.
 //
 // The sun is a disc SUN_ANGULAR_RADIUS across (common/sky.glsl); seen from a point, an edge
 // that clears the line to the sun's centre by an angle a hides the share 0.5 − a / (2·radius)

@@ -69,7 +69,7 @@ void main() {
                     * (1.0 - smoothstep(SPRAY_MAX_AGE_S - 1.0, SPRAY_MAX_AGE_S, age))
                     * smoothstep(2.0, 6.0, distance);
     vec3 l = frame.sun_dir.xyz;
-    vec3 sun = sun_light() * henyey_greenstein(dot(forward, l), 0.7);
+    vec3 sun = sun_light_at(p.position_age.xyz) * henyey_greenstein(dot(forward, l), 0.7);
     vec3 sky = sky_ambient(vec3(0.0, 1.0, 0.0));
     out_colour = vec4(sun + sky, opacity);
 }

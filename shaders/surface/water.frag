@@ -383,8 +383,9 @@ float sea_fresnel(float c, float sigma_v) {
 // The sea floor (the island's terrain) that the surface point `p` (relative to the eye) mirrors
 // along the ray `r` going down, seen through the water between: the ray marched in
 // MIRROR_STEPS to at most MIRROR_REACH_M (where a + b leaves e^-4 of the blue) and the crossing
-// refined by halving; the floor lit as terrain_lit.glsl lights it, without its shadows (the
-// refracted sun focused by the caustics, the sky, the light's absorption on the way down).
+// refined by halving; the floor lit as terrain_lit.glsl lights it (the refracted sun focused
+// by the caustics and past the casters' shadows, the sky, the light's absorption on the way
+// down).
 // Where the ray meets no floor: the water's own light.
 const int MIRROR_STEPS = 8;
 const float MIRROR_REACH_M = 40.0;
@@ -428,7 +429,10 @@ vec3 mirrored_floor(vec3 p, vec3 r) {
         vec2 xz = q.xz - frame.views[0].eye.xz + frame.water.xy;
         lambert *= caustic_ratio(xz, depth, seen_m, seen_m / frame.lod.x, 1);
     }
-    vec3 light = sun_light() * lambert / 3.14159265 + sky_ambient(n);
+    // The casters' shadows on it (common/shadow.glsl; with --shadows), as on the floor seen
+    // directly, and the clouds' above it.
+    lambert *= lambert > 0.0 ? sun_shadow(q + vec3(0.0, 0.5, 0.0), -1) : 1.0;
+    vec3 light = sun_light_at(q) * lambert / 3.14159265 + sky_ambient(n);
     vec3 colour = terrain_albedo(q.y, n.y) * light * exp(-depth * ABSORPTION_PER_M);
     return underwater_fog(colour, colour, r, hit);
 }
@@ -465,9 +469,11 @@ void main() {
     // The pixel's footprint on the water: dist / focal length across the view, stretched by
     // 1/sin(elevation) along it; `pixel_m` the geometric mean of the two (the foam's lace, the
     // surf's front: patterns of no direction).
+    // (From under the water v.y < 0: the same footprint, seen from the other side.)
     float across_m = dist / frame.lod.x;
-    vec2 footprint = vec2(across_m / max(v.y, 0.01), across_m);
-    float pixel_m = across_m / sqrt(max(v.y, 0.01));
+    float sin_e = max(abs(v.y), 0.01);
+    vec2 footprint = vec2(across_m / sin_e, across_m);
+    float pixel_m = across_m / sqrt(sin_e);
     // The view's direction over the water, away from the eye (any, looking straight down).
     float flat_len = length(v.xz);
     vec2 along = flat_len > 1e-5 ? -v.xz / flat_len : vec2(1.0, 0.0);
@@ -598,16 +604,22 @@ void main() {
     // In a shadow (common/shadow.glsl: `water_shadow`) the sun's share of that irradiance is
     // gone from the water body (y); the sun's other terms below take `sunlight`, the sun's light
     // past the casters at the surface (x).
-    // Under a cloud's shadow (in_sun_light: the sun's light past the clouds above the point,
-    // `through` of the clear sky's) the sun's share is gone from it too.
+    // The clouds move the sun's share too: frame.sky_light is the sea's mean irradiance under
+    // this sky (Kasten & Czeplak's cloud factor), whose sun reaches the sea through the
+    // clouds' mean share t̄ (frame.sun_dir.w); here `through` of the clear sun's arrives
+    // (in_sun_light: past the clouds above the point), so the sun's part is scaled by
+    // through / t̄. Over the whole sea the mean stays sky_light; under an overcast there is
+    // no sun to scale.
     vec2 shadow = water_shadow(in_rel_pos + VIEW.eye.xyz);
     vec3 sunlight = in_sun_light * shadow.x;
     const vec3 LUMA = vec3(0.2126, 0.7152, 0.0722);
     float clear_sun = max(dot(frame.sun_light.rgb, LUMA), 1e-6);
     float through = clamp(dot(in_sun_light, LUMA) / clear_sun, 0.0, 1.0);
-    float sun_on_sea = clear_sun * max(sun.y, 0.0);
+    float mean_through = frame.sun_dir.w;
+    float sun_on_sea = clear_sun * max(sun.y, 0.0) * mean_through;
     float sun_share = sun_on_sea / max(sun_on_sea + PI * dot(in_sky_zenith, LUMA), 1e-6);
-    vec3 deep = WATER_COLOUR * frame.sky_light.rgb * (1.0 - sun_share * (1.0 - shadow.y * through));
+    float sun_here = shadow.y * through / max(mean_through, 1e-3);
+    vec3 deep = WATER_COLOUR * frame.sky_light.rgb * (1.0 - sun_share * (1.0 - sun_here));
     vec3 transmitted = mix(deep, c_refract, exp(-thickness * ABSORPTION_PER_M));
     // The light through the crests (crest_light), scaled as the shallows scale the waves.
     transmitted += crest_light(v, sun, sunlight, in_displacement.y, shore.z,

@@ -4,6 +4,7 @@
 pub mod atmosphere;
 pub mod camera;
 pub mod clipmap;
+pub mod clouds;
 pub mod frame;
 pub mod multiple_scattering;
 pub mod passes;

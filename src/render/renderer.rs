@@ -150,7 +150,7 @@ pub struct Renderer {
     pub(super) sky_cube: SkyCube,
     /// The sun's and the sky's light for the frame uniforms, and the sky they are for
     /// (`uniforms::sky_uniforms`, recomputed when it changes).
-    sky_light: (Sky, ([f32; 4], [f32; 4])),
+    sky_light: (Sky, ([f32; 4], [f32; 4], f32)),
     /// The DU/DV distortion map (generated, or `--dudv`).
     dudv: Image,
     /// Linear, clamped: reflection and refraction colour.

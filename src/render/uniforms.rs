@@ -211,7 +211,8 @@ pub struct FrameUniforms {
     /// z: 1 for a bounded ocean window (Gerstner), 0 for repeating cascades; w: 1 to paint the
     /// solid test background instead of the sky.
     pub modes: [u32; 4],
-    /// xyz: unit vector toward the sun; w: unused (the sun's light is in `light`).
+    /// xyz: unit vector toward the sun; w: the share of the sun's light the clouds let
+    /// through to the sea on average (`clouds::mean_through`; the sun's light is in `light`).
     pub sun_dir: [f32; 4],
     /// xy: main target size (px); zw: reciprocal.
     pub viewport: [f32; 4],
@@ -260,8 +261,8 @@ pub struct FrameUniforms {
     /// how deep its waves focus the sun (shaders/common/caustics.glsl).
     pub curvature_variance: [f32; 4],
     /// rgb: the sun's irradiance at the sea on a surface facing it, through the clear air
-    /// (`Sky::sun_light`; the sky cube's alpha says what the clouds let through); w: the cloud
-    /// cover (0–1).
+    /// (`Sky::sun_light`; the shaders take what the clouds above a point let through,
+    /// shaders/common/clouds.glsl); w: the cloud cover (0–1).
     pub sun_light: [f32; 4],
     /// rgb: the sun's and sky's irradiance on the sea over the default day's
     /// (`Sky::global_irradiance`, `reference_light`): deep water's light; w: the display's
@@ -381,7 +382,7 @@ impl SceneLayout {
 pub struct FrameParams<'a> {
     pub sky: Sky,
     /// `sky_uniforms(&sky)`.
-    pub sky_light: ([f32; 4], [f32; 4]),
+    pub sky_light: ([f32; 4], [f32; 4], f32),
     pub sun_scale: f32,
     /// The sky is the analytic one (not `--skybox`): the sky pass draws the sun's disc.
     pub analytic_sky: bool,
@@ -404,15 +405,17 @@ pub struct FrameParams<'a> {
     pub background: Option<[f32; 3]>,
 }
 
-/// `FrameUniforms::sun_light` and `sky_light` of a sky. (Some milliseconds of integration:
-/// the renderer computes them when the sky changes, `Renderer::write_uniforms`.)
-pub fn sky_uniforms(sky: &Sky) -> ([f32; 4], [f32; 4]) {
+/// `FrameUniforms::sun_light` and `sky_light` of a sky, and the clouds' mean share of the sun
+/// (`sun_dir.w`). (Some milliseconds of integration: the renderer computes them when the sky
+/// changes, `Renderer::write_uniforms`.)
+pub fn sky_uniforms(sky: &Sky) -> ([f32; 4], [f32; 4], f32) {
     let [r, g, b] = sky.sun_light();
     let (global, reference) = (sky.global_irradiance(), reference_light());
     let light: [f32; 3] = std::array::from_fn(|c| (global[c] / reference[c]) as f32);
     (
         [r, g, b, sky.cloud_cover],
         [light[0], light[1], light[2], sky.exposure()],
+        super::clouds::mean_through(sky.sun_dir.normalize(), sky.cloud_cover),
     )
 }
 
@@ -457,7 +460,7 @@ impl FrameUniforms {
         let (w, h) = (p.size.0.max(1) as f32, p.size.1.max(1) as f32);
         let water = WaterFrame::around([camera.position.x as f64, camera.position.z as f64]);
         let focal_px = camera.focal_px(p.aspect, h);
-        let (sun_light, sky_light) = p.sky_light;
+        let (sun_light, sky_light, mean_through) = p.sky_light;
         let depth = p.inputs.camera_depth_m(camera.position.y);
         let (underwater, waterline) = water_side_uniforms(camera, p);
         let exposure = sky_light[3] * underwater_adaptation(depth);
@@ -474,7 +477,7 @@ impl FrameUniforms {
                 p.inputs.ocean_window.into(),
                 p.background.is_some().into(),
             ],
-            sun_dir: p.sky.sun_dir.normalize().extend(0.0).to_array(),
+            sun_dir: p.sky.sun_dir.normalize().extend(mean_through).to_array(),
             viewport: Vec4::new(w, h, 1.0 / w, 1.0 / h).to_array(),
             patch_m: p.ocean.patch_m,
             lod: [focal_px, p.tess_edge_px, p.ocean.max_displacement_m, 0.0],

@@ -74,8 +74,15 @@ impl ShaftsPass {
                         shaders::UNDERWATER_SHAFTS_FRAG,
                     ),
                 ],
-                // common/water.glsl's CASCADES and OCEAN_MANUAL_FILTER.
-                constants: &[ocean.cascades, ocean.manual_filter as u32],
+                // common/water.glsl's CASCADES and OCEAN_MANUAL_FILTER; ids 2 and 3 are not
+                // this shader's; common/shadow.glsl's SHADOWS (id 4).
+                constants: &[
+                    ocean.cascades,
+                    ocean.manual_filter as u32,
+                    0,
+                    0,
+                    ocean.shadows as u32,
+                ],
                 ..Default::default()
             },
             Depth::None,
