@@ -124,8 +124,7 @@ fn the_clouds_shadows_take_the_sun_off_the_sea_where_the_sky_casts_them() {
     // keeps 101 % of its clear light, the shaded 83 %); with one sun for the whole sea (the
     // cube's alpha toward the sun from the origin, the build before) 1.20.
     let (w, h) = (640usize, 360usize);
-    let (az, el) = ((-70.7f32).to_radians(), 11.7f32.to_radians());
-    let sun = Vec3::new(el.cos() * az.cos(), el.sin(), el.cos() * az.sin());
+    let sun = vkocean::render::default_sun_dir().normalize();
     let eye = Vec3::new(0.0, 20.0, 750.0);
     let flat = Vec3::new(sun.x, 0.0, sun.z).normalize();
     let target = eye + flat * 100.0 - Vec3::new(0.0, 10.0, 0.0);

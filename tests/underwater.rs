@@ -438,8 +438,11 @@ fn outside_snells_window_the_surface_mirrors_the_floor() {
     );
 }
 
-/// The mean linear luminance, looking from (`x`, −6, `z`) toward the refracted sun, of a
-/// 320x180 picture at `--quality medium` (shadows and caustics on) with `extra` arguments.
+/// The mean linear luminance, looking from (`x`, −6, `z`) toward the refracted sun, of the top
+/// 70 rows of a 320x180 picture at `--quality medium` (shadows and caustics on) with `extra`
+/// arguments: the view's centre lies 47.3° from the vertical, just inside Snell's window
+/// (48.6°), so those rows see the sky through the surface and the water's glow on the way,
+/// not the floor the surface mirrors outside the window.
 fn glow_toward_sun(tag: &str, x: f64, z: f64, extra: &[&str]) -> f64 {
     let (az, el) = ((-70.7f64).to_radians(), 11.7f64.to_radians());
     let sin_t = el.cos() / 1.333;
@@ -462,25 +465,21 @@ fn glow_toward_sun(tag: &str, x: f64, z: f64, extra: &[&str]) -> f64 {
         &look,
     ];
     args.extend_from_slice(extra);
-    linear_luma(&shot(
-        &format!("underwater-glow-{tag}"),
-        (320, 180),
-        &args,
-        &[],
-    ))
+    let rgba = shot(&format!("underwater-glow-{tag}"), (320, 180), &args, &[]);
+    linear_luma(&rgba[..320 * 70 * 4])
 }
 
 #[test]
 fn a_pillar_s_shadow_cuts_the_light_shafts() {
     // 6 m down in the shadow of the pillar at (-210, -615) (radius 5 m, 34 m high; the sun
-    // 11.7 deg up: the line toward it from (-225, -575) passes within a metre of the pillar's
-    // axis, 9 m up where it reaches it), and 20 m across the sun's direction from there, where
-    // nothing stands between the water and the sun; both looking toward the refracted sun.
+    // 11.7 deg up: the refracted ray from (-225, -575) leaves the water 6.5 m toward the sun
+    // and passes within a metre of the pillar's axis, about 7.5 m above the sea), and 20 m
+    // across the sun's direction from there, where nothing stands between the water and the
+    // sun; both looking toward the refracted sun.
     // The light the water scatters toward the eye comes from the sunlit water along the
     // view: in the pillar's shadow the first metres of it are dark. Each with its own
-    // picture with `--shadows off` as the reference. Measured: 0.53 of it in the shadow
-    // (the shafts and the floor mirrored outside Snell's window), 1.00 beside it; before the
-    // shafts and the mirror took the shadows, the view from under the water had none.
+    // picture with `--shadows off` as the reference. Measured: 0.69 in the shadow, 1.00
+    // beside it; before the shafts took the shadows (the build before), 1.00 and 1.00.
     let shaded = glow_toward_sun("shaded-on", -225.0, -575.0, &[])
         / glow_toward_sun("shaded-off", -225.0, -575.0, &["--shadows", "off"]);
     let beside = glow_toward_sun("beside-on", -206.2, -568.4, &[])

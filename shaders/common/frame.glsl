@@ -45,12 +45,13 @@ layout(set = 0, binding = 0, std140) uniform FrameUniforms {
                          // the air
     vec4 slope_variance; // mean-square slope of cascade c's waves (Σ k²E), c = 0..3
     vec4 curvature_variance; // mean square of the Laplacian of cascade c's height (Σ k⁴E)
-    vec4 sun_light;      // rgb: the sun's irradiance at the sea through the clear air (times
-                         // what the clouds let through: `sun_light_at`); w: cloud cover
+    vec4 sun_light;      // rgb: the sun's irradiance at the sea through the clear air (before
+                         // the clouds: `sun_light_at` takes what they let through); w: cloud cover
     vec4 sky_light;      // rgb: the irradiance on the sea over the default day's; w: the
                          // display's exposure (the eye's adaptation to the light)
     vec4 underwater;     // x: 1 when the camera's near plane is all under the water; y: the
-                         // camera's depth (m, >= 0); z: 1 with the caustics (--caustics on)
+                         // camera's depth (m, >= 0); z: 1 with the caustics (--caustics on);
+                         // w: the share of the sun the clouds above the camera let through
     vec4 waterline;      // the surface at the camera: xy its slope; z its height over the eye
                          // (m); w: 1 when it crosses the near plane (the picture splits)
     vec4 foam_levels[FOAM_MAX_LEVELS]; // the foam near the camera, level l: xy its image
@@ -118,10 +119,6 @@ mat3 buoy_to_world() {
                 u,
                 vec3(-u.x * u.z * s, -u.z, 1.0 - u.z * u.z * s));
 }
-
-// The sun's light on a surface facing it: through the air, and through the clouds (the sky
-// cube's alpha toward the sun, what they let through to the origin; 1 for a --skybox).
-vec3 sun_light() { return frame.sun_light.rgb * textureLod(sky_cube, frame.sun_dir.xyz, 0.0).a; }
 
 // The sun's light on a surface facing it at world point `p` (m): through the air, and through
 // the broken clouds above p toward the sun (common/clouds.glsl), so their shadows lie on the

@@ -88,7 +88,9 @@ vec3 sun_scatter(vec3 dir, float s0, float s1) {
                   / (4.0 * 3.14159265 * pow(1.0 + g * g - 2.0 * g * dot(refracted_sun(l), dir), 1.5));
     // Per metre along the ray: the way to the eye, and the depth the sun's light crosses.
     vec3 decay = ABSORPTION_PER_M * (1.0 - dir.y) + UNDERWATER_SCATTERING_PER_M;
-    vec3 light = sun_light_at(frame.views[0].eye.xyz) * sun_transmission(l)
+    // frame.underwater.w: what the clouds above the eye let through (the same for the whole
+    // frame: src/render/uniforms.rs computes it with src/render/clouds.rs).
+    vec3 light = frame.sun_light.rgb * frame.underwater.w * sun_transmission(l)
                  * exp(-frame.underwater.y * ABSORPTION_PER_M);
     return UNDERWATER_SCATTERING_PER_M * phase * light * (exp(-decay * s0) - exp(-decay * s1)) / decay;
 }

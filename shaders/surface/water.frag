@@ -429,9 +429,9 @@ vec3 mirrored_floor(vec3 p, vec3 r) {
         vec2 xz = q.xz - frame.views[0].eye.xz + frame.water.xy;
         lambert *= caustic_ratio(xz, depth, seen_m, seen_m / frame.lod.x, 1);
     }
-    // The casters' shadows on it (common/shadow.glsl; with --shadows), as on the floor seen
-    // directly, and the clouds' above it.
-    lambert *= lambert > 0.0 ? sun_shadow(q + vec3(0.0, 0.5, 0.0), -1) : 1.0;
+    // The casters' shadows on it (common/shadow.glsl; with --shadows), cast from half a metre
+    // over the ground as for the floor seen directly, and the clouds' above it.
+    lambert *= lambert > 0.0 ? sun_shadow(vec3(q.x, max(q.y, h) + 0.5, q.z), -1) : 1.0;
     vec3 light = sun_light_at(q) * lambert / 3.14159265 + sky_ambient(n);
     vec3 colour = terrain_albedo(q.y, n.y) * light * exp(-depth * ABSORPTION_PER_M);
     return underwater_fog(colour, colour, r, hit);
@@ -468,12 +468,11 @@ void main() {
     vec3 shore = shore_waves_at(in_shore.y, in_shore.x);
     // The pixel's footprint on the water: dist / focal length across the view, stretched by
     // 1/sin(elevation) along it; `pixel_m` the geometric mean of the two (the foam's lace, the
-    // surf's front: patterns of no direction).
-    // (From under the water v.y < 0: the same footprint, seen from the other side.)
+    // surf's front: patterns of no direction). From under the water (v.y < 0) the filter stays
+    // what MIRROR_BLUR was tuned with: 10 pixels' width in every direction.
     float across_m = dist / frame.lod.x;
-    float sin_e = max(abs(v.y), 0.01);
-    vec2 footprint = vec2(across_m / sin_e, across_m);
-    float pixel_m = across_m / sqrt(sin_e);
+    float pixel_m = across_m / sqrt(max(v.y, 0.01));
+    vec2 footprint = v.y > 0.0 ? vec2(across_m / max(v.y, 0.01), across_m) : vec2(pixel_m);
     // The view's direction over the water, away from the eye (any, looking straight down).
     float flat_len = length(v.xz);
     vec2 along = flat_len > 1e-5 ? -v.xz / flat_len : vec2(1.0, 0.0);

@@ -270,7 +270,8 @@ pub struct FrameUniforms {
     pub sky_light: [f32; 4],
     /// x: 1 when the camera's near plane is all under the water (`WaterSide::Below`), else
     /// 0; y: the camera's depth below the surface (m, ≥ 0); z: 1 with the caustics
-    /// (`--caustics on`; shaders/common/caustics.glsl), else 0; w: unused.
+    /// (`--caustics on`; shaders/common/caustics.glsl), else 0; w: the share of the sun the
+    /// clouds above the camera let through (`clouds::through`; 1 with a `--skybox`).
     pub underwater: [f32; 4],
     /// The surface at the camera (`FrameInputs`): xy its slope, z its height over the eye (m);
     /// w: 1 when it crosses the near plane (`WaterSide::Split`), else 0.
@@ -444,7 +445,17 @@ fn water_side_uniforms(camera: &Camera, p: &FrameParams) -> ([f32; 4], [f32; 4])
             f32::from(side == WaterSide::Below),
             depth.max(0.0) as f32,
             f32::from(u8::from(p.caustics)),
-            0.0,
+            // What the clouds above the camera let through of the sun (its light in the
+            // water around the eye, common/underwater.glsl); all of it with a --skybox.
+            if p.analytic_sky {
+                super::clouds::through(
+                    camera.position,
+                    p.sky.sun_dir.normalize(),
+                    p.sky.cloud_cover,
+                )
+            } else {
+                1.0
+            },
         ],
         [
             sx as f32,
@@ -477,7 +488,13 @@ impl FrameUniforms {
                 p.inputs.ocean_window.into(),
                 p.background.is_some().into(),
             ],
-            sun_dir: p.sky.sun_dir.normalize().extend(mean_through).to_array(),
+            // A --skybox has no layer: the sun passes whole (`sun_light_at`).
+            sun_dir: p
+                .sky
+                .sun_dir
+                .normalize()
+                .extend(if p.analytic_sky { mean_through } else { 1.0 })
+                .to_array(),
             viewport: Vec4::new(w, h, 1.0 / w, 1.0 / h).to_array(),
             patch_m: p.ocean.patch_m,
             lod: [focal_px, p.tess_edge_px, p.ocean.max_displacement_m, 0.0],

@@ -257,8 +257,8 @@ pub struct WaterKind {
     /// bilinearly by hand (devices without linear filtering of RGBA32F).
     pub manual_filter: bool,
     /// The sun's shadows are cast (`--shadows`): common/shadow.glsl's SHADOWS, constant 4 of
-    /// the water's and the terrain's shaders, so a run without them does not pay for their
-    /// untaken branch (lavapipe runs both sides).
+    /// the water's, the terrain's and the light shafts' shaders, so a run without them does
+    /// not pay for their untaken branch (lavapipe runs both sides).
     pub shadows: bool,
     /// The refraction view draws the caustics (`--caustics`, `Quality::refraction_caustics`):
     /// without them its terrain is drawn without the caustics' shader
