@@ -123,8 +123,9 @@ mat3 buoy_to_world() {
 // The sun's light on a surface facing it at world point `p` (m): through the air, and through
 // the broken clouds above p toward the sun (common/clouds.glsl), so their shadows lie on the
 // sea and the island where the layer the sky draws casts them. Evaluated per vertex (the
-// noise's finest cells are 150 m: the vertices resolve them), and without the cube: a
-// --skybox (light.x = 0) has no layer, and lets all of it through as its cube's alpha does.
+// noise's finest cells are 150 m; far out, where the vertices lie farther apart along the
+// view, its finer octaves blur), and without the cube: a --skybox (light.x = 0) has no layer
+// and lets all of it through.
 // (No branch on the uniform: see common/water.glsl's ocean_displacement_at for lavapipe's.)
 vec3 sun_light_at(vec3 p) {
     float through = cloud_through(p, frame.sun_dir.xyz, frame.sun_light.w);
