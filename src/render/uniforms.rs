@@ -515,23 +515,7 @@ impl FrameUniforms {
                 WATER_LEVEL_M,
                 camera.near_m,
             ],
-            cascade_uv: [0, 1].map(|half| {
-                // Plus half a texel: texel i holds the node at i·L/N, and a sampler puts texel
-                // i's centre at u = (i + ½)/N. Without it the drawn waves sat half a texel (0.8 m
-                // of the 400 m cascade at N = 256) off the simulated ones (the buoy, stats).
-                let half_texel = 0.5 / p.ocean.texels.max(1) as f32;
-                let uv = |c: usize| {
-                    water
-                        .ocean_uv(
-                            p.inputs.ocean_origin_m,
-                            p.ocean.patch_m[c] as f64,
-                            p.inputs.ocean_window,
-                        )
-                        .map(|u| u + half_texel)
-                };
-                let (a, b) = (uv(2 * half), uv(2 * half + 1));
-                [a[0], a[1], b[0], b[1]]
-            }),
+            cascade_uv: cascade_uv(&water, p),
             dudv_origin: {
                 let (a, b) = (water.dudv_uv(1.0), water.dudv_uv(DUDV_SECOND_SCALE));
                 [a[0], a[1], b[0], b[1]]
@@ -572,6 +556,28 @@ impl FrameUniforms {
             },
         }
     }
+}
+
+/// `FrameUniforms::cascade_uv`: each cascade's image coordinates of the water grid's centre,
+/// two cascades a vector, reduced in f64.
+fn cascade_uv(water: &WaterFrame, p: &FrameParams) -> [[f32; 4]; 2] {
+    [0, 1].map(|half| {
+        // Plus half a texel: texel i holds the node at i·L/N, and a sampler puts texel
+        // i's centre at u = (i + ½)/N. Without it the drawn waves sat half a texel (0.8 m
+        // of the 400 m cascade at N = 256) off the simulated ones (the buoy, stats).
+        let half_texel = 0.5 / p.ocean.texels.max(1) as f32;
+        let uv = |c: usize| {
+            water
+                .ocean_uv(
+                    p.inputs.ocean_origin_m,
+                    p.ocean.patch_m[c] as f64,
+                    p.inputs.ocean_window,
+                )
+                .map(|u| u + half_texel)
+        };
+        let (a, b) = (uv(2 * half), uv(2 * half + 1));
+        [a[0], a[1], b[0], b[1]]
+    })
 }
 
 /// `FrameUniforms::foam_levels`: each level's image coordinates of the water grid's centre,
