@@ -22,6 +22,11 @@ use super::track::Access;
 
 /// How long a GPU wait may take before the device is declared hung (s).
 pub const WAIT_TIMEOUT_S: u64 = 60;
+/// The same under GPU-assisted validation: its instrumented shaders are several times larger,
+/// and a CPU driver (llvmpipe) compiles a shader's variants at its first draw, inside the
+/// frame's work. Measured on lavapipe, 2 cores busy with a build: 7 s a frame at 160x90 with
+/// floating bodies and a wake, and once over 60 s for one frame (tools/validate-newest).
+pub const GPU_ASSISTED_WAIT_TIMEOUT_S: u64 = 240;
 use super::instance::{create_instance, load_entry, surface_handles, ValidationExtras};
 use super::physical::{best_usable, inspect, lacks, type_name, Candidate};
 pub use super::physical::{chosen_device_is_cpu, list_devices, DeviceInfo, DeviceSummary, Needs};
@@ -88,6 +93,9 @@ pub struct Context {
     journal: Mutex<Option<Journal>>,
     /// Semaphore names, for the frame graph.
     semaphore_names: Mutex<std::collections::HashMap<u64, String>>,
+    /// How long a GPU wait may take before the device is declared hung (s): `WAIT_TIMEOUT_S`,
+    /// or `GPU_ASSISTED_WAIT_TIMEOUT_S` under GPU-assisted validation.
+    pub(super) wait_timeout_s: u64,
 }
 
 impl Context {
@@ -277,6 +285,11 @@ impl Context {
             objects_destroyed: AtomicU64::new(0),
             journal: Mutex::new(None),
             semaphore_names: Mutex::new(Default::default()),
+            wait_timeout_s: if desc.validation && desc.validation_extras.gpu_assisted {
+                GPU_ASSISTED_WAIT_TIMEOUT_S
+            } else {
+                WAIT_TIMEOUT_S
+            },
         };
         ctx.name(
             ctx.device.handle(),
@@ -436,7 +449,7 @@ impl Context {
     }
 
     /// Blocks until the timeline `semaphore` reaches `value`; a device that does not get there
-    /// within `WAIT_TIMEOUT_S` is reported as hung.
+    /// within `wait_timeout_s` is reported as hung.
     pub(super) fn wait_timeline(&self, semaphore: vk::Semaphore, value: u64) -> GpuResult<()> {
         let semaphores = [semaphore];
         let values = [value];
@@ -446,11 +459,11 @@ impl Context {
         // SAFETY: the semaphore is a live timeline semaphore of this device.
         match unsafe {
             self.device
-                .wait_semaphores(&info, WAIT_TIMEOUT_S * 1_000_000_000)
+                .wait_semaphores(&info, self.wait_timeout_s * 1_000_000_000)
         } {
             Ok(()) => Ok(()),
             Err(vk::Result::TIMEOUT) => Err(GpuError::Timeout {
-                seconds: WAIT_TIMEOUT_S,
+                seconds: self.wait_timeout_s,
             }),
             Err(result) => Err(GpuError::Vk {
                 call: "vkWaitSemaphores",

@@ -79,15 +79,12 @@ pub fn run_once_on<R>(
         // case we do not wait on it).
         let waited = submitted.and_then(|()| {
             match unsafe {
-                ctx.device.wait_for_fences(
-                    &[fence],
-                    true,
-                    super::context::WAIT_TIMEOUT_S * 1_000_000_000,
-                )
+                ctx.device
+                    .wait_for_fences(&[fence], true, ctx.wait_timeout_s * 1_000_000_000)
             } {
                 Ok(()) => Ok(()),
                 Err(vk::Result::TIMEOUT) => Err(GpuError::Timeout {
-                    seconds: super::context::WAIT_TIMEOUT_S,
+                    seconds: ctx.wait_timeout_s,
                 }),
                 Err(result) => Err(GpuError::Vk {
                     call: "vkWaitForFences",

@@ -363,7 +363,7 @@ impl Swapchain {
         frames.wait_for_slot()?;
         // A finite wait: a presentation engine that never hands an image back (a lost display)
         // becomes an error instead of a hang.
-        let timeout_ns = super::context::WAIT_TIMEOUT_S * 1_000_000_000;
+        let timeout_ns = self.ctx.wait_timeout_s * 1_000_000_000;
         let semaphore = self.acquire[frames.next_slot()];
         // SAFETY: the semaphore's previous wait (two frames ago) has completed (waited above)
         // and an out-of-date acquire leaves it unsignalled.
@@ -388,7 +388,7 @@ impl Swapchain {
             }
             Err(vk::Result::ERROR_OUT_OF_DATE_KHR) => Ok(None),
             Err(vk::Result::TIMEOUT | vk::Result::NOT_READY) => Err(GpuError::Timeout {
-                seconds: super::context::WAIT_TIMEOUT_S,
+                seconds: self.ctx.wait_timeout_s,
             }),
             Err(result) => Err(GpuError::Vk {
                 call: "vkAcquireNextImageKHR",
