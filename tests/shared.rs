@@ -139,6 +139,7 @@ fn the_terrain_and_the_shore_are_the_same_in_rust_and_glsl() {
             mean_omega: 0.5,
             depth_m: DEEP_WATER_M,
             slope_variance: [0.0; 4],
+            slope_anisotropy: [[0.0; 2]; 4],
             curvature_variance: [0.0; 4],
         },
         SeaMoments {
@@ -146,6 +147,7 @@ fn the_terrain_and_the_shore_are_the_same_in_rust_and_glsl() {
             mean_omega: 1.1,
             depth_m: 12.0,
             slope_variance: [0.0; 4],
+            slope_anisotropy: [[0.0; 2]; 4],
             curvature_variance: [0.0; 4],
         },
     ];

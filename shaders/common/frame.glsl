@@ -45,8 +45,12 @@ layout(set = 0, binding = 0, std140) uniform FrameUniforms {
                          // the air
     vec4 slope_variance; // mean-square slope of cascade c's waves (Σ k²E), c = 0..3
     vec4 curvature_variance; // mean square of the Laplacian of cascade c's height (Σ k⁴E)
+    vec4 slope_anisotropy[2]; // cascade c's slopes by direction: [0] Σ(k_x² − k_z²)E,
+                         // [1] Σ k_x k_z E (`slope_along`)
+    vec4 sea_slopes;     // xy: the same for the whole sea (Cox & Munk's upwind excess)
     vec4 sun_light;      // rgb: the sun's irradiance at the sea through the clear air (before
-                         // the clouds: `sun_light_at` takes what they let through); w: cloud cover
+                         // the clouds: `sun_through_at` takes what they let through); w: the
+                         // cloud cover the sun's light passes (0 with --skybox: no layer)
     vec4 sky_light;      // rgb: the irradiance on the sea over the default day's; w: the
                          // display's exposure (the eye's adaptation to the light)
     vec4 underwater;     // x: 1 when the camera's near plane is all under the water; y: the
@@ -120,16 +124,18 @@ mat3 buoy_to_world() {
                 vec3(-u.x * u.z * s, -u.z, 1.0 - u.z * u.z * s));
 }
 
-// The sun's light on a surface facing it at world point `p` (m): through the air, and through
-// the broken clouds above p toward the sun (common/clouds.glsl), so their shadows lie on the
-// sea and the island where the layer the sky draws casts them. Evaluated per vertex (the
-// noise's finest cells are 150 m; far out, where the vertices lie farther apart along the
-// view, its finer octaves blur), and without the cube: a --skybox (light.x = 0) has no layer
-// and lets all of it through.
-// (No branch on the uniform: see common/water.glsl's ocean_displacement_at for lavapipe's.)
+// The share of the sun's light that reaches world point `p` (m) through the broken clouds above
+// p toward the sun (common/clouds.glsl), so their shadows lie on the sea and the island where
+// the layer the sky draws casts them. Evaluated per vertex (the noise's finest cells are 150 m;
+// far out, where the vertices lie farther apart along the view, its finer octaves blur), and
+// without the cube. With a --skybox the cover the sun passes (sun_light.w) is 0: all of it.
+float sun_through_at(vec3 p) {
+    return cloud_through(p, frame.sun_dir.xyz, frame.sun_light.w);
+}
+
+// The sun's light on a surface facing it at world point `p` (m): through the air and the clouds.
 vec3 sun_light_at(vec3 p) {
-    float through = cloud_through(p, frame.sun_dir.xyz, frame.sun_light.w);
-    return frame.sun_light.rgb * mix(1.0, through, step(1e-30, frame.light.x));
+    return frame.sun_light.rgb * sun_through_at(p);
 }
 
 // The sky's light on a surface whose normal is n (irradiance / π): the sky cube along the normal

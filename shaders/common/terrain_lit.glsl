@@ -32,7 +32,7 @@ layout(location = 0) in vec3 in_rel_pos;
 layout(location = 1) in vec3 in_world;
 layout(location = 2) in vec3 in_normal;
 layout(location = 3) flat in int in_object;
-layout(location = 4) in vec3 in_sun_light; // the sun's light at the vertex (the clouds' shadows)
+layout(location = 4) in float in_sun_through; // the clouds' share of the sun (their shadows)
 layout(location = 0) out vec4 out_colour;
 
 // Wet sand over dry: water in the pores and a film on the grains send more of the light that
@@ -140,9 +140,10 @@ void main() {
     }
 #endif
     vec3 ambient = sky_ambient(n) * occlusion;
-    vec3 light = in_sun_light * sun_share / 3.14159265 + ambient;
+    vec3 sun_light = frame.sun_light.rgb * in_sun_through;
+    vec3 light = sun_light * sun_share / 3.14159265 + ambient;
     vec3 colour = albedo * light;
-    vec3 blurred = albedo * (in_sun_light * sun_mean / 3.14159265 + ambient);
+    vec3 blurred = albedo * (sun_light * sun_mean / 3.14159265 + ambient);
     // The swash's reach: R₂ is at most 1.1·(0.35·0.5 + ½·√(0.563·0.25 + 0.004))·√(H₀L₀) =
     // 0.402·√(H₀L₀) on the steepest beach beach() allows (a branch: most pixels skip it).
     float omega = max(frame.shore.y, 1e-3);

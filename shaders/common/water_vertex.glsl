@@ -11,10 +11,10 @@ layout(location = 0) out vec3 out_rel_pos;
 layout(location = 1) out vec2 out_xz;
 layout(location = 2) out vec3 out_displacement;
 layout(location = 3) out vec2 out_shore; // the water's depth (m) and K_s here
-// The sun's light through the air and the clouds above the vertex (frame.glsl's
-// `sun_light_at`: the clouds' shadows), and the frame's sky at the zenith (the same at every
+// The share of the sun's light the clouds above the vertex let through (frame.glsl's
+// `sun_through_at`: the clouds' shadows), and the frame's sky at the zenith (the same at every
 // vertex; cube lookups and the clouds' noise here cost a fraction of what they cost per pixel).
-layout(location = 4) out vec3 out_sun_light;
+layout(location = 4) out float out_sun_through;
 layout(location = 5) flat out vec3 out_sky_zenith;
 // The surf's bores (common/shore.glsl): x their phase θ (waves), y their share of the sea
 // (0–1), zw θ's gradient over the water (waves per metre, toward deeper water).
@@ -51,7 +51,7 @@ void emit_water_vertex(vec2 xz) {
     // the waterline between a vertex on a hill and one at sea lies near the shore's.
     out_shore = vec2(max(depth, -1.0), ks);
     out_surf = surf;
-    out_sun_light = sun_light_at(frame.views[0].eye.xyz + rel);
+    out_sun_through = sun_through_at(frame.views[0].eye.xyz + rel);
     out_sky_zenith = sky_lookup(vec3(0.0, 1.0, 0.0));
     gl_Position = frame.views[0].view_proj * vec4(rel, 1.0);
 }

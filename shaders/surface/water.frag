@@ -26,7 +26,7 @@ layout(location = 0) in vec3 in_rel_pos;
 layout(location = 1) in vec2 in_xz;
 layout(location = 2) in vec3 in_displacement;
 layout(location = 3) in vec2 in_shore; // water.tese: the water's depth (m) and K_s
-layout(location = 4) in vec3 in_sun_light; // water_vertex.glsl: the sun's light (clouds' shadows)
+layout(location = 4) in float in_sun_through; // water_vertex.glsl: the clouds' share of the sun
 layout(location = 5) flat in vec3 in_sky_zenith; // and the frame's sky radiance at the zenith
 layout(location = 6) in vec4 in_surf; // water_vertex.glsl: the bores' phase, share, gradient
 layout(location = 0) out vec4 out_colour;
@@ -58,8 +58,8 @@ const float FOAM_RELIEF_M = 0.15;
 // The summed normal, its slopes scaled as the shallows scale the waves (`scale`), and the
 // whitecap field (layer 0's foam: the whole surface's, see src/ocean/foam.rs), faded with the
 // largest cascade. `resolved`: the mean-square slope those faded, scaled cascades carry along
-// the view (x) and across it (y), each cascade's split evenly between the two (its waves come
-// from all around the wind).
+// the view (x) and across it (y), each cascade's by its waves' directions (`slope_along`: the
+// wind's waves are steeper along the wind than across it).
 // A cascade's slopes also fade where the pixel's footprint on the water passes its shortest
 // wavelength (gone at twice that), before they alias into shimmer: its band ends at 6 waves
 // per next patch (L_{c+1}/6 = L_c/26, spectrum.rs's cascades), the last one at its Nyquist
@@ -76,6 +76,16 @@ const float FOAM_RELIEF_M = 0.15;
 // (waves of 3.5–15 m at the default 400 m patch, crests a few metres thick) in full, cascade
 // 0 (15–400 m) at half, the smaller ones not at all (their ripples hold too little water to
 // glow, and their compression drew the glow as a sparkling net).
+// The mean-square slopes along the water's unit vector `along` (x) and across it (y) of slopes
+// whose mean square over both directions is `total` and whose anisotropy is `a`
+// (Σ(k_x² − k_z²)E, Σk_x k_z E): ½·total ± (½·a.x·cos 2φ + a.y·sin 2φ), φ the angle of `along`
+// from x (src/ocean/moments.rs' `slope_along` is its twin).
+vec2 slopes_along_across(float total, vec2 a, vec2 along) {
+    float anisotropic = 0.5 * a.x * (along.x * along.x - along.y * along.y)
+                        + a.y * 2.0 * along.x * along.y;
+    return 0.5 * total + vec2(anisotropic, -anisotropic);
+}
+
 vec4 ocean_normal_foam(vec2 xz, float dist, vec2 footprint, vec2 along, float scale,
                        out vec2 resolved, out float compression) {
     vec2 across = vec2(-along.y, along.x);
@@ -91,7 +101,8 @@ vec4 ocean_normal_foam(vec2 xz, float dist, vec2 footprint, vec2 along, float sc
         vec2 w = weight * clamp(2.0 - footprint / cascade_shortest_m(c, texels), 0.0, 1.0);
         slope += w.x * dot(s.xy, along) * along + w.y * dot(s.xy, across) * across;
         foam += c == 0 ? weight * s.w : 0.0;
-        resolved += w * w * (0.5 * frame.slope_variance[c]);
+        vec2 a = vec2(frame.slope_anisotropy[0][c], frame.slope_anisotropy[1][c]);
+        resolved += w * w * slopes_along_across(frame.slope_variance[c], a, along);
         compression += (c == 0 ? 0.5 : (c == 1 ? 1.0 : 0.0)) * weight * (1.0 - s.z);
     }
     slope += wake_at(xz).yz;
@@ -569,10 +580,12 @@ void main() {
     // reflection's texels per radian): vertical streaks. The reflection's layers blur it over
     // 2^l rows (a kernel of standard deviation 2^l / 2 once filtered), so the lookup blends the
     // two layers around l = log2(2 · 2σf). The sideways spread is left out (small but near the
-    // camera). `unresolved`: Cox & Munk's mean square split evenly along and across the view,
-    // less what the cascades drawn here carry in each direction.
+    // camera). `unresolved`: Cox & Munk's mean square along and across the view (upwind σ_u²,
+    // crosswind σ_c²: frame.sea_slopes), less what the cascades drawn here carry in each
+    // direction.
     vec3 reflection_size = vec3(textureSize(reflection_colour, 0));
-    vec2 unresolved = max(0.5 * frame.light.y - resolved, 1e-3);
+    vec2 unresolved = max(slopes_along_across(frame.light.y, frame.sea_slopes.xy, along) - resolved,
+                          1e-3);
     float texels_per_rad = frame.lod.x * reflection_size.y * frame.viewport.w;
     float spread = 2.0 * sqrt(unresolved.x) * texels_per_rad;
     float layer = clamp(log2(max(2.0 * spread, 1.0)), 0.0, reflection_size.z - 1.0);
@@ -606,14 +619,14 @@ void main() {
     // The clouds move the sun's share too: frame.sky_light is the sea's mean irradiance under
     // this sky (Kasten & Czeplak's cloud factor), whose sun reaches the sea through the
     // clouds' mean share t̄ (frame.sun_dir.w); here `through` of the clear sun's arrives
-    // (in_sun_light: past the clouds above the point), so the sun's part is scaled by
+    // (in_sun_through: past the clouds above the point), so the sun's part is scaled by
     // through / t̄. Over the whole sea the mean stays sky_light; under an overcast there is
     // no sun to scale.
     vec2 shadow = water_shadow(in_rel_pos + VIEW.eye.xyz);
-    vec3 sunlight = in_sun_light * shadow.x;
+    float through = in_sun_through;
+    vec3 sunlight = frame.sun_light.rgb * through * shadow.x;
     const vec3 LUMA = vec3(0.2126, 0.7152, 0.0722);
     float clear_sun = max(dot(frame.sun_light.rgb, LUMA), 1e-6);
-    float through = clamp(dot(in_sun_light, LUMA) / clear_sun, 0.0, 1.0);
     float mean_through = frame.sun_dir.w;
     float sun_on_sea = clear_sun * max(sun.y, 0.0) * mean_through;
     float sun_share = sun_on_sea / max(sun_on_sea + PI * dot(in_sky_zenith, LUMA), 1e-6);

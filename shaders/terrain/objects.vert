@@ -12,8 +12,9 @@ layout(location = 0) out vec3 out_rel_pos;
 layout(location = 1) out vec3 out_world;
 layout(location = 2) out vec3 out_normal;
 layout(location = 3) flat out int out_object;
-// The sun's light through the air and the clouds above the vertex (frame.glsl's `sun_light_at`).
-layout(location = 4) out vec3 out_sun_light;
+// The share of the sun's light the clouds above the vertex let through (frame.glsl's
+// `sun_through_at`).
+layout(location = 4) out float out_sun_through;
 
 const uint SEGMENTS = 20u;
 const float TAU = 6.28318530718;
@@ -52,7 +53,7 @@ void main() {
     }
     out_normal = normal;
     out_world = world;
-    out_sun_light = sun_light_at(world);
+    out_sun_through = sun_through_at(world);
     out_object = gl_InstanceIndex;
     out_rel_pos = world - VIEW.eye.xyz;
     gl_ClipDistance[0] = dot(VIEW.clip_plane, vec4(world, 1.0));

@@ -29,8 +29,9 @@ layout(location = 0) out vec3 out_rel_pos;
 layout(location = 1) out vec3 out_world;
 layout(location = 2) out vec3 out_normal;
 layout(location = 3) flat out int out_object; // terrain.frag's object index; -1: terrain
-// The sun's light through the air and the clouds above the vertex (frame.glsl's `sun_light_at`).
-layout(location = 4) out vec3 out_sun_light;
+// The share of the sun's light the clouds above the vertex let through (frame.glsl's
+// `sun_through_at`).
+layout(location = 4) out float out_sun_through;
 
 void main() {
     // Indexed draw: gl_VertexIndex is a point of the (TERRAIN_QUADS + 1)² lattice, row by row.
@@ -45,7 +46,7 @@ void main() {
     out_normal = normalize(vec3(-hx, 2.0 * e, -hz));
     vec3 world = vec3(xz.x, y, xz.y);
     out_world = world;
-    out_sun_light = sun_light_at(world);
+    out_sun_through = sun_through_at(world);
     out_object = -1;
     out_rel_pos = world - VIEW.eye.xyz;
     gl_ClipDistance[0] = dot(VIEW.clip_plane, vec4(world, 1.0));

@@ -516,6 +516,7 @@ fn ocean_bindings(simulation: &Simulation) -> OceanBindings {
         max_displacement_m: simulation.max_displacement_m as f32,
         sea_moments: simulation.sea_moments,
         mean_square_slope: simulation.mean_square_slope() as f32,
+        slope_anisotropy: simulation.slope_anisotropy().map(|v| v as f32),
     }
 }
 

@@ -253,6 +253,7 @@ fn shoaling_sea() -> (SeaMoments, f64) {
         mean_omega: omega,
         depth_m: DEEP_WATER_M,
         slope_variance: [0.0; 4],
+        slope_anisotropy: [[0.0; 2]; 4],
         curvature_variance: [0.0; 4],
     };
     (sea, 2.0 * PI * G / (omega * omega)) // and its deep-water wavelength L₀

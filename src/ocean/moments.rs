@@ -2,19 +2,20 @@
 //! significant height 4√m₀ and mean frequency m₁/m₀ (the shores, `ocean::shore`) and each
 //! layer's mean-square slope Σ k²E (the sun's reflection: what the normal images resolve of
 //! the sea's roughness) and mean-square curvature Σ k⁴E (how deep its waves focus the sun:
-//! the caustics), and Cox & Munk's mean-square slope of the whole sea surface.
+//! the caustics), and Cox & Munk's mean-square slopes of the whole sea surface, upwind and
+//! crosswind.
 
 /// The depth that stands for deep water (m): k·h is past 10 there for any ω above 0.1 rad/s
 /// (periods under a minute), so c_g = g/(2ω).
 pub const DEEP_WATER_M: f64 = 1.0e4;
 
 /// One rendered wave component: its share of the height variance (m²), angular frequency
-/// (rad/s), wavenumber (rad/m) and the image layer (cascade) that holds it.
+/// (rad/s), wave vector (rad/m, world x and z) and the image layer (cascade) that holds it.
 #[derive(Clone, Copy, Debug)]
 pub struct Component {
     pub energy: f64,
     pub omega: f64,
-    pub k: f64,
+    pub k: [f64; 2],
     pub layer: usize,
 }
 
@@ -29,6 +30,10 @@ pub struct SeaMoments {
     pub depth_m: f64,
     /// Mean-square slope of each layer's waves, Σ k²E (both directions).
     pub slope_variance: [f64; 4],
+    /// How each layer's slopes differ by direction: (Σ(k_x² − k_z²)E, Σ k_x k_z E). The mean
+    /// square of the slope along the unit vector (cos φ, sin φ) of the water is
+    /// ½Σk²E + ½Σ(k_x² − k_z²)E·cos 2φ + Σk_x k_z E·sin 2φ (`slope_along`).
+    pub slope_anisotropy: [[f64; 2]; 4],
     /// Mean square of the Laplacian of each layer's height, Σ k⁴E (1/m²).
     pub curvature_variance: [f64; 4],
 }
@@ -37,21 +42,35 @@ impl SeaMoments {
     /// From the rendered waves, simulated for `depth_m` (`None`: deep water).
     pub fn from_waves(waves: impl Iterator<Item = Component>, depth_m: Option<f64>) -> Self {
         let (mut m0, mut m1, mut slopes, mut curvatures) = (0.0, 0.0, [0.0; 4], [0.0; 4]);
+        let mut anisotropy = [[0.0; 2]; 4];
         for w in waves {
             m0 += w.energy;
             m1 += w.energy * w.omega;
-            let k2 = w.k * w.k;
-            slopes[w.layer.min(3)] += w.energy * k2;
-            curvatures[w.layer.min(3)] += w.energy * k2 * k2;
+            let [kx, kz] = w.k;
+            let k2 = kx * kx + kz * kz;
+            let layer = w.layer.min(3);
+            slopes[layer] += w.energy * k2;
+            curvatures[layer] += w.energy * k2 * k2;
+            anisotropy[layer][0] += w.energy * (kx * kx - kz * kz);
+            anisotropy[layer][1] += w.energy * kx * kz;
         }
         SeaMoments {
             hs_m: 4.0 * f64::sqrt(m0),
             mean_omega: if m0 > 0.0 { m1 / m0 } else { 1.0 },
             depth_m: depth_m.unwrap_or(DEEP_WATER_M),
             slope_variance: slopes,
+            slope_anisotropy: anisotropy,
             curvature_variance: curvatures,
         }
     }
+}
+
+/// The mean-square slope along the unit vector `dir` of the water (x, z) of slopes whose mean
+/// square over both directions is `total` and whose anisotropy is `anisotropy`
+/// (`SeaMoments::slope_anisotropy`); water.frag's `slopes_along_across` is its twin.
+pub fn slope_along(total: f64, anisotropy: [f64; 2], dir: [f64; 2]) -> f64 {
+    let [c, s] = dir;
+    0.5 * total + 0.5 * anisotropy[0] * (c * c - s * s) + anisotropy[1] * 2.0 * c * s
 }
 
 /// Mean-square slope of a clean sea surface at wind speed `u` (m/s): Cox & Munk (1954),
@@ -59,6 +78,22 @@ impl SeaMoments {
 /// difference is about 2 %, within their scatter).
 pub fn cox_munk_mean_square_slope(u: f64) -> f64 {
     0.003 + 5.12e-3 * u
+}
+
+/// Cox & Munk's (1954) clean surface by direction: upwind σ_u² = 3.16·10⁻³·U (±0.004) and
+/// crosswind σ_c² = 0.003 + 1.92·10⁻³·U (±0.004). Their difference, σ_u² − σ_c² =
+/// 1.24·10⁻³·U − 0.003, is what the sea's slopes favour the wind's direction by (none below
+/// 2.4 m/s, where their fit would make the crosswind slopes the larger); their sum,
+/// 0.003 + 5.08·10⁻³·U, is within 1 % of the total fit above.
+pub fn cox_munk_upwind_excess(u: f64) -> f64 {
+    (3.16e-3 * u - (0.003 + 1.92e-3 * u)).max(0.0)
+}
+
+/// `SeaMoments::slope_anisotropy` of slopes whose mean square is `excess` more along the unit
+/// vector `wind` than across it.
+pub fn anisotropy_along(excess: f64, wind: [f64; 2]) -> [f64; 2] {
+    let [wx, wz] = wind;
+    [excess * (wx * wx - wz * wz), excess * wx * wz]
 }
 
 #[cfg(test)]
@@ -70,7 +105,7 @@ mod tests {
         let c = |energy, omega, k, layer| Component {
             energy,
             omega,
-            k,
+            k: [k, 0.0],
             layer,
         };
         let s =
@@ -82,5 +117,65 @@ mod tests {
         assert!((s.slope_variance[1] - 0.12).abs() < 1e-12);
         assert!((s.curvature_variance[0] - 1e-4).abs() < 1e-15);
         assert!((s.curvature_variance[1] - 0.0048).abs() < 1e-14);
+        // Waves along x: all their slope is along x.
+        assert!((s.slope_anisotropy[1][0] - 0.12).abs() < 1e-12);
+        let along = |dir| slope_along(s.slope_variance[1], s.slope_anisotropy[1], dir);
+        assert!((along([1.0, 0.0]) - 0.12).abs() < 1e-12);
+        assert!(along([0.0, 1.0]).abs() < 1e-12);
+        assert!((along([0.6, 0.8]) - 0.12 * 0.36).abs() < 1e-12);
+    }
+
+    #[test]
+    fn a_wave_s_slope_along_any_direction_is_its_projection() {
+        // One wave of wave vector k at 30° from x: its mean-square slope along a unit vector d
+        // is E (k·d)².
+        let k = [
+            0.2 * 30f64.to_radians().cos(),
+            0.2 * 30f64.to_radians().sin(),
+        ];
+        let s = SeaMoments::from_waves(
+            [Component {
+                energy: 2.0,
+                omega: 1.0,
+                k,
+                layer: 0,
+            }]
+            .into_iter(),
+            None,
+        );
+        for deg in [0.0f64, 17.0, 60.0, 120.0, 200.0] {
+            let d = [deg.to_radians().cos(), deg.to_radians().sin()];
+            let expected = 2.0 * (k[0] * d[0] + k[1] * d[1]).powi(2);
+            let got = slope_along(s.slope_variance[0], s.slope_anisotropy[0], d);
+            assert!(
+                (got - expected).abs() < 1e-12,
+                "{deg}°: {got} vs {expected}"
+            );
+        }
+    }
+
+    #[test]
+    fn the_sea_s_slopes_upwind_and_crosswind_are_cox_and_munk_s() {
+        // Cox & Munk (1954), clean surface at 10 m/s: σ_u² = 0.0316, σ_c² = 0.0222 (their
+        // separate fits), from the total fit and the upwind excess within 2 %, whichever way
+        // the wind blows.
+        let u = 10.0;
+        let total = cox_munk_mean_square_slope(u);
+        for deg in [0.0f64, 35.0, 90.0, 230.0] {
+            let wind = [deg.to_radians().cos(), deg.to_radians().sin()];
+            let a = anisotropy_along(cox_munk_upwind_excess(u), wind);
+            let upwind = slope_along(total, a, wind);
+            let crosswind = slope_along(total, a, [-wind[1], wind[0]]);
+            assert!(
+                (upwind / 0.0316 - 1.0).abs() < 0.02,
+                "{deg}°: upwind {upwind}"
+            );
+            assert!(
+                (crosswind / 0.0222 - 1.0).abs() < 0.02,
+                "{deg}°: crosswind {crosswind}"
+            );
+        }
+        // Calm: no direction.
+        assert_eq!(cox_munk_upwind_excess(2.0), 0.0);
     }
 }

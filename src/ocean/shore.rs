@@ -183,6 +183,7 @@ mod tests {
             mean_omega: omega,
             depth_m: DEEP_WATER_M,
             slope_variance: [0.0; 4],
+            slope_anisotropy: [[0.0; 2]; 4],
             curvature_variance: [0.0; 4],
         }
     }
@@ -325,6 +326,7 @@ mod tests {
             mean_omega: 0.9,
             depth_m: 12.0,
             slope_variance: [0.0; 4],
+            slope_anisotropy: [[0.0; 2]; 4],
             curvature_variance: [0.0; 4],
         };
         assert!((shoaling(&sea, 12.0) - 1.0).abs() < 1e-12);

@@ -34,9 +34,11 @@ pub use wake_sim::Wake;
 
 use super::foam::{self, FoamLevels, FoamScene};
 use super::gerstner::Wave;
-use super::moments::{cox_munk_mean_square_slope, SeaMoments};
+use super::moments::{
+    anisotropy_along, cox_munk_mean_square_slope, cox_munk_upwind_excess, SeaMoments,
+};
 use super::params::{OceanSettings, Waves};
-use super::spectrum::Cascade;
+use super::spectrum::{wind_vector, Cascade};
 use crate::gpu::compute::ComputeQueue;
 use crate::gpu::{
     Bind, BoundSet, Buffer, Context, DescriptorSetLayout, DeviceInfo, FormatUse, Frame, GpuResult,
@@ -346,6 +348,22 @@ impl Simulation {
             Waves::Gerstner(_) => resolved + cox_munk_mean_square_slope(0.0),
         };
         sea.max(resolved)
+    }
+
+    /// How the whole sea surface's slopes differ by direction (`SeaMoments::slope_anisotropy`):
+    /// Cox & Munk's (1954) upwind excess along the wind for the FFT sea; for Gerstner waves
+    /// their own (the calm's 0.003 has no direction).
+    pub fn slope_anisotropy(&self) -> [f64; 2] {
+        match self.settings.waves {
+            Waves::Fft => anisotropy_along(
+                cox_munk_upwind_excess(self.settings.sea.wind_speed_m_s),
+                wind_vector(&self.settings.sea),
+            ),
+            Waves::Gerstner(_) => {
+                let a = &self.sea_moments.slope_anisotropy;
+                [0, 1].map(|i| a.iter().map(|l| l[i]).sum())
+            }
+        }
     }
 }
 

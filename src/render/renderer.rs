@@ -20,7 +20,7 @@ use super::scene::{dudv_size, generate_dudv, load_dudv, DUDV_SIDE};
 use super::targets::Targets;
 use super::targets::{DEPTH_FORMAT, HDR_FORMAT};
 use super::uniforms::{
-    sky_uniforms, FrameInputs, FrameParams, FrameUniforms, OceanBindings, ViewIndex,
+    sky_uniforms, FrameInputs, FrameParams, FrameUniforms, OceanBindings, SkyLight, ViewIndex,
 };
 use super::{Geometry, SceneSettings, ViewMode};
 use crate::gpu::oneshot::upload_image_with;
@@ -148,9 +148,10 @@ pub struct Renderer {
     // Textures the passes sample.
     /// The sky cubemap (analytic, re-rendered when the sun moves, or `--skybox`).
     pub(super) sky_cube: SkyCube,
-    /// The sun's and the sky's light for the frame uniforms, and the sky they are for
-    /// (`uniforms::sky_uniforms`, recomputed when it changes).
-    sky_light: (Sky, ([f32; 4], [f32; 4], f32)),
+    /// The sun's and the sky's light for the frame uniforms, and the sky they are for with
+    /// whether its clouds cast shadows (no `--skybox`) (`uniforms::sky_uniforms`, recomputed
+    /// when either changes).
+    sky_light: ((Sky, bool), SkyLight),
     /// The DU/DV distortion map (generated, or `--dudv`).
     dudv: Image,
     /// Linear, clamped: reflection and refraction colour.
@@ -428,7 +429,10 @@ impl Renderer {
             bodies: Vec::new(),
             ocean,
             sky_cube,
-            sky_light: (settings.sky(), sky_uniforms(&settings.sky())),
+            sky_light: {
+                let key = (settings.sky(), settings.skybox.is_none());
+                (key, sky_uniforms(&key.0, key.1))
+            },
             dudv,
             clamp_sampler,
             depth_sampler,
@@ -582,8 +586,9 @@ impl Renderer {
         let extent = self.targets.main.extent();
         let s = &self.settings;
         let sky = s.sky();
-        if self.sky_light.0 != sky {
-            self.sky_light = (sky, sky_uniforms(&sky));
+        let key = (sky, s.skybox.is_none());
+        if self.sky_light.0 != key {
+            self.sky_light = (key, sky_uniforms(&sky, key.1));
         }
         let uniforms = FrameUniforms::new(
             &self.camera,

@@ -135,6 +135,7 @@ mod tests {
             mean_omega: 0.9,
             depth_m: crate::ocean::moments::DEEP_WATER_M,
             slope_variance: [0.0; 4],
+            slope_anisotropy: [[0.0; 2]; 4],
             curvature_variance: [0.0; 4],
         };
         let scale = shore_scale(layout, sea);

@@ -114,6 +114,8 @@ pub struct OceanBindings {
     /// The whole sea surface's mean-square slope (Cox & Munk 1954 at the wind; at least what the
     /// cascades resolve): the sun's reflection takes what the normals do not resolve.
     pub mean_square_slope: f32,
+    /// How the whole sea surface's slopes differ by direction (`Simulation::slope_anisotropy`).
+    pub slope_anisotropy: [f32; 2],
 }
 
 /// The views a frame renders: the camera, its mirror image below the water plane (reflection)
@@ -260,9 +262,16 @@ pub struct FrameUniforms {
     /// Mean square of the Laplacian of each cascade's height (`SeaMoments::curvature_variance`):
     /// how deep its waves focus the sun (shaders/common/caustics.glsl).
     pub curvature_variance: [f32; 4],
+    /// How each cascade's slopes differ by direction (`SeaMoments::slope_anisotropy`): [0] its
+    /// Σ(k_x² − k_z²)E, [1] its Σk_x k_z E.
+    pub slope_anisotropy: [[f32; 4]; 2],
+    /// xy: the same for the whole sea surface (`OceanBindings::slope_anisotropy`: Cox & Munk's
+    /// upwind excess); zw: unused.
+    pub sea_slopes: [f32; 4],
     /// rgb: the sun's irradiance at the sea on a surface facing it, through the clear air
     /// (`Sky::sun_light`; the shaders take what the clouds above a point let through,
-    /// shaders/common/clouds.glsl); w: the cloud cover (0–1).
+    /// shaders/common/clouds.glsl); w: the cloud cover the sun's light passes (0–1; 0 with a
+    /// `--skybox`, which has no layer: `sky_uniforms`).
     pub sun_light: [f32; 4],
     /// rgb: the sun's and sky's irradiance on the sea over the default day's
     /// (`Sky::global_irradiance`, `reference_light`): deep water's light; w: the display's
@@ -382,8 +391,8 @@ impl SceneLayout {
 #[derive(Clone, Copy, Debug)]
 pub struct FrameParams<'a> {
     pub sky: Sky,
-    /// `sky_uniforms(&sky)`.
-    pub sky_light: ([f32; 4], [f32; 4], f32),
+    /// `sky_uniforms(&sky, analytic_sky)`.
+    pub sky_light: SkyLight,
     pub sun_scale: f32,
     /// The sky is the analytic one (not `--skybox`): the sky pass draws the sun's disc.
     pub analytic_sky: bool,
@@ -407,16 +416,23 @@ pub struct FrameParams<'a> {
 }
 
 /// `FrameUniforms::sun_light` and `sky_light` of a sky, and the clouds' mean share of the sun
-/// (`sun_dir.w`). (Some milliseconds of integration: the renderer computes them when the sky
+/// (`sun_dir.w`): `sky_uniforms`' answer.
+pub type SkyLight = ([f32; 4], [f32; 4], f32);
+
+/// `SkyLight` of a sky. `layer`: the analytic sky's clouds cast their shadows; a `--skybox` has no
+/// layer, so the cover the sun's light passes (`sun_light`'s w) is 0 and all of it passes (the
+/// one place that decides it: `clouds::through` and the shaders' `cloud_through` give exactly 1
+/// at cover 0). (Some milliseconds of integration: the renderer computes them when the sky
 /// changes, `Renderer::write_uniforms`.)
-pub fn sky_uniforms(sky: &Sky) -> ([f32; 4], [f32; 4], f32) {
+pub fn sky_uniforms(sky: &Sky, layer: bool) -> SkyLight {
     let [r, g, b] = sky.sun_light();
     let (global, reference) = (sky.global_irradiance(), reference_light());
     let light: [f32; 3] = std::array::from_fn(|c| (global[c] / reference[c]) as f32);
+    let cover = if layer { sky.cloud_cover } else { 0.0 };
     (
-        [r, g, b, sky.cloud_cover],
+        [r, g, b, cover],
         [light[0], light[1], light[2], sky.exposure()],
-        super::clouds::mean_through(sky.sun_dir.normalize(), sky.cloud_cover),
+        super::clouds::mean_through(sky.sun_dir.normalize(), cover),
     )
 }
 
@@ -446,16 +462,9 @@ fn water_side_uniforms(camera: &Camera, p: &FrameParams) -> ([f32; 4], [f32; 4])
             depth.max(0.0) as f32,
             f32::from(u8::from(p.caustics)),
             // What the clouds above the camera let through of the sun (its light in the
-            // water around the eye, common/underwater.glsl); all of it with a --skybox.
-            if p.analytic_sky {
-                super::clouds::through(
-                    camera.position,
-                    p.sky.sun_dir.normalize(),
-                    p.sky.cloud_cover,
-                )
-            } else {
-                1.0
-            },
+            // water around the eye, common/underwater.glsl); the cover the sun's light passes
+            // is `sun_light`'s w (0, all of it, with a --skybox: `sky_uniforms`).
+            super::clouds::through(camera.position, p.sky.sun_dir.normalize(), p.sky_light.0[3]),
         ],
         [
             sx as f32,
@@ -488,13 +497,7 @@ impl FrameUniforms {
                 p.inputs.ocean_window.into(),
                 p.background.is_some().into(),
             ],
-            // A --skybox has no layer: the sun passes whole (`sun_light_at`).
-            sun_dir: p
-                .sky
-                .sun_dir
-                .normalize()
-                .extend(if p.analytic_sky { mean_through } else { 1.0 })
-                .to_array(),
+            sun_dir: p.sky.sun_dir.normalize().extend(mean_through).to_array(),
             viewport: Vec4::new(w, h, 1.0 / w, 1.0 / h).to_array(),
             patch_m: p.ocean.patch_m,
             lod: [focal_px, p.tess_edge_px, p.ocean.max_displacement_m, 0.0],
@@ -545,6 +548,14 @@ impl FrameUniforms {
             wake: wake_uniform(p.inputs.wake, &water),
             slope_variance: p.ocean.sea_moments.slope_variance.map(|v| v as f32),
             curvature_variance: p.ocean.sea_moments.curvature_variance.map(|v| v as f32),
+            slope_anisotropy: [0, 1]
+                .map(|i| p.ocean.sea_moments.slope_anisotropy.map(|c| c[i] as f32)),
+            sea_slopes: [
+                p.ocean.slope_anisotropy[0],
+                p.ocean.slope_anisotropy[1],
+                0.0,
+                0.0,
+            ],
             open_sea: {
                 let floor = p.scene.deep_floor_m;
                 [

@@ -162,10 +162,9 @@ fn upload_spectrum(
             let h0 = &h0_values[c * n * n..(c + 1) * n * n];
             h0.iter().enumerate().map(move |(i, [re, im])| {
                 let k = wave_vector(i % n, i / n, n, cascade.patch_m);
-                let k = k[0].hypot(k[1]);
                 Component {
                     energy: 2.0 * (*re as f64 * *re as f64 + *im as f64 * *im as f64),
-                    omega: dispersion(k, depth).0,
+                    omega: dispersion(k[0].hypot(k[1]), depth).0,
                     k,
                     layer: c,
                 }

@@ -88,14 +88,11 @@ impl GerstnerModel {
             + 0.5;
         // A wave of amplitude a holds a²/2 of the height variance (deep water, g of seed 000).
         let sea = SeaMoments::from_waves(
-            waves.iter().map(|w| {
-                let k = w.kx.hypot(w.kz);
-                Component {
-                    energy: 0.5 * w.amplitude * w.amplitude,
-                    omega: (G_SEED * k).sqrt(),
-                    k,
-                    layer: 0,
-                }
+            waves.iter().map(|w| Component {
+                energy: 0.5 * w.amplitude * w.amplitude,
+                omega: (G_SEED * w.kx.hypot(w.kz)).sqrt(),
+                k: [w.kx, w.kz],
+                layer: 0,
             }),
             None,
         );
