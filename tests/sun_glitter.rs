@@ -5,7 +5,13 @@
 //! σ_u² = 0.0316 along the wind and σ_c² = 0.0222 across it at 10 m/s (their clean-surface
 //! fits, 3.16·10⁻³·U and 0.003 + 1.92·10⁻³·U). What the drawn normals resolve and what the
 //! glitter's lobe adds (shaders/surface/water.frag: `slopes_along_across`) must sum to those
-//! in each direction. Headless on lavapipe, validation-clean.
+//! in each direction.
+//!
+//! What is asserted is the pattern's shape: the ratio of its widths and its long axis, which
+//! the display's monotone tone map and exposure leave alone (they move every contour of the
+//! pattern, not its shape). Its absolute widths are printed, not asserted: the picture's
+//! brightness is F·D·G/(4 n·v) through that tone map, and Cox & Munk divided those factors
+//! out of their photographs; the test does not. Headless on lavapipe, validation-clean.
 
 mod common;
 
@@ -90,7 +96,7 @@ fn glitter_gaussian(name: &str, wind_deg: f64, eye: Vec3, target: Vec3) -> (f64,
         format!("{},{},{}", target.x, target.y, target.z),
     );
     let wind = wind_deg.to_string();
-    // Four moments 1.7 s apart (the FFT sea is a function of time: a long --dt is exact),
+    // Six moments 1.1 s apart (the FFT sea is a function of time: a long --dt is exact),
     // averaged in linear light: the few long waves in view differ from one to the next.
     let frames = common::shots(
         name,
@@ -98,9 +104,9 @@ fn glitter_gaussian(name: &str, wind_deg: f64, eye: Vec3, target: Vec3) -> (f64,
         1,
         &[
             "--frames",
-            "4",
+            "6",
             "--dt",
-            "1.7",
+            "1.1",
             "--sun",
             "0,90",
             "--camera",
@@ -115,11 +121,11 @@ fn glitter_gaussian(name: &str, wind_deg: f64, eye: Vec3, target: Vec3) -> (f64,
             "0",
         ],
     );
-    assert_eq!(frames.len(), 4);
+    assert_eq!(frames.len(), 6);
     let mut mean = vec![0.0; W * H];
     for f in &frames {
         for (m, c) in mean.iter_mut().zip(f.chunks(4)) {
-            *m += (0.2126 * linear(c[0]) + 0.7152 * linear(c[1]) + 0.0722 * linear(c[2])) / 4.0;
+            *m += (0.2126 * linear(c[0]) + 0.7152 * linear(c[1]) + 0.0722 * linear(c[2])) / 6.0;
         }
     }
     // The glitter's excess over the darkest water (2nd percentile), smoothed over the sparkles
@@ -175,11 +181,11 @@ fn glitter_gaussian(name: &str, wind_deg: f64, eye: Vec3, target: Vec3) -> (f64,
 
 #[test]
 fn the_glitter_from_above_has_cox_and_munk_s_slopes_upwind_and_crosswind() {
-    // Measured (4 frames, 480x270): σ along / across the wind 0.178 / 0.147 (wind along x),
-    // 0.184 / 0.148 (along z, the camera turned with it), 0.181 / 0.151 (30°), long axes at
-    // 175°, 87° and 32°. With each cascade's and the unresolved slopes split evenly between
-    // the directions (the build before): ratios 1.035, 1.060, 1.020 (the drawn waves' own
-    // anisotropy only), against Cox & Munk's 1.193.
+    // Measured (6 frames, 480x270): σ along / across the wind 0.176 / 0.144 (wind along x),
+    // 0.181 / 0.146 (along z, the camera turned with it), 0.180 / 0.149 (30°): ratios 1.22,
+    // 1.24 and 1.21, long axes at 177.6°, 87.3° and 31.3°. With each cascade's and the
+    // unresolved slopes split evenly between the directions (the build before): 0.166 / 0.160,
+    // ratio 1.04 (the drawn waves' own anisotropy only), against Cox & Munk's 1.193.
     let eye = Vec3::new(0.0, 300.0, 0.0);
     for (name, wind, target) in [
         ("glitter-wind-x", 0.0, Vec3::new(0.0, 0.0, -1.0)),
@@ -188,16 +194,8 @@ fn the_glitter_from_above_has_cox_and_munk_s_slopes_upwind_and_crosswind() {
     ] {
         let (long, short, axis) = glitter_gaussian(name, wind, eye, target);
         println!("{name}: σ {long:.3} along the long axis ({axis:.1}°), {short:.3} across");
-        // 6 %: the fit's own spread over these three views is ±3 %; Cox & Munk's fits
-        // scatter by ±0.004 in σ² (±6 % of σ_u² at 10 m/s).
-        assert!(
-            (long / SIGMA_UP - 1.0).abs() < 0.06,
-            "{name}: σ upwind {long:.3}, Cox & Munk {SIGMA_UP}"
-        );
-        assert!(
-            (short / SIGMA_CROSS - 1.0).abs() < 0.06,
-            "{name}: σ crosswind {short:.3}, Cox & Munk {SIGMA_CROSS}"
-        );
+        // 6 %: the ratio's spread over these three views is ±2 %; Cox & Munk's fits scatter
+        // by ±0.004 in σ² (±6 % of σ_u² at 10 m/s).
         let ratio = long / short;
         assert!(
             (ratio / (SIGMA_UP / SIGMA_CROSS) - 1.0).abs() < 0.06,

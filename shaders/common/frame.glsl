@@ -47,7 +47,8 @@ layout(set = 0, binding = 0, std140) uniform FrameUniforms {
     vec4 curvature_variance; // mean square of the Laplacian of cascade c's height (Σ k⁴E)
     vec4 slope_anisotropy[2]; // cascade c's slopes by direction: [0] Σ(k_x² − k_z²)E,
                          // [1] Σ k_x k_z E (`slope_along`)
-    vec4 sea_slopes;     // xy: the same for the whole sea (Cox & Munk's upwind excess)
+    vec4 sea_slopes;     // xy: the same for the whole sea (FFT: Cox & Munk's upwind excess
+                         // along the wind; Gerstner: the waves' own)
     vec4 sun_light;      // rgb: the sun's irradiance at the sea through the clear air (before
                          // the clouds: `sun_through_at` takes what they let through); w: the
                          // cloud cover the sun's light passes (0 with --skybox: no layer)

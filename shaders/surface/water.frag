@@ -55,10 +55,20 @@ const float FOAM_ALBEDO = 0.85;
 // Height of the foam's relief (m): bubbles and lace a few centimetres thick.
 const float FOAM_RELIEF_M = 0.15;
 
+// The mean-square slopes along the water's unit vector `along` (x) and across it (y) of slopes
+// whose mean square over both directions is `total` and whose anisotropy is `a`
+// (Σ(k_x² − k_z²)E, Σk_x k_z E): ½·total ± (½·a.x·cos 2φ + a.y·sin 2φ), φ the angle of `along`
+// from x (src/ocean/moments.rs' `slope_along` is its twin).
+vec2 slopes_along_across(float total, vec2 a, vec2 along) {
+    float anisotropic = 0.5 * a.x * (along.x * along.x - along.y * along.y)
+                        + a.y * 2.0 * along.x * along.y;
+    return 0.5 * total + vec2(anisotropic, -anisotropic);
+}
+
 // The summed normal, its slopes scaled as the shallows scale the waves (`scale`), and the
 // whitecap field (layer 0's foam: the whole surface's, see src/ocean/foam.rs), faded with the
 // largest cascade. `resolved`: the mean-square slope those faded, scaled cascades carry along
-// the view (x) and across it (y), each cascade's by its waves' directions (`slope_along`: the
+// the view (x) and across it (y), each cascade's by its waves' directions (`slopes_along_across`: the
 // wind's waves are steeper along the wind than across it).
 // A cascade's slopes also fade where the pixel's footprint on the water passes its shortest
 // wavelength (gone at twice that), before they alias into shimmer: its band ends at 6 waves
@@ -76,16 +86,6 @@ const float FOAM_RELIEF_M = 0.15;
 // (waves of 3.5–15 m at the default 400 m patch, crests a few metres thick) in full, cascade
 // 0 (15–400 m) at half, the smaller ones not at all (their ripples hold too little water to
 // glow, and their compression drew the glow as a sparkling net).
-// The mean-square slopes along the water's unit vector `along` (x) and across it (y) of slopes
-// whose mean square over both directions is `total` and whose anisotropy is `a`
-// (Σ(k_x² − k_z²)E, Σk_x k_z E): ½·total ± (½·a.x·cos 2φ + a.y·sin 2φ), φ the angle of `along`
-// from x (src/ocean/moments.rs' `slope_along` is its twin).
-vec2 slopes_along_across(float total, vec2 a, vec2 along) {
-    float anisotropic = 0.5 * a.x * (along.x * along.x - along.y * along.y)
-                        + a.y * 2.0 * along.x * along.y;
-    return 0.5 * total + vec2(anisotropic, -anisotropic);
-}
-
 vec4 ocean_normal_foam(vec2 xz, float dist, vec2 footprint, vec2 along, float scale,
                        out vec2 resolved, out float compression) {
     vec2 across = vec2(-along.y, along.x);

@@ -266,7 +266,7 @@ pub struct FrameUniforms {
     /// Σ(k_x² − k_z²)E, [1] its Σk_x k_z E.
     pub slope_anisotropy: [[f32; 4]; 2],
     /// xy: the same for the whole sea surface (`OceanBindings::slope_anisotropy`: Cox & Munk's
-    /// upwind excess); zw: unused.
+    /// upwind excess along the wind for the FFT sea, the waves' own for Gerstner's); zw: unused.
     pub sea_slopes: [f32; 4],
     /// rgb: the sun's irradiance at the sea on a surface facing it, through the clear air
     /// (`Sky::sun_light`; the shaders take what the clouds above a point let through,
