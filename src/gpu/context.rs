@@ -22,10 +22,11 @@ use super::track::Access;
 
 /// How long a GPU wait may take before the device is declared hung (s).
 pub const WAIT_TIMEOUT_S: u64 = 60;
-/// The same under GPU-assisted validation: its instrumented shaders are several times larger,
-/// and a CPU driver (llvmpipe) compiles a shader's variants at its first draw, inside the
-/// frame's work. Measured on lavapipe, 2 cores busy with a build: 7 s a frame at 160x90 with
-/// floating bodies and a wake, and once over 60 s for one frame (tools/validate-newest).
+/// The same under GPU-assisted validation: every dispatch is instrumented, a first frame may
+/// carry many warm-up steps in one submission (a wake's 400), and a CPU driver (llvmpipe)
+/// compiles a shader's variants at its first draw, inside the frame's work. Measured on
+/// lavapipe, 2 cores busy with a build: 7 s a frame at 160x90 with floating bodies and a
+/// wake, and once over 60 s for one frame (tools/validate-newest).
 pub const GPU_ASSISTED_WAIT_TIMEOUT_S: u64 = 240;
 use super::instance::{create_instance, load_entry, surface_handles, ValidationExtras};
 use super::physical::{best_usable, inspect, lacks, type_name, Candidate};
