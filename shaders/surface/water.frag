@@ -618,19 +618,18 @@ void main() {
     // past the casters at the surface (x).
     // The clouds move the sun's share too: frame.sky_light is the sea's mean irradiance under
     // this sky (Kasten & Czeplak's cloud factor), whose sun reaches the sea through the
-    // clouds' mean share t̄ (frame.sun_dir.w); here `through` of the clear sun's arrives
+    // clouds' mean share t̄ (frame.sun_dir.w); here a share t of the clear sun's arrives
     // (in_sun_through: past the clouds above the point), so the sun's part is scaled by
-    // through / t̄. Over the whole sea the mean stays sky_light; under an overcast there is
+    // t / t̄. Over the whole sea the mean stays sky_light; under an overcast there is
     // no sun to scale.
     vec2 shadow = water_shadow(in_rel_pos + VIEW.eye.xyz);
-    float through = in_sun_through;
-    vec3 sunlight = frame.sun_light.rgb * through * shadow.x;
+    vec3 sunlight = frame.sun_light.rgb * in_sun_through * shadow.x;
     const vec3 LUMA = vec3(0.2126, 0.7152, 0.0722);
     float clear_sun = max(dot(frame.sun_light.rgb, LUMA), 1e-6);
     float mean_through = frame.sun_dir.w;
     float sun_on_sea = clear_sun * max(sun.y, 0.0) * mean_through;
     float sun_share = sun_on_sea / max(sun_on_sea + PI * dot(in_sky_zenith, LUMA), 1e-6);
-    float sun_here = shadow.y * through / max(mean_through, 1e-3);
+    float sun_here = shadow.y * in_sun_through / max(mean_through, 1e-3);
     vec3 deep = WATER_COLOUR * frame.sky_light.rgb * (1.0 - sun_share * (1.0 - sun_here));
     vec3 transmitted = mix(deep, c_refract, exp(-thickness * ABSORPTION_PER_M));
     // The light through the crests (crest_light), scaled as the shallows scale the waves.

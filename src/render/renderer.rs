@@ -148,10 +148,10 @@ pub struct Renderer {
     // Textures the passes sample.
     /// The sky cubemap (analytic, re-rendered when the sun moves, or `--skybox`).
     pub(super) sky_cube: SkyCube,
-    /// The sun's and the sky's light for the frame uniforms, and the sky they are for with
-    /// whether its clouds cast shadows (no `--skybox`) (`uniforms::sky_uniforms`, recomputed
-    /// when either changes).
-    sky_light: ((Sky, bool), SkyLight),
+    /// The sun's and the sky's light for the frame uniforms, and the sky they are for
+    /// (`uniforms::sky_uniforms`, recomputed when it changes; a changed `--skybox` builds a new
+    /// renderer, `needs_rebuild`).
+    sky_light: (Sky, SkyLight),
     /// The DU/DV distortion map (generated, or `--dudv`).
     dudv: Image,
     /// Linear, clamped: reflection and refraction colour.
@@ -429,10 +429,10 @@ impl Renderer {
             bodies: Vec::new(),
             ocean,
             sky_cube,
-            sky_light: {
-                let key = (settings.sky(), settings.skybox.is_none());
-                (key, sky_uniforms(&key.0, key.1))
-            },
+            sky_light: (
+                settings.sky(),
+                sky_uniforms(&settings.sky(), settings.skybox.is_none()),
+            ),
             dudv,
             clamp_sampler,
             depth_sampler,
@@ -586,9 +586,8 @@ impl Renderer {
         let extent = self.targets.main.extent();
         let s = &self.settings;
         let sky = s.sky();
-        let key = (sky, s.skybox.is_none());
-        if self.sky_light.0 != key {
-            self.sky_light = (key, sky_uniforms(&sky, key.1));
+        if self.sky_light.0 != sky {
+            self.sky_light = (sky, sky_uniforms(&sky, s.skybox.is_none()));
         }
         let uniforms = FrameUniforms::new(
             &self.camera,
