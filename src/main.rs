@@ -98,14 +98,15 @@ fn run(user_args: Vec<std::ffi::OsString>) -> ExitCode {
         };
     }
 
-    // Without --quality the level follows the device the run will use (bench fft has none).
+    // Without --quality the level follows the device the run will use (bench fft has none),
+    // as does the upscale without --upscale.
     let fft_bench = matches!(cli.command, Some(Command::Bench(BenchCommand::Fft(_))));
     if fft_bench {
         if let Err(e) = vkocean::cli::check_bench_fft_flags(&user_args) {
             return fail(&e.into());
         }
     }
-    if cli.quality.is_none() && !fft_bench {
+    if (cli.quality.is_none() || cli.upscale.is_none()) && !fft_bench {
         cli.cpu_device = context::chosen_device_is_cpu(cli.gpu, cli.device_needs());
     }
 

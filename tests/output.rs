@@ -67,10 +67,19 @@ fn the_drawn_output_equals_the_copy_at_full_scale() {
 }
 
 /// Scaling draws by default (the draw was faster than the blit on lavapipe: output.rs): the
-/// default picture is the drawn one, bit for bit.
+/// default picture is the drawn one, bit for bit. `--upscale bilinear` (the default on a CPU
+/// device) draws what the blit does; `--upscale edge` (tests/anti_aliasing.rs measures it)
+/// differs.
 #[test]
 fn the_drawn_output_matches_the_blit_when_scaling() {
-    let args = ["--render-scale", "0.5", "--aa", "fxaa"];
+    let args = [
+        "--render-scale",
+        "0.5",
+        "--aa",
+        "fxaa",
+        "--upscale",
+        "bilinear",
+    ];
     let drawn = compare("scaled", &args, SCALED_TOLERANCE);
     let default = shot("scaled", &args, "");
     let (max, pixels) = difference(&default, &drawn);
@@ -78,6 +87,16 @@ fn the_drawn_output_matches_the_blit_when_scaling() {
         (max, pixels),
         (0, 0),
         "scaling by default differs from the drawn output"
+    );
+    let edge = shot(
+        "scaled-edge",
+        &["--render-scale", "0.5", "--aa", "fxaa", "--upscale", "edge"],
+        "",
+    );
+    let (_, pixels) = difference(&edge, &drawn);
+    assert!(
+        pixels > 0,
+        "--upscale edge draws what --upscale bilinear draws"
     );
 }
 

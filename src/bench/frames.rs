@@ -210,6 +210,7 @@ pub fn cost_settings(run: &RunSettings) -> Vec<(&'static str, Value)> {
         ("tess_edge_px", json!(sc.tess_edge_px)),
         ("view", json!(format!("{:?}", sc.view).to_lowercase())),
         ("aa", json!(format!("{:?}", sc.aa).to_lowercase())),
+        ("upscale", json!(format!("{:?}", sc.upscale).to_lowercase())),
         (
             "skybox",
             json!(if sc.skybox.is_some() {

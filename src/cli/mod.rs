@@ -8,6 +8,7 @@ use clap::{Parser, ValueEnum};
 
 mod bench;
 mod config;
+mod device;
 mod retune;
 mod values;
 mod waves;
@@ -32,7 +33,7 @@ use crate::render::camera::LOWEST_M;
 use crate::render::uniforms::DEEP_FLOOR_M;
 use crate::render::{
     default_sun_dir, AntiAliasing, Camera, FresnelModel, Geometry, SceneLayout, SceneSettings,
-    ViewMode,
+    Upscale, ViewMode,
 };
 use crate::shared::MAX_BODIES;
 use glam::Vec3;
@@ -295,12 +296,22 @@ pub struct Cli {
     #[arg(long, global = true, value_enum, value_name = "MODE", default_value_t = AntiAliasing::Fxaa, help_heading = "Scene")]
     pub aa: AntiAliasing,
 
+    /// How the scene target is scaled up to the output when --render-scale is below 1 (the debug views are always scaled bilinearly). [default: edge; bilinear on a CPU device (lavapipe, SwiftShader), where the edge-directed draw's four lookups a pixel cost more than twice the bilinear one]
+    #[arg(
+        long,
+        global = true,
+        value_enum,
+        value_name = "MODE",
+        help_heading = "Scene"
+    )]
+    pub upscale: Option<Upscale>,
+
     /// Size of the reflection and refraction textures relative to the output (window or image; 0.1 to 1). [default: 0.25 low, 0.35 medium, 0.5 high]
     #[arg(long, global = true, value_name = "S", allow_hyphen_values = true,
           value_parser = |s: &str| parse_in(s, 0.1, 1.0), help_heading = "Scene")]
     pub rtt_scale: Option<f64>,
 
-    /// Size of the scene (and water) target relative to the output (window or image; 0.25 to 1); a bilinear blit scales it up. [default: 0.5 low, 0.75 medium, 1 high]
+    /// Size of the scene (and water) target relative to the output (window or image; 0.25 to 1); the output pass scales it up (--upscale). [default: 0.5 low, 0.75 medium, 1 high]
     #[arg(long, global = true, value_name = "S", allow_hyphen_values = true,
           value_parser = |s: &str| parse_in(s, 0.25, 1.0), help_heading = "Scene")]
     pub render_scale: Option<f64>,
@@ -502,6 +513,7 @@ impl Cli {
             view: self.view,
             fresnel: self.fresnel,
             aa: self.aa,
+            upscale: self.upscale_in_force(),
             rtt_scale: self.rtt_scale.unwrap_or(quality.rtt_scale) as f32,
             render_scale: render_scale as f32,
             // Nothing sharpens without the anti-aliasing pass (given, that is refused above).
@@ -567,31 +579,6 @@ impl Cli {
     /// implies it.
     pub fn validation_on(&self) -> bool {
         self.validation || self.validation_extra.is_some()
-    }
-
-    /// What a run with these flags (a drawing one) uses of the device: tessellation only for
-    /// `--geometry tessellated` (`SceneSettings::needs`).
-    pub fn device_needs(&self) -> crate::gpu::Needs {
-        crate::gpu::Needs {
-            rendering: true,
-            tessellation: self.geometry == Some(Geometry::Tessellated),
-        }
-    }
-
-    /// The quality level: `--quality`, else the device's default (`cpu_device`), else high.
-    pub fn quality_in_force(&self) -> QualityArg {
-        self.quality
-            .unwrap_or(QualityArg::device_default(self.cpu_device == Some(true)))
-    }
-
-    /// Who chose the quality level, for the window title and reports: "flag" (`--quality` or
-    /// the config file), "device" (the device's default) or "default" (device not known).
-    pub fn quality_chosen_by(&self) -> &'static str {
-        match (self.quality, self.cpu_device) {
-            (Some(_), _) => "flag",
-            (None, Some(_)) => "device",
-            (None, None) => "default",
-        }
     }
 
     /// Cross-checks the options and resolves defaults.

@@ -116,3 +116,24 @@ fn a_live_aa_off_takes_a_given_sharpening_with_it() {
     t.aa = AntiAliasing::Fxaa;
     assert_eq!(cli.retuned(&t).settings().unwrap().scene.sharpen, 0.5);
 }
+
+/// `--upscale` follows the device unless given: bilinear on a CPU device, edge-directed on the
+/// others and where the device is not known.
+#[test]
+fn the_upscale_follows_the_device_unless_given() {
+    let upscale = |args: &[&str], cpu: Option<bool>| {
+        let mut all = vec!["vkocean", "--headless"];
+        all.extend_from_slice(args);
+        let mut cli = Cli::parse_from(all);
+        cli.cpu_device = cpu;
+        cli.settings().unwrap().scene.upscale
+    };
+    assert_eq!(upscale(&[], Some(true)), Upscale::Bilinear);
+    assert_eq!(upscale(&[], Some(false)), Upscale::Edge);
+    assert_eq!(upscale(&[], None), Upscale::Edge);
+    assert_eq!(upscale(&["--upscale", "edge"], Some(true)), Upscale::Edge);
+    assert_eq!(
+        upscale(&["--upscale", "bilinear"], Some(false)),
+        Upscale::Bilinear
+    );
+}

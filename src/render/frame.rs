@@ -45,7 +45,7 @@ use super::passes::TexturesViewPass;
 use super::renderer::{OutputTarget, Renderer};
 use super::targets::ColourDepth;
 use super::uniforms::{ViewIndex, WaterSide};
-use super::{FrameInputs, ViewMode};
+use super::{FrameInputs, Upscale, ViewMode};
 use crate::gpu::egui::EguiPainter;
 use crate::gpu::selftest::SyncHazard;
 use crate::gpu::{
@@ -307,8 +307,10 @@ pub fn record_frame(
             });
         }
         profiler.pass(&rec, names::OUTPUT, || {
+            // Edge-directed scaling for the final picture; the debug views show data.
+            let edge = r.settings.view == ViewMode::Final && r.settings.upscale == Upscale::Edge;
             r.output
-                .record(&rec, t.final_colour(), output, r.scale_filter)
+                .record(&rec, t.final_colour(), output, r.scale_filter, edge)
         })?;
         if let Some(o) = overlay {
             // Over the finished picture: the output image is the attachment, loaded.

@@ -72,6 +72,30 @@ pub enum AntiAliasing {
     Off,
 }
 
+/// `--upscale`: how the output pass scales the scene target up to the output (with
+/// `--render-scale` below 1). (The variants' doc comments are `--help`'s descriptions.)
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, clap::ValueEnum)]
+pub enum Upscale {
+    /// Edge-directed: bilinear along the local edge, the nearer texel across it
+    /// (shaders/post/output.frag), so steps stay one output pixel wide.
+    #[default]
+    Edge,
+    /// Bilinear, as a blit scales.
+    Bilinear,
+}
+
+impl Upscale {
+    /// `--upscale` when not given: bilinear on a CPU device, whose texture lookups `low`'s frame
+    /// cannot spare (README, Anti-aliasing), edge-directed elsewhere.
+    pub fn device_default(cpu_device: bool) -> Upscale {
+        if cpu_device {
+            Upscale::Bilinear
+        } else {
+            Upscale::Edge
+        }
+    }
+}
+
 /// `--geometry`: how the water's triangles are made. (The variants' doc comments are `--help`'s
 /// descriptions of the values.)
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
@@ -108,10 +132,12 @@ pub struct SceneSettings {
     /// `--sharpen`: how much the anti-aliasing pass sharpens the pixels off the edges (0 to 1;
     /// shaders/post/fxaa_edges.frag), before the output pass scales the picture up.
     pub sharpen: f32,
+    /// `--upscale`: how the output pass scales the main target up (final view only).
+    pub upscale: Upscale,
     /// Reflection and refraction target size relative to the output (0 < s <= 1).
     pub rtt_scale: f32,
     /// Main (scene and water) target size relative to the output (0 < s <= 1); the output pass
-    /// scales it up (a bilinear blit).
+    /// scales it up (`upscale`).
     pub render_scale: f32,
     /// Island lattice quads per side.
     pub terrain_grid: u32,
@@ -179,6 +205,7 @@ impl Default for SceneSettings {
             fresnel: FresnelModel::Schlick,
             aa: AntiAliasing::default(),
             sharpen: 0.0,
+            upscale: Upscale::default(),
             rtt_scale: 0.5,
             render_scale: 1.0,
             terrain_grid: 160,

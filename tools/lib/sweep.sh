@@ -4,8 +4,9 @@
 # sweep_runs FN: calls `FN ARGS...` once per run, ARGS being vkocean's arguments for it (FN adds
 # --validation and whatever else it checks): every --view, both --waves models, each water
 # --geometry of SWEEP_GEOMETRIES (default: both; tools/swiftshader: clipmap, the device has no
-# tessellation) and every --quality (high without the foam simulation near the camera) headless
-# at 160x90 for 3 frames, the storm at medium (the
+# tessellation) and every --quality (high without the foam simulation near the camera; low with
+# the edge-directed upscale, which a CPU device does not draw by default) headless at 160x90
+# for 3 frames, the storm at medium (the
 # spray flies, lands and adds to the foam levels: about 9,000 puffs, 100 landing a frame), the
 # view from under the water over the shallows (the light shafts' pass, the floor mirrored
 # outside Snell's window) and from a camera half in the water (the waterline's pipeline), and
@@ -26,7 +27,7 @@ sweep_runs() {
     # the first frame's one submission, which under GPU-assisted validation on lavapipe took
     # longer than vkocean's 60 s GPU wait at high (its levels are the same at medium, which
     # runs it).
-    "$fn" "${small[@]}" --quality low
+    "$fn" "${small[@]}" --quality low --upscale edge
     "$fn" "${small[@]}" --quality medium
     "$fn" "${small[@]}" --quality high --foam-sim off
     "$fn" "${small[@]}" --preset storm --quality medium

@@ -57,9 +57,11 @@ pub struct OutputPass {
     drawn: RefCell<Option<Drawn>>,
 }
 
-/// What drawing the output needs, for one output format.
+/// What drawing the output needs, for one output format and way of scaling.
 struct Drawn {
     format: vk::Format,
+    /// Scaling up edge-directed (shaders/post/output.frag's EDGE).
+    edge: bool,
     pipeline: Pipeline,
     /// Binding 0: the picture. Kept: sets are allocated from it.
     set_layout: DescriptorSetLayout,
@@ -94,13 +96,15 @@ impl OutputPass {
 
     /// Records the copy, blit or draw of `main` (the main or the anti-aliased colour, last
     /// written as a colour attachment) into `output`. Outside any rendering scope. Scaling
-    /// filters with `scale_filter`.
+    /// filters with `scale_filter`; with `edge` (`--upscale edge`) a linear scaling up is drawn
+    /// edge-directed (shaders/post/output.frag), else bilinearly.
     pub fn record(
         &self,
         rec: &Recorder,
         main: &Image,
         output: &OutputTarget,
         scale_filter: vk::Filter,
+        edge: bool,
     ) -> GpuResult<()> {
         let filter = if main.extent() == output.extent {
             vk::Filter::NEAREST
@@ -114,7 +118,7 @@ impl OutputPass {
             Path::Auto => !output.transfer_dst || !same,
         };
         if draw {
-            self.draw(rec, main, output, filter)?;
+            self.draw(rec, main, output, filter, edge)?;
         } else if same {
             rec.copy_image(main, output.image);
         } else {
@@ -123,17 +127,24 @@ impl OutputPass {
         Ok(())
     }
 
-    /// The drawn output: a full-screen triangle sampling `main` with `filter`.
+    /// The drawn output: a full-screen triangle sampling `main` with `filter`, edge-directed
+    /// with `edge` where it scales up linearly.
     fn draw(
         &self,
         rec: &Recorder,
         main: &Image,
         output: &OutputTarget,
         filter: vk::Filter,
+        edge: bool,
     ) -> GpuResult<()> {
+        let up = main.extent().width < output.extent.width;
+        let edge = edge && up && filter == vk::Filter::LINEAR;
         let mut slot = self.drawn.borrow_mut();
-        if slot.as_ref().is_none_or(|d| d.format != output.format) {
-            *slot = Some(Drawn::new(&self.ctx, output.format)?);
+        if slot
+            .as_ref()
+            .is_none_or(|d| d.format != output.format || d.edge != edge)
+        {
+            *slot = Some(Drawn::new(&self.ctx, output.format, edge)?);
         }
         let drawn = slot.as_mut().expect("made above");
         drawn.set_for(&self.ctx, main, filter)?;
@@ -154,7 +165,7 @@ impl OutputPass {
 }
 
 impl Drawn {
-    fn new(ctx: &Arc<Context>, format: vk::Format) -> GpuResult<Drawn> {
+    fn new(ctx: &Arc<Context>, format: vk::Format, edge: bool) -> GpuResult<Drawn> {
         let set_layout = DescriptorSetLayout::new(
             ctx,
             "output set layout",
@@ -169,7 +180,11 @@ impl Drawn {
             ctx,
             &layout,
             &GraphicsDesc {
-                name: "output (drawn)",
+                name: if edge {
+                    "output (drawn, edge-directed)"
+                } else {
+                    "output (drawn)"
+                },
                 stages: &[
                     (
                         vk::ShaderStageFlags::VERTEX,
@@ -178,12 +193,14 @@ impl Drawn {
                     (vk::ShaderStageFlags::FRAGMENT, shaders::POST_OUTPUT_FRAG),
                 ],
                 colour_formats: &[format],
+                constants: &[u32::from(edge)],
                 ..Default::default()
             },
         )?;
         let clamp = vk::SamplerAddressMode::CLAMP_TO_EDGE;
         Ok(Drawn {
             format,
+            edge,
             pipeline,
             set_layout,
             nearest: Sampler::new(ctx, "output sampler (nearest)", vk::Filter::NEAREST, clamp)?,
