@@ -21,6 +21,7 @@
 #include "common/underwater.glsl"
 #include "common/shadow.glsl"
 #include "common/caustics.glsl"
+#include "common/glitter.glsl"
 
 layout(location = 0) in vec3 in_rel_pos;
 layout(location = 1) in vec2 in_xz;
@@ -55,21 +56,12 @@ const float FOAM_ALBEDO = 0.85;
 // Height of the foam's relief (m): bubbles and lace a few centimetres thick.
 const float FOAM_RELIEF_M = 0.15;
 
-// The mean-square slopes along the water's unit vector `along` (x) and across it (y) of slopes
-// whose mean square over both directions is `total` and whose anisotropy is `a`
-// (Σ(k_x² − k_z²)E, Σk_x k_z E): ½·total ± (½·a.x·cos 2φ + a.y·sin 2φ), φ the angle of `along`
-// from x (src/ocean/moments.rs' `slope_along` is its twin).
-vec2 slopes_along_across(float total, vec2 a, vec2 along) {
-    float anisotropic = 0.5 * a.x * (along.x * along.x - along.y * along.y)
-                        + a.y * 2.0 * along.x * along.y;
-    return 0.5 * total + vec2(anisotropic, -anisotropic);
-}
 
 // The summed normal, its slopes scaled as the shallows scale the waves (`scale`), and the
 // whitecap field (layer 0's foam: the whole surface's, see src/ocean/foam.rs), faded with the
-// largest cascade. `resolved`: the mean-square slope those faded, scaled cascades carry along
-// the view (x) and across it (y), each cascade's by its waves' directions (`slopes_along_across`: the
-// wind's waves are steeper along the wind than across it).
+// largest cascade. `resolved`: the covariance of the slopes those faded, scaled cascades carry
+// along the view and across it (`slope_covariance`'s order), each cascade's by its waves'
+// directions (the wind's waves are steeper along the wind than across it).
 // A cascade's slopes also fade where the pixel's footprint on the water passes its shortest
 // wavelength (gone at twice that), before they alias into shimmer: its band ends at 6 waves
 // per next patch (L_{c+1}/6 = L_c/26, spectrum.rs's cascades), the last one at its Nyquist
@@ -87,12 +79,12 @@ vec2 slopes_along_across(float total, vec2 a, vec2 along) {
 // 0 (15–400 m) at half, the smaller ones not at all (their ripples hold too little water to
 // glow, and their compression drew the glow as a sparkling net).
 vec4 ocean_normal_foam(vec2 xz, float dist, vec2 footprint, vec2 along, float scale,
-                       out vec2 resolved, out float compression) {
+                       out vec3 resolved, out float compression) {
     vec2 across = vec2(-along.y, along.x);
     vec2 slope = vec2(0.0);
     compression = 0.0;
     float foam = 0.0;
-    resolved = vec2(0.0);
+    resolved = vec3(0.0);
     float texels = float(textureSize(ocean_normals, 0).x);
     for (int c = 0; c < CASCADES; ++c) {
         float weight;
@@ -102,7 +94,8 @@ vec4 ocean_normal_foam(vec2 xz, float dist, vec2 footprint, vec2 along, float sc
         slope += w.x * dot(s.xy, along) * along + w.y * dot(s.xy, across) * across;
         foam += c == 0 ? weight * s.w : 0.0;
         vec2 a = vec2(frame.slope_anisotropy[0][c], frame.slope_anisotropy[1][c]);
-        resolved += w * w * slopes_along_across(frame.slope_variance[c], a, along);
+        // The slopes along the view fade by w.x, those across it by w.y.
+        resolved += vec3(w * w, w.x * w.y) * slope_covariance(frame.slope_variance[c], a, along);
         compression += (c == 0 ? 0.5 : (c == 1 ? 1.0 : 0.0)) * weight * (1.0 - s.z);
     }
     slope += wake_at(xz).yz;
@@ -138,27 +131,20 @@ float smith_g1(float c, float sigma2) {
 }
 
 // The sun's reflection off the slopes a pixel does not resolve (Bruneton, Neyret & Holzschuch
-// 2010): the facets around the drawn normal n have Gaussian (Beckmann) slopes of mean square
-// m2.x along the view (the direction `along` over the water) and m2.y across it, so the
-// radiance toward v is E·F(v·h)·D(h)·G/(4 n·v), with the half vector h's slopes x_a, x_c
-// along the two axes (tangent to n), D = exp(−(x_a²/m2.x + x_c²/m2.y)/2)/(2π √(m2.x m2.y)
-// cos⁴θ_h) and each direction's masking from the mean square in its plane.
-float sun_glitter(vec3 n, vec3 v, vec3 l, vec2 along, vec2 m2) {
+// 2010): the facets around the drawn normal n have Gaussian (Beckmann) slopes of covariance m
+// along the view (the direction `along` over the water) and across it (`beckmann_lobe`, common/
+// glitter.glsl), so the radiance toward v is E·F(v·h)·D(h)·G/(4 n·v), each direction's masking
+// from the mean square in its plane, uᵀMu for its azimuth u.
+float sun_glitter(vec3 n, vec3 v, vec3 l, vec2 along, vec3 m) {
     vec3 h = normalize(v + l);
-    float nh = max(dot(n, h), 1e-4);
     float nv = max(dot(n, v), 1e-4);
     float nl = max(dot(n, l), 0.0);
-    vec3 a = vec3(along.x, 0.0, along.y);
-    vec3 t_along = normalize(a - n * dot(a, n));
-    vec3 t_across = cross(n, t_along);
-    vec2 x = vec2(dot(h, t_along), dot(h, t_across)) / nh;
-    float c2 = nh * nh;
-    float d = exp(-0.5 * dot(x * x, 1.0 / m2)) / (2.0 * PI * sqrt(m2.x * m2.y) * c2 * c2);
-    // The sun's azimuth from the view's: its plane's mean square.
+    float d = beckmann_lobe(n, h, along, m);
+    // The sun's azimuth in the view's frame: its plane's mean square.
     vec2 l_flat = l.xz / max(length(l.xz), 1e-6);
-    float cos_l = dot(l_flat, along);
-    float sigma2_l = mix(m2.y, m2.x, cos_l * cos_l);
-    float g = smith_g1(nv, m2.x) * smith_g1(max(nl, 1e-4), sigma2_l) * step(1e-4, nl);
+    vec2 u = vec2(dot(l_flat, along), dot(l_flat, vec2(-along.y, along.x)));
+    float sigma2_l = u.x * u.x * m.x + u.y * u.y * m.y + 2.0 * u.x * u.y * m.z;
+    float g = smith_g1(nv, m.x) * smith_g1(max(nl, 1e-4), sigma2_l) * step(1e-4, nl);
     return fresnel(clamp(dot(v, h), 0.0, 1.0)) * d * g / (4.0 * nv);
 }
 
@@ -487,7 +473,7 @@ void main() {
     // The view's direction over the water, away from the eye (any, looking straight down).
     float flat_len = length(v.xz);
     vec2 along = flat_len > 1e-5 ? -v.xz / flat_len : vec2(1.0, 0.0);
-    vec2 resolved;
+    vec3 resolved;
     float compression;
     vec4 nf = ocean_normal_foam(in_xz, dist, footprint, along, shore.x, resolved, compression);
     nf.w = foam_at(in_xz, nf.w);
@@ -545,7 +531,7 @@ void main() {
         // image far: they take the slopes a MIRROR_BLUR times wider footprint resolves (our
         // choice, 32: at 1 the floor's image broke into sparkles pixel by pixel at --quality
         // high, at 8 it still did far off; a pixel sees the mean of its many facets' images).
-        vec2 unused_resolved;
+        vec3 unused_resolved;
         float unused_compression;
         vec3 smooth_n = ocean_normal_foam(in_xz, dist, MIRROR_BLUR * footprint, along, shore.x,
                                           unused_resolved, unused_compression).xyz;
@@ -584,8 +570,12 @@ void main() {
     // crosswind σ_c²: frame.sea_slopes), less what the cascades drawn here carry in each
     // direction.
     vec3 reflection_size = vec3(textureSize(reflection_colour, 0));
-    vec2 unresolved = max(slopes_along_across(frame.light.y, frame.sea_slopes.xy, along) - resolved,
-                          1e-3);
+    // Their covariance (`slope_covariance`'s order), kept a covariance: the mean squares at
+    // least 1e-3, the correlation at most 0.95.
+    vec3 unresolved = slope_covariance(frame.light.y, frame.sea_slopes.xy, along) - resolved;
+    unresolved.xy = max(unresolved.xy, 1e-3);
+    float correlated = 0.95 * sqrt(unresolved.x * unresolved.y);
+    unresolved.z = clamp(unresolved.z, -correlated, correlated);
     float texels_per_rad = frame.lod.x * reflection_size.y * frame.viewport.w;
     float spread = 2.0 * sqrt(unresolved.x) * texels_per_rad;
     float layer = clamp(log2(max(2.0 * spread, 1.0)), 0.0, reflection_size.z - 1.0);
