@@ -201,7 +201,7 @@ fn the_glitter_from_above_has_cox_and_munk_s_slopes_upwind_and_crosswind() {
     ] {
         let (long, short, axis) = glitter_gaussian(name, wind, eye, target);
         println!("{name}: σ {long:.3} along the long axis ({axis:.1}°), {short:.3} across");
-        // 6 %: the ratio's spread over these three views is ±2 %; Cox & Munk's fits scatter
+        // 6 %: the ratio's spread over these four views is ±2 %; Cox & Munk's fits scatter
         // by ±0.004 in σ² (±6 % of σ_u² at 10 m/s).
         let ratio = long / short;
         assert!(
@@ -297,8 +297,9 @@ fn the_glitter_lobe_has_the_slopes_world_covariance_from_every_view() {
     // (S_xx − S_zz, S_xz). Seen from views along x, at 45°, 100° and 200°, the lobe's density
     // over the world slopes must have S as its second moments and integrate to 1. Measured:
     // every moment within 0.1 % of S's scale. A lobe with the covariance dropped (M diagonal in
-    // the view's frame, as before) has S_xz 0 from the view at 45°, and from the others the
-    // wrong diagonal; a lobe whose across axis points the other way negates S_xz.
+    // the view's frame, as before) gives S_xz 0 from the view along x (and from the others
+    // moments turned with the view); one whose across axis points the other way gives −S_xz
+    // from the view along x.
     let (up, cross, wind) = (0.0316f64, 0.0222f64, 30f64.to_radians());
     let (c, s) = (wind.cos(), wind.sin());
     let sxx = up * c * c + cross * s * s;

@@ -1,8 +1,8 @@
 // What a scene fragment shader writes: linear HDR radiance into the reflection and refraction
 // textures (the water samples and mixes them), display colour into the main target. The main
 // target has the output's 8-bit sRGB format (or UNORM, encoded below), so the attachment write does the sRGB encoding and
-// the frame ends with one copy into the output (a blit at --render-scale < 1, bilinear, or when
-// a recreated swapchain changed the byte order): tone mapping per fragment, at the scene's own
+// the frame ends with one copy into the output (a draw at --render-scale < 1, bilinear or
+// edge-directed, or when a recreated swapchain changed the byte order): tone mapping per fragment, at the scene's own
 // resolution, instead of a full-screen pass.
 //
 // Tone map: the ACES filmic fit of Narkowicz (2015, "ACES Filmic Tone Mapping Curve"), after the

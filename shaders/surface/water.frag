@@ -56,7 +56,6 @@ const float FOAM_ALBEDO = 0.85;
 // Height of the foam's relief (m): bubbles and lace a few centimetres thick.
 const float FOAM_RELIEF_M = 0.15;
 
-
 // The summed normal, its slopes scaled as the shallows scale the waves (`scale`), and the
 // whitecap field (layer 0's foam: the whole surface's, see src/ocean/foam.rs), faded with the
 // largest cascade. `resolved`: the covariance of the slopes those faded, scaled cascades carry

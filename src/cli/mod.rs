@@ -138,7 +138,8 @@ pub struct Cli {
     pub quality: Option<QualityArg>,
 
     /// Whether the device the run will use is a CPU implementation (`None`: not known), set by
-    /// `main` before `settings` when `--quality` is not given: it picks the default level.
+    /// `main` before `settings` when `--quality` or `--upscale` is not given: it picks their
+    /// defaults.
     #[arg(skip)]
     pub cpu_device: Option<bool>,
 

@@ -67,7 +67,7 @@ impl SeaMoments {
 
 /// The mean-square slope along the unit vector `dir` of the water (x, z) of slopes whose mean
 /// square over both directions is `total` and whose anisotropy is `anisotropy`
-/// (`SeaMoments::slope_anisotropy`); water.frag's `slope_covariance` is its twin.
+/// (`SeaMoments::slope_anisotropy`); common/glitter.glsl's `slope_covariance` is its twin.
 pub fn slope_along(total: f64, anisotropy: [f64; 2], dir: [f64; 2]) -> f64 {
     let [c, s] = dir;
     0.5 * total + 0.5 * anisotropy[0] * (c * c - s * s) + anisotropy[1] * 2.0 * c * s

@@ -3,7 +3,7 @@
 //! image (a swapchain image or the headless target). A copy when the two have the same size and
 //! format and the output takes copies; otherwise drawn: a full-screen triangle samples the
 //! picture into the output as a colour attachment (shaders/post/output.frag; nearest at the
-//! same size, bilinear when scaling), which also converts between RGBA and BGRA byte orders (a
+//! same size, bilinear or edge-directed when scaling up: `--upscale`), which also converts between RGBA and BGRA byte orders (a
 //! recreated swapchain may change it). Only COLOR_ATTACHMENT is a guaranteed usage of swapchain
 //! images (`supportedUsageFlags`), so the draw works into every output.
 //!
@@ -13,8 +13,9 @@
 //! numbers), and a GPU blits with a draw of its own anyway. `VKOCEAN_OUTPUT=draw` draws even
 //! where a copy would do, `VKOCEAN_OUTPUT=transfer` copies or blits wherever the output takes
 //! transfers (tests/output.rs compares the paths). The drawn path's pipeline and descriptor set
-//! are made at the first drawn frame and remade when the output's format or the sampled picture
-//! changes (the old ones go to the deletion queue).
+//! are made at the first drawn frame and remade when the output's format, the way of scaling
+//! (the edge-directed pipeline is a specialization of its own) or the sampled picture changes
+//! (the old ones go to the deletion queue).
 //!
 //! Why the tone map is not a pass of its own here: at 1280x720 on lavapipe a full-screen
 //! tone-map pass at the output's size cost 12–14 ms, the blit from a half-size main target
