@@ -12,9 +12,9 @@
 // (√(min(lo, 1 − hi) / hi)), so a pixel next to black or white, or on a strong gradient, is
 // sharpened little and the result cannot leave the displayable range. It runs at the scene
 // target's size, before the output pass scales it up (bilinearly, or edge-directed: --upscale;
-// a quarter of the output's pixels at --quality low), and offsets the blur that scaling adds. The pixels FXAA then
-// changes (on edges) keep FXAA's result: edges are smoothed along their direction, the
-// texture between them sharpened.
+// a quarter of the output's pixels at --quality low), and offsets the blur that scaling adds.
+// The pixels FXAA then changes (on edges) keep FXAA's result: edges are smoothed along their
+// direction, the texture between them sharpened.
 #include "common/fxaa.glsl"
 
 // The sharpening, 0 (a copy: w = 0 leaves the pixel's bits as they are) to 1.

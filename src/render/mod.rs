@@ -76,8 +76,8 @@ pub enum AntiAliasing {
 /// `--render-scale` below 1). (The variants' doc comments are `--help`'s descriptions.)
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default, clap::ValueEnum)]
 pub enum Upscale {
-    /// Edge-directed: the bilinear sample sharpened across the local edge, clamped to its
-    /// neighbours along it so it cannot ring (shaders/post/output.frag).
+    /// Edge-directed: the bilinear sample sharpened across the local edge, clamped to the
+    /// samples either side of it so it cannot ring (shaders/post/output.frag).
     #[default]
     Edge,
     /// Bilinear, as a blit scales.
