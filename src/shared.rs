@@ -116,6 +116,18 @@ shared_constants! {
     /// Horizontal scale of the clouds' noise (m): its first octave's cells
     /// (shaders/common/clouds.glsl, src/render/clouds.rs).
     CLOUD_SCALE_M: f32 = 2500.0;
+    /// A natural slick band's noise cell along the wind and across it (m; our choice: slick
+    /// bands and windrows lie along the wind), the width of a slick's edge in the noise's
+    /// units (about 10 m across) and the noise's offset from the clouds' (cells), so the
+    /// slicks do not follow the clouds' shadows (shaders/common/slicks.glsl,
+    /// src/render/slicks.rs).
+    SLICK_ALONG_M: f32 = 600.0;
+    SLICK_ACROSS_M: f32 = 150.0;
+    SLICK_EDGE: f32 = 0.02;
+    /// The slicks' noise threshold that means none (above the noise's range, 0–1).
+    SLICK_NONE: f32 = 2.0;
+    SLICK_NOISE_OFFSET_X: f32 = 311.7;
+    SLICK_NOISE_OFFSET_Y: f32 = -127.3;
     /// The smallest Jacobian the exact normal divides by (shaders/ocean/assemble.comp and
     /// src/ocean/cpu.rs): where the choppy surface folds (J ≤ 0) its true normal points down,
     /// and the stored slopes stay those of a steep (J = 0.05) face.

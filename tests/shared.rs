@@ -141,6 +141,7 @@ fn the_terrain_and_the_shore_are_the_same_in_rust_and_glsl() {
             slope_variance: [0.0; 4],
             slope_anisotropy: [[0.0; 2]; 4],
             curvature_variance: [0.0; 4],
+            short_slope_variance: [0.0; 4],
         },
         SeaMoments {
             hs_m: 1.2,
@@ -149,6 +150,7 @@ fn the_terrain_and_the_shore_are_the_same_in_rust_and_glsl() {
             slope_variance: [0.0; 4],
             slope_anisotropy: [[0.0; 2]; 4],
             curvature_variance: [0.0; 4],
+            short_slope_variance: [0.0; 4],
         },
     ];
     for (layout, sea) in [SceneLayout::default(), moved].iter().zip(&seas) {

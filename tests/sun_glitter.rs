@@ -94,39 +94,43 @@ fn least_squares<const N: usize>(rows: &[([f64; N], f64)]) -> [f64; N] {
 }
 
 /// The glitter's Gaussian over the slopes, fitted to a view from `eye` toward `target` with the
-/// wind from `wind_deg` (degrees from +x toward +z): the standard deviations along its long
-/// and short axes and the long axis' direction (degrees from +x toward +z, 0–180).
-fn glitter_gaussian(name: &str, wind_deg: f64, eye: Vec3, target: Vec3) -> (f64, f64, f64) {
+/// wind from `wind_deg` (degrees from +x toward +z) at `wind_m_s`, `extra` arguments added:
+/// the standard deviations along its long and short axes and the long axis' direction
+/// (degrees from +x toward +z, 0–180).
+fn glitter_gaussian(
+    name: &str,
+    (wind_deg, wind_m_s): (f64, f64),
+    eye: Vec3,
+    target: Vec3,
+    extra: &[&str],
+) -> (f64, f64, f64) {
     let (camera, look) = (
         format!("{},{},{}", eye.x, eye.y, eye.z),
         format!("{},{},{}", target.x, target.y, target.z),
     );
-    let wind = wind_deg.to_string();
+    let (wind, speed) = (wind_deg.to_string(), wind_m_s.to_string());
     // Six moments 1.1 s apart (the FFT sea is a function of time: a long --dt is exact),
     // averaged in linear light: the few long waves in view differ from one to the next.
-    let frames = common::shots(
-        name,
-        (W as u32, H as u32),
-        1,
-        &[
-            "--frames",
-            "6",
-            "--dt",
-            "1.1",
-            "--sun",
-            "0,90",
-            "--camera",
-            &camera,
-            "--look-at",
-            &look,
-            "--wind-speed",
-            "10",
-            "--wind-dir",
-            &wind,
-            "--clouds",
-            "0",
-        ],
-    );
+    let mut args = vec![
+        "--frames",
+        "6",
+        "--dt",
+        "1.1",
+        "--sun",
+        "0,90",
+        "--camera",
+        &camera,
+        "--look-at",
+        &look,
+        "--wind-speed",
+        &speed,
+        "--wind-dir",
+        &wind,
+        "--clouds",
+        "0",
+    ];
+    args.extend_from_slice(extra);
+    let frames = common::shots(name, (W as u32, H as u32), 1, &args);
     assert_eq!(frames.len(), 6);
     let mut mean = vec![0.0; W * H];
     for f in &frames {
@@ -199,7 +203,7 @@ fn the_glitter_from_above_has_cox_and_munk_s_slopes_upwind_and_crosswind() {
         ("glitter-wind-30", 30.0, Vec3::new(0.0, 0.0, -1.0)),
         ("glitter-wind-45", 45.0, Vec3::new(0.0, 0.0, -1.0)),
     ] {
-        let (long, short, axis) = glitter_gaussian(name, wind, eye, target);
+        let (long, short, axis) = glitter_gaussian(name, (wind, 10.0), eye, target, &[]);
         println!("{name}: σ {long:.3} along the long axis ({axis:.1}°), {short:.3} across");
         // 6 %: the ratio's spread over these four views is ±2 %; Cox & Munk's fits scatter
         // by ±0.004 in σ² (±6 % of σ_u² at 10 m/s).
@@ -216,6 +220,39 @@ fn the_glitter_from_above_has_cox_and_munk_s_slopes_upwind_and_crosswind() {
             "{name}: the glitter's long axis at {axis:.1}°, the wind at {wind}°"
         );
     }
+}
+
+#[test]
+fn a_natural_slick_s_glitter_has_cox_and_munk_s_slick_surface_slopes() {
+    // Cox & Munk's (1954) two fits at 5 m/s, the wind along x: the clean sea's σ_u² =
+    // 3.16·10⁻³·U, σ_c² = 0.003 + 1.92·10⁻³·U; the slick's 0.005 + 0.78·10⁻³·U and
+    // 0.003 + 0.84·10⁻³·U. The same view as above, all the sea in a slick (--slicks 1) and none.
+    let u: f64 = 5.0;
+    let clean = ((3.16e-3 * u).sqrt(), (0.003 + 1.92e-3 * u).sqrt());
+    let slick = ((0.005 + 0.78e-3 * u).sqrt(), (0.003 + 0.84e-3 * u).sqrt());
+    let eye = Vec3::new(0.0, 300.0, 0.0);
+    let target = Vec3::new(0.0, 0.0, -1.0);
+    let fit = |name, share| glitter_gaussian(name, (0.0, u), eye, target, &["--slicks", share]);
+    let (clean_long, clean_short, _) = fit("glitter-clean-5", "0");
+    let (slick_long, slick_short, _) = fit("glitter-slick-5", "1");
+    println!(
+        "5 m/s: σ {clean_long:.4} / {clean_short:.4} clean (Cox & Munk {:.4} / {:.4}), \
+         {slick_long:.4} / {slick_short:.4} in a slick ({:.4} / {:.4})",
+        clean.0, clean.1, slick.0, slick.1
+    );
+    let measured = (slick_long * slick_short / (clean_long * clean_short)).sqrt();
+    let wanted = (slick.0 * slick.1 / (clean.0 * clean.1)).sqrt();
+    println!("slick over clean, geometric mean of σ: {measured:.4}, Cox & Munk {wanted:.4}");
+    // 5 %: Cox & Munk's slick fits scatter by ±0.002 in σ² (±28 % of σ_c² at 5 m/s).
+    assert!((measured / wanted - 1.0).abs() < 0.05);
+    // The slick's own anisotropy (upwind over crosswind 1.111; measured 1.054): within 6 %,
+    // as above.
+    let ratio = slick_long / slick_short;
+    assert!(
+        (ratio / (slick.0 / slick.1) - 1.0).abs() < 0.06,
+        "in a slick, upwind over crosswind {ratio:.3}, Cox & Munk {:.3}",
+        slick.0 / slick.1
+    );
 }
 
 /// shaders/test/glitter_lobe.comp's push constants.

@@ -64,6 +64,12 @@ layout(set = 0, binding = 0, std140) uniform FrameUniforms {
                          // of levels (0: the lattice's foam only)
     vec4 wake;           // --boat (src/ocean/wake.rs): xy the wake image's coordinates of the
                          // water grid's centre, z per metre; w 1 with a boat
+    vec4 slicks;         // natural slicks (src/render/slicks.rs): x their mean-square slope;
+                         // yz its excess along the wind (as sea_slopes); w the noise's
+                         // threshold (SLICK_NONE: none)
+    vec4 slick_space;    // x: their drift along the wind (noise cells); y: the amplitude left
+                         // of the short waves in one; zw: the wind (unit)
+    vec4 slick_cascades; // cascade c's slopes in a slick over its slopes out of one
 } frame;
 
 // Which view a draw renders (ViewIndex in src/render/uniforms.rs).

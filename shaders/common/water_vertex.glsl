@@ -4,8 +4,9 @@
 // sampler, textureLod 0), scaled by what the depth of the terrain under the point makes of the
 // waves (common/shore.glsl). Outputs: eye-relative position, undisplaced xz relative to the grid
 // centre (normal lookups), the displacement (debug view, surf), the depth and shoaling
-// coefficient (water.frag finishes the shore). Needs common/frame.glsl, water.glsl,
-// terrain.glsl and shore.glsl included before it.
+// coefficient (water.frag finishes the shore), how much of the point lies in a natural slick.
+// Needs common/frame.glsl, water.glsl, terrain.glsl and shore.glsl included before it.
+#include "slicks.glsl"
 
 layout(location = 0) out vec3 out_rel_pos;
 layout(location = 1) out vec2 out_xz;
@@ -19,6 +20,9 @@ layout(location = 5) flat out vec3 out_sky_zenith;
 // The surf's bores (common/shore.glsl): x their phase θ (waves), y their share of the sea
 // (0–1), zw θ's gradient over the water (waves per metre, toward deeper water).
 layout(location = 6) out vec4 out_surf;
+// How much of the point lies in a natural slick (common/slicks.glsl: bands hundreds of metres
+// wide, so the vertices resolve them).
+layout(location = 7) out float out_slick;
 
 void emit_water_vertex(vec2 xz) {
     vec3 eye = water_eye();
@@ -52,6 +56,7 @@ void emit_water_vertex(vec2 xz) {
     out_shore = vec2(max(depth, -1.0), ks);
     out_surf = surf;
     out_sun_through = sun_through_at(frame.views[0].eye.xyz + rel);
+    out_slick = slick_at(world_xz);
     out_sky_zenith = sky_lookup(vec3(0.0, 1.0, 0.0));
     gl_Position = frame.views[0].view_proj * vec4(rel, 1.0);
 }

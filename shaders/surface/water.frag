@@ -30,6 +30,7 @@ layout(location = 3) in vec2 in_shore; // water.tese: the water's depth (m) and 
 layout(location = 4) in float in_sun_through; // water_vertex.glsl: the clouds' share of the sun
 layout(location = 5) flat in vec3 in_sky_zenith; // and the frame's sky radiance at the zenith
 layout(location = 6) in vec4 in_surf; // water_vertex.glsl: the bores' phase, share, gradient
+layout(location = 7) in float in_slick; // water_vertex.glsl: the share of a natural slick here
 layout(location = 0) out vec4 out_colour;
 
 // Which side the main view sees the surface from (src/render/passes/water.rs, `WaterSide`):
@@ -89,7 +90,9 @@ vec4 ocean_normal_foam(vec2 xz, float dist, vec2 footprint, vec2 along, float sc
         float weight;
         vec3 uv = ocean_uv(xz, c, dist, weight);
         vec4 s = ocean_texture(ocean_normals, uv);
-        vec2 w = weight * clamp(2.0 - footprint / cascade_shortest_m(c, texels), 0.0, 1.0);
+        // In a natural slick (common/slicks.glsl) the film damps the cascade's short waves.
+        vec2 w = weight * clamp(2.0 - footprint / cascade_shortest_m(c, texels), 0.0, 1.0)
+                 * mix(1.0, frame.slick_cascades[c], in_slick);
         slope += w.x * dot(s.xy, along) * along + w.y * dot(s.xy, across) * across;
         foam += c == 0 ? weight * s.w : 0.0;
         vec2 a = vec2(frame.slope_anisotropy[0][c], frame.slope_anisotropy[1][c]);
@@ -548,6 +551,8 @@ void main() {
     vec2 dudv = textureLod(dudv_map, frame.dudv_origin.xy + tile + vec2(t, 0.0), 0.0).rg * 2.0 - 1.0;
     dudv += textureLod(dudv_map, frame.dudv_origin.zw + tile * frame.dudv.y + vec2(-t, t), 0.0).rg * 2.0 - 1.0;
     float fade = clamp(1.0 - dist / 3000.0, 0.0, 1.0) / max(1.0, dist / 40.0);
+    // The map stands for the ripples; a natural slick damps them as it damps the short waves.
+    dudv *= mix(1.0, frame.slick_space.y, in_slick);
     vec2 offset = (dudv * DUDV_STRENGTH + n.xz * SLOPE_STRENGTH) * fade;
     vec2 screen = gl_FragCoord.xy * frame.viewport.zw;
 
@@ -566,12 +571,15 @@ void main() {
     // 2^l rows (a kernel of standard deviation 2^l / 2 once filtered), so the lookup blends the
     // two layers around l = log2(2 · 2σf). The sideways spread is left out (small but near the
     // camera). `unresolved`: Cox & Munk's mean square along and across the view (upwind σ_u²,
-    // crosswind σ_c²: frame.sea_slopes), less what the cascades drawn here carry in each
+    // crosswind σ_c²: frame.sea_slopes; in a natural slick their slick-surface fits,
+    // frame.slicks, common/slicks.glsl), less what the cascades drawn here carry in each
     // direction.
     vec3 reflection_size = vec3(textureSize(reflection_colour, 0));
     // Their covariance (`slope_covariance`'s order), kept a covariance: the mean squares at
     // least 1e-3, the correlation at most 0.95.
-    vec3 unresolved = slope_covariance(frame.light.y, frame.sea_slopes.xy, along) - resolved;
+    vec3 unresolved = slope_covariance(mix(frame.light.y, frame.slicks.x, in_slick),
+                                       mix(frame.sea_slopes.xy, frame.slicks.yz, in_slick), along)
+                      - resolved;
     unresolved.xy = max(unresolved.xy, 1e-3);
     float correlated = 0.95 * sqrt(unresolved.x * unresolved.y);
     unresolved.z = clamp(unresolved.z, -correlated, correlated);

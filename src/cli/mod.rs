@@ -355,6 +355,12 @@ pub struct Cli {
           value_parser = |s: &str| parse_in(s, 0.0, 1.0), help_heading = "Scene")]
     pub clouds: Option<f64>,
 
+    /// Share of the sea in natural slicks, 0 to 1: smooth bands along the wind that mirror the
+    /// sky (FFT waves). [default: by the wind, 0.35 at 2–4 m/s, fading below 2 and to none at 7 m/s (Romano 1996)]
+    #[arg(long, global = true, value_name = "FRACTION", allow_hyphen_values = true,
+          value_parser = |s: &str| parse_in(s, 0.0, 1.0), help_heading = "Ocean")]
+    pub slicks: Option<f64>,
+
     /// The sun's shadows: the island, the pillars and the buoy shade the ground, each other and
     /// the water's sun terms (a ray cast toward the sun per pixel; README, Rendering).
     /// [default: off at --quality low, on at medium and high]
@@ -542,6 +548,7 @@ impl Cli {
                 .clouds
                 .unwrap_or(self.preset.map_or(DEFAULT_SEA, sea_preset).cloud_cover)
                 as f32,
+            slicks: self.slicks,
             shadows: self.shadows.map_or(quality.shadows, |s| s == Switch::On),
             caustics: self.caustics != Some(Switch::Off),
             refraction_caustics: self

@@ -517,6 +517,11 @@ fn ocean_bindings(simulation: &Simulation) -> OceanBindings {
         sea_moments: simulation.sea_moments,
         mean_square_slope: simulation.mean_square_slope() as f32,
         slope_anisotropy: simulation.slope_anisotropy().map(|v| v as f32),
+        slicks: crate::render::slicks::Slicks::of_sea(
+            &simulation.settings,
+            &simulation.sea_moments,
+            simulation.mean_square_slope(),
+        ),
     }
 }
 

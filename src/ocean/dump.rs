@@ -101,10 +101,12 @@ pub fn params(sim: &Simulation, t: f64) -> Value {
         // The sea surface's mean-square slope (Cox & Munk 1954 at the wind) and what each
         // cascade's waves carry of it (Σ k²E); the sun's glitter takes the rest (water.frag).
         // By direction (`moments::slope_along`): [Σ(k_x² − k_z²)E, Σk_x k_z E] of the whole
-        // sea (Cox & Munk's upwind excess) and of each cascade.
+        // sea (Cox & Munk's upwind excess) and of each cascade. `short`: what of `resolved`
+        // is in waves shorter than 1 m (a natural slick damps them, render/slicks.rs).
         "slopes": {
             "mean_square_slope": sim.mean_square_slope(),
             "resolved": &sim.sea_moments.slope_variance[..sim.cascades.len()],
+            "short": &sim.sea_moments.short_slope_variance[..sim.cascades.len()],
             "anisotropy": sim.slope_anisotropy(),
             "resolved_anisotropy": &sim.sea_moments.slope_anisotropy[..sim.cascades.len()],
         },

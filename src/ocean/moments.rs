@@ -36,12 +36,21 @@ pub struct SeaMoments {
     pub slope_anisotropy: [[f64; 2]; 4],
     /// Mean square of the Laplacian of each layer's height, Σ k⁴E (1/m²).
     pub curvature_variance: [f64; 4],
+    /// The part of `slope_variance` in waves shorter than `SHORT_WAVE_M`: what a natural
+    /// slick damps (`render::slicks`).
+    pub short_slope_variance: [f64; 4],
 }
+
+/// The longest waves a film of surface-active matter damps (m): Lucassen (1982) found its
+/// effect can reach waves of up to about 1 m.
+pub const SHORT_WAVE_M: f64 = 1.0;
 
 impl SeaMoments {
     /// From the rendered waves, simulated for `depth_m` (`None`: deep water).
     pub fn from_waves(waves: impl Iterator<Item = Component>, depth_m: Option<f64>) -> Self {
         let (mut m0, mut m1, mut slopes, mut curvatures) = (0.0, 0.0, [0.0; 4], [0.0; 4]);
+        let mut short = [0.0; 4];
+        let k_short = std::f64::consts::TAU / SHORT_WAVE_M;
         let mut anisotropy = [[0.0; 2]; 4];
         for w in waves {
             m0 += w.energy;
@@ -51,6 +60,9 @@ impl SeaMoments {
             let layer = w.layer.min(3);
             slopes[layer] += w.energy * k2;
             curvatures[layer] += w.energy * k2 * k2;
+            if k2 > k_short * k_short {
+                short[layer] += w.energy * k2;
+            }
             anisotropy[layer][0] += w.energy * (kx * kx - kz * kz);
             anisotropy[layer][1] += w.energy * kx * kz;
         }
@@ -61,6 +73,7 @@ impl SeaMoments {
             slope_variance: slopes,
             slope_anisotropy: anisotropy,
             curvature_variance: curvatures,
+            short_slope_variance: short,
         }
     }
 }
@@ -99,6 +112,22 @@ pub fn anisotropy_along(excess: f64, wind: [f64; 2]) -> [f64; 2] {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_slick_s_short_waves_are_those_under_a_metre() {
+        // Waves of 0.5 m and 2 m, equal energy, in one layer: only the first counts as short.
+        let wave = |length: f64| Component {
+            energy: 1e-4,
+            omega: 1.0,
+            k: [std::f64::consts::TAU / length, 0.0],
+            layer: 1,
+        };
+        let s = SeaMoments::from_waves([wave(0.5), wave(2.0)].into_iter(), None);
+        let k_half = std::f64::consts::TAU / 0.5;
+        assert!((s.short_slope_variance[1] - 1e-4 * k_half * k_half).abs() < 1e-12);
+        assert!(s.slope_variance[1] > s.short_slope_variance[1]);
+        assert_eq!(s.short_slope_variance[0], 0.0);
+    }
 
     #[test]
     fn moments_are_height_frequency_and_slopes() {

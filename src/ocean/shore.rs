@@ -185,6 +185,7 @@ mod tests {
             slope_variance: [0.0; 4],
             slope_anisotropy: [[0.0; 2]; 4],
             curvature_variance: [0.0; 4],
+            short_slope_variance: [0.0; 4],
         }
     }
 
@@ -328,6 +329,7 @@ mod tests {
             slope_variance: [0.0; 4],
             slope_anisotropy: [[0.0; 2]; 4],
             curvature_variance: [0.0; 4],
+            short_slope_variance: [0.0; 4],
         };
         assert!((shoaling(&sea, 12.0) - 1.0).abs() < 1e-12);
         assert!((shore_waves(&sea, 12.0).scale - 1.0).abs() < 1e-12);

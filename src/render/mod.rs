@@ -10,6 +10,7 @@ pub mod multiple_scattering;
 pub mod passes;
 pub mod renderer;
 pub mod scene;
+pub mod slicks;
 pub mod targets;
 pub mod uniforms;
 
@@ -151,6 +152,9 @@ pub struct SceneSettings {
     pub sun_dir: Vec3,
     /// `--clouds`: share of the sky under cloud, 0 (clear) to 1 (overcast).
     pub cloud_cover: f32,
+    /// `--slicks`: the share of the sea in natural slicks, 0–1 (`None`: by the wind,
+    /// `slicks::slick_share`).
+    pub slicks: Option<f64>,
     /// `--shadows`: the sun's shadows (shaders/common/shadow.glsl).
     pub shadows: bool,
     /// `--caustics`: the sun focused on the sea floor, and the light shafts
@@ -214,6 +218,7 @@ impl Default for SceneSettings {
             layout: SceneLayout::default(),
             sun_dir: default_sun_dir(),
             cloud_cover: 0.0,
+            slicks: None,
             shadows: true,
             caustics: true,
             refraction_caustics: true,

@@ -608,6 +608,7 @@ impl Renderer {
                 tess_edge_px: s.tess_edge_px,
                 scene: &s.layout,
                 background: s.background,
+                slicks: s.slicks,
             },
         );
         self.frame_uniforms[slot]

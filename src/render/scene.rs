@@ -137,6 +137,7 @@ mod tests {
             slope_variance: [0.0; 4],
             slope_anisotropy: [[0.0; 2]; 4],
             curvature_variance: [0.0; 4],
+            short_slope_variance: [0.0; 4],
         };
         let scale = shore_scale(layout, sea);
         let [x, z] = layout.island_xz;

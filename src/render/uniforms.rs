@@ -116,6 +116,8 @@ pub struct OceanBindings {
     pub mean_square_slope: f32,
     /// How the whole sea surface's slopes differ by direction (`Simulation::slope_anisotropy`).
     pub slope_anisotropy: [f32; 2],
+    /// The sea's natural slicks (`Slicks::of_sea`).
+    pub slicks: super::slicks::Slicks,
 }
 
 /// The views a frame renders: the camera, its mirror image below the water plane (reflection)
@@ -292,6 +294,14 @@ pub struct FrameUniforms {
     /// The wake (`--boat`, src/ocean/wake.rs): xy its image coordinates of the water grid's
     /// centre (texel centres at (i + ½)/N), z its image coordinates per metre, w 1 with a boat.
     pub wake: [f32; 4],
+    /// Natural slicks (`slicks::Slicks::uniforms`): x their mean-square slope, yz its excess
+    /// along the wind (as `sea_slopes`), w the noise's threshold (`SLICK_NONE`: none).
+    pub slicks: [f32; 4],
+    /// x: the slicks' drift along the wind (the noise's cells); y: the amplitude left of the
+    /// short waves in one (√`Slicks::short_damping`); zw: the wind's unit vector.
+    pub slick_space: [f32; 4],
+    /// Each cascade's slopes in a slick over its slopes out of one (`Slicks::cascades`).
+    pub slick_cascades: [f32; 4],
 }
 
 /// Side of a DU/DV tile on the water (m).
@@ -413,6 +423,8 @@ pub struct FrameParams<'a> {
     pub tess_edge_px: f32,
     pub scene: &'a SceneLayout,
     pub background: Option<[f32; 3]>,
+    /// `--slicks`: the share of the sea in slicks (`None`: by the wind, `Slicks::share`).
+    pub slicks: Option<f64>,
 }
 
 /// `FrameUniforms::sun_light` and `sky_light` of a sky, and the clouds' mean share of the sun
@@ -479,6 +491,8 @@ impl FrameUniforms {
     pub fn new(camera: &Camera, p: &FrameParams) -> Self {
         let (w, h) = (p.size.0.max(1) as f32, p.size.1.max(1) as f32);
         let water = WaterFrame::around([camera.position.x as f64, camera.position.z as f64]);
+        let slick_share = p.slicks.unwrap_or(p.ocean.slicks.share);
+        let slicks = p.ocean.slicks.uniforms(slick_share, p.time_s);
         let focal_px = camera.focal_px(p.aspect, h);
         let (sun_light, sky_light, mean_through) = p.sky_light;
         let depth = p.inputs.camera_depth_m(camera.position.y);
@@ -546,6 +560,9 @@ impl FrameUniforms {
             sky_light: [sky_light[0], sky_light[1], sky_light[2], exposure],
             foam_levels: foam_levels(&p.inputs.foam_levels, &water),
             wake: wake_uniform(p.inputs.wake, &water),
+            slicks: slicks[0],
+            slick_space: slicks[1],
+            slick_cascades: slicks[2],
             slope_variance: p.ocean.sea_moments.slope_variance.map(|v| v as f32),
             curvature_variance: p.ocean.sea_moments.curvature_variance.map(|v| v as f32),
             slope_anisotropy: [0, 1]
