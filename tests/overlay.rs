@@ -162,6 +162,7 @@ fn a_live_change_of_the_look_matches_the_flag_in_the_picture() {
         "3",
         "--sun=40,25",
         "--clouds=0.7",
+        "--slicks=0.6",
         "--render-scale=0.75",
         "--geometry=tessellated",
     ];
@@ -169,7 +170,7 @@ fn a_live_change_of_the_look_matches_the_flag_in_the_picture() {
         "--frames",
         "3",
         "--live-set",
-        "sun-azimuth=40;sun-elevation=25;clouds=0.7;render-scale=0.75;geometry=tessellated",
+        "sun-azimuth=40;sun-elevation=25;clouds=0.7;slicks=0.6;render-scale=0.75;geometry=tessellated",
     ];
     let a = shot("look-flag", size, &flags, &[]);
     let b = shot("look-live", size, &live, &[]);
@@ -211,6 +212,8 @@ fn saved_settings_read_back_to_the_same_tunables() {
         "off",
         "--time-scale",
         "0.5",
+        "--slicks",
+        "0.25",
         "--waves",
         "gerstner",
         "--geometry",

@@ -39,6 +39,7 @@ impl Cli {
             aa: self.aa,
             sun,
             clouds: self.clouds.unwrap_or(sea.cloud_cover),
+            slicks: self.slicks,
             time_scale: self.time_scale,
             render_scale: self.render_scale.unwrap_or(quality.render_scale),
             rtt_scale: self.rtt_scale.unwrap_or(quality.rtt_scale),
@@ -82,6 +83,7 @@ impl Cli {
         }
         cli.sun = Some(t.sun);
         cli.clouds = Some(t.clouds);
+        cli.slicks = t.slicks;
         cli.time_scale = t.time_scale;
         cli.render_scale = Some(t.render_scale);
         cli.rtt_scale = Some(t.rtt_scale);

@@ -309,6 +309,18 @@ impl Overlay {
                 ui.add(Slider::new(&mut t.sun[0], -180.0..=180.0).text("sun azimuth"));
                 ui.add(Slider::new(&mut t.sun[1], -10.0..=90.0).text("sun elevation"));
                 ui.add(Slider::new(&mut t.clouds, 0.0..=1.0).text("clouds"));
+                // Natural slicks: by the wind (Romano 1996's share) or a share of one's own.
+                let mut own = t.slicks.is_some();
+                ui.horizontal(|ui| {
+                    ui.checkbox(&mut own, "slicks");
+                    let mut share = t.slicks.unwrap_or(0.35);
+                    if own {
+                        ui.add(Slider::new(&mut share, 0.0..=1.0).text("of the sea"));
+                    } else {
+                        ui.label("by the wind");
+                    }
+                    t.slicks = own.then_some(share);
+                });
                 ui.horizontal(|ui| {
                     ui.add(Slider::new(&mut t.time_scale, 0.0..=4.0).text("time scale"));
                     ui.checkbox(&mut self.paused, "pause");

@@ -43,6 +43,8 @@ pub struct Tunables {
     /// Azimuth and elevation (degrees).
     pub sun: [f32; 2],
     pub clouds: f64,
+    /// The share of the sea in natural slicks (`None`: by the wind, `render::slicks`).
+    pub slicks: Option<f64>,
     /// Simulation seconds per second (or per `--dt` step).
     pub time_scale: f64,
     pub render_scale: f64,
@@ -126,6 +128,9 @@ impl Tunables {
             number(el as f64)
         ));
         lines.push(format!("clouds = {}", number(self.clouds)));
+        if let Some(share) = self.slicks {
+            lines.push(format!("slicks = {}", number(share)));
+        }
         lines.push(format!("time-scale = {}", number(self.time_scale)));
         lines.push(format!("render-scale = {}", number(self.render_scale)));
         lines.push(format!("rtt-scale = {}", number(self.rtt_scale)));
@@ -192,6 +197,7 @@ impl Tunables {
             "sun-azimuth" => self.sun[0] = num(-360.0, 360.0)? as f32,
             "sun-elevation" => self.sun[1] = num(-10.0, 90.0)? as f32,
             "clouds" => self.clouds = num(0.0, 1.0)?,
+            "slicks" => self.slicks = Some(num(0.0, 1.0)?),
             "time-scale" => self.time_scale = num(0.0, MAX_TIME_SCALE)?,
             "render-scale" => self.render_scale = num(0.25, 1.0)?,
             "rtt-scale" => self.rtt_scale = num(0.1, 1.0)?,
