@@ -240,7 +240,7 @@ fn the_noon_sea_is_dark_blue_and_darker_than_the_sky_above_the_horizon() {
     // half of it), and the sea 3–12 px below the horizon at 0.91–0.96 of the sky 3–12 px above.
     const W: usize = 1280;
     const H: usize = 720;
-    let sea = |name: &str, sun: Option<&str>, look_at: &str| {
+    let sea = |name: &str, sun: Option<&str>, look_at: &str, clear: bool| {
         let mut args = vec![
             "--preset",
             "moderate",
@@ -252,33 +252,48 @@ fn the_noon_sea_is_dark_blue_and_darker_than_the_sky_above_the_horizon() {
         if let Some(sun) = sun {
             args.extend_from_slice(&["--sun", sun]);
         }
+        if clear {
+            args.extend_from_slice(&["--clouds", "0"]);
+        }
         common::shot(&format!("sky-{name}"), (W as u32, H as u32), &args, &[])
     };
     let away = "0,2,100";
-    let day = sea("sea-day", None, away);
-    let noon = sea("sea-noon", Some("-70,60"), away);
-    let across = sea("sea-noon-across", Some("-70,60"), "100,2,0");
+    let day = sea("sea-day", None, away, false);
+    let noon = sea("sea-noon", Some("-70,60"), away, false);
+    let across = sea("sea-noon-across", Some("-70,60"), "100,2,0", false);
     // Open water: the bottom quarter (8–16° below the horizon, 9–17 m away). With the eye
     // adapted to daylight, noon's water is no brighter than the default day's: its own light
-    // grows with the sun, and so does everything it is seen beside. And it is blue: hue
-    // 200–250° (cyan is 180°) with blue at least 1.5 times green in linear light.
+    // grows with the sun, and so does everything it is seen beside. That is the water's own
+    // light, compared under a clear sky: the facets the eye sees lean toward it and reflect
+    // the sky 15–25° up (water.frag, `mean_visible_slope`), where the preset's clouds, white
+    // under the noon sun, are brighter than the low sun's (there noon's water measured 1.02
+    // times the day's, and under a clear sky 0.57 times). And it is blue under either sky:
+    // hue 200–250° (cyan is 180°) with blue at least 1.5 times green in linear light.
     let water = H * 3 / 4..H;
-    let (day_water, noon_water) = (
-        mean_linear(&day, W, water.clone()),
-        mean_linear(&noon, W, water),
+    let (day_clear, noon_clear) = (
+        sea("sea-day-clear", None, away, true),
+        sea("sea-noon-clear", Some("-70,60"), away, true),
     );
-    let (day_l, noon_l) = (linear_luma(day_water), linear_luma(noon_water));
+    let (day_l, noon_l) = (
+        linear_luma(mean_linear(&day_clear, W, water.clone())),
+        linear_luma(mean_linear(&noon_clear, W, water.clone())),
+    );
     assert!(
         noon_l <= day_l,
-        "open water's linear luminance: noon {noon_l:.4}, default day {day_l:.4} (expected no brighter)"
+        "open water's linear luminance under a clear sky: noon {noon_l:.4}, default day \
+         {day_l:.4} (expected no brighter)"
     );
-    let [_, g, b] = noon_water;
-    let h = hue(noon_water);
-    assert!(
-        (200.0..=250.0).contains(&h) && b >= 1.5 * g,
-        "noon's open water {noon_water:.4?}: hue {h:.0}° (expected 200–250), blue/green {:.2} (≥ 1.5)",
-        b / g
-    );
+    for (what, p) in [("clouded", &noon), ("clear", &noon_clear)] {
+        let noon_water = mean_linear(p, W, water.clone());
+        let [_, g, b] = noon_water;
+        let h = hue(noon_water);
+        assert!(
+            (200.0..=250.0).contains(&h) && b >= 1.5 * g,
+            "noon's open water, {what}: {noon_water:.4?}: hue {h:.0}° (expected 200–250), \
+             blue/green {:.2} (≥ 1.5)",
+            b / g
+        );
+    }
     // The horizon holds: a rough sea seen at grazing angles reflects less than a mirror
     // (its visible facets lean toward the eye), so the sea just below the horizon is at most
     // 0.85 of the sky just above it, whatever the light and the azimuth away from the sun.

@@ -16,13 +16,8 @@
 
 mod common;
 
-use common::{assert_validation_clean, gpu_context, linear};
+use common::linear;
 use glam::Vec3;
-use vkocean::gpu::oneshot::{download, run_once};
-use vkocean::gpu::{
-    vk, Bind, Bindings, BoundSet, Buffer, DescriptorSetLayout, MemoryLocation, Order, Pipeline,
-    PipelineLayout,
-};
 use vkocean::render::Camera;
 
 const W: usize = 480;
@@ -270,61 +265,14 @@ struct Lobe {
 /// The glitter lobe's slope density (glitter_lobe.comp) on a `side`² grid of world slopes
 /// within ±`reach`, for each of `lobes`.
 fn lobe_densities(lobes: &[Lobe]) -> Vec<Vec<f32>> {
-    let ctx = gpu_context();
-    let side = lobes[0].side as usize;
-    let bytes = side * side * 4;
-    let usage = vk::BufferUsageFlags::STORAGE_BUFFER | vk::BufferUsageFlags::TRANSFER_SRC;
-    let stage = vk::ShaderStageFlags::COMPUTE;
-    let ty = vk::DescriptorType::STORAGE_BUFFER;
-    let set_layout = DescriptorSetLayout::new(&ctx, "lobe set layout", &[(0, ty, stage)]).unwrap();
-    let layout = PipelineLayout::new(
-        &ctx,
-        "lobe layout",
-        &[&set_layout],
-        Some((stage, std::mem::size_of::<Lobe>() as u32)),
-    )
-    .unwrap();
-    let pipeline = Pipeline::compute(
-        &ctx,
-        &layout,
+    let side = lobes[0].side;
+    common::run_test_kernel(
         "glitter lobe test",
         vkocean::shaders::TEST_GLITTER_LOBE_COMP,
-        &[],
+        lobes,
+        (side * side * 4) as usize,
+        [side.div_ceil(8), side.div_ceil(8), 1],
     )
-    .unwrap();
-    let mut out = Vec::new();
-    for lobe in lobes {
-        let density = Buffer::new(
-            &ctx,
-            "lobe density",
-            bytes as u64,
-            usage,
-            MemoryLocation::GpuOnly,
-        )
-        .unwrap();
-        let set = BoundSet::new(
-            &ctx,
-            &set_layout,
-            "lobe set",
-            &[(0, Bind::Storage(&density, Order::Tracked))],
-        )
-        .unwrap();
-        run_once(&ctx, "glitter lobe test", |rec| {
-            rec.push_constants(&pipeline, lobe);
-            let b = Bindings {
-                pipeline: &pipeline,
-                sets: &[&set],
-            };
-            let groups = (side as u32).div_ceil(8);
-            rec.dispatch_with(&b, [groups, groups, 1]);
-        })
-        .unwrap();
-        let raw = download(&ctx, &density, bytes).unwrap();
-        out.push(bytemuck::cast_slice(&raw).to_vec());
-    }
-    drop(pipeline);
-    assert_validation_clean(ctx);
-    out
 }
 
 #[test]

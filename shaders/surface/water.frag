@@ -586,12 +586,34 @@ void main() {
     float texels_per_rad = frame.lod.x * reflection_size.y * frame.viewport.w;
     float spread = 2.0 * sqrt(unresolved.x) * texels_per_rad;
     float layer = clamp(log2(max(2.0 * spread, 1.0)), 0.0, reflection_size.z - 1.0);
-    vec2 reflect_uv = clamp(mirror_uv + offset, 0.001, 0.999);
+    // The facets the eye sees lean toward it (`mean_visible_slope`, by s̄ on average), so they
+    // reflect higher sky: the reflected ray turns up by 2·atan s̄, its mirror image down as far
+    // (the direction −v turned toward −ŷ, both projected as points at infinity). A rough sea at
+    // grazing views mirrors the darker sky well above the horizon (a slick the horizon's).
+    // Where that leaves the reflection's texture (below the picture's bottom edge: sky higher
+    // than the view shows), the sky cube along the turned ray takes over, so the sea's colour
+    // does not follow the camera's pitch.
+    // About the mean plane (the view's slope to it, tan e): the planar mirror and `offset`
+    // stand for the drawn slopes' own turn, and about the drawn normal the lean would follow
+    // the drawn slopes the other way (faces toward the eye leaning less) and alias far out.
+    float rise = clamp(v.y, 1e-3, 0.9999);
+    float lean_s = mean_visible_slope(rise / sqrt(1.0 - rise * rise), sqrt(unresolved.x));
+    float tilt = 2.0 * atan(lean_s);
+    vec3 down = vec3(0.0, -1.0, 0.0) + v.y * v; // −ŷ less its part along −v
+    vec3 turned = -v * cos(tilt) + down * (sin(tilt) / max(length(down), 1e-4));
+    vec4 seen = VIEW.view_proj * vec4(-v, 0.0);
+    vec4 lean = VIEW.view_proj * vec4(turned, 0.0);
+    vec2 lean_uv = lean.w > 1e-4 * length(turned) ? (lean.xy / lean.w - seen.xy / seen.w) * 0.5
+                                                    : vec2(0.0, 1.0);
+    vec2 leaned_uv = mirror_uv + offset + lean_uv;
+    vec2 reflect_uv = clamp(leaned_uv, 0.001, 0.999);
     float below = floor(layer);
     vec3 c_reflect = mix(blurred_reflection(reflect_uv, below, reflection_size.y),
                          blurred_reflection(reflect_uv, min(below + 1.0, reflection_size.z - 1.0),
                                             reflection_size.y),
                          layer - below);
+    c_reflect = mix(c_reflect, sky_lookup(turned * vec3(1.0, -1.0, 1.0)),
+                    smoothstep(1.0, 1.1, leaned_uv.y));
 
     // Water thickness along the ray: refraction depth behind the surface minus the surface's.
     float near_m = frame.water.w; // Camera::near_m (depth = near / view distance)

@@ -439,3 +439,66 @@ impl vkocean::ocean::surface::Lattice for ImageLattice {
         [d[0] as f64, d[1] as f64, d[2] as f64]
     }
 }
+
+/// Runs the test kernel `spirv` (shaders/test/*.comp: one storage buffer at set 0, binding 0,
+/// written; its inputs in push constants) once for each of `pushes`, over `groups`
+/// workgroups, and returns each run's first `bytes` of the buffer as f32s. Validation-clean.
+pub fn run_test_kernel<P: bytemuck::Pod>(
+    name: &str,
+    spirv: &[u8],
+    pushes: &[P],
+    bytes: usize,
+    groups: [u32; 3],
+) -> Vec<Vec<f32>> {
+    use vkocean::gpu::oneshot::{download, run_once};
+    use vkocean::gpu::{
+        vk, Bind, Bindings, BoundSet, Buffer, DescriptorSetLayout, MemoryLocation, Order, Pipeline,
+        PipelineLayout,
+    };
+    let ctx = gpu_context();
+    let usage = vk::BufferUsageFlags::STORAGE_BUFFER | vk::BufferUsageFlags::TRANSFER_SRC;
+    let stage = vk::ShaderStageFlags::COMPUTE;
+    let ty = vk::DescriptorType::STORAGE_BUFFER;
+    let set_layout =
+        DescriptorSetLayout::new(&ctx, &format!("{name} set layout"), &[(0, ty, stage)]).unwrap();
+    let layout = PipelineLayout::new(
+        &ctx,
+        &format!("{name} layout"),
+        &[&set_layout],
+        Some((stage, std::mem::size_of::<P>() as u32)),
+    )
+    .unwrap();
+    let pipeline = Pipeline::compute(&ctx, &layout, name, spirv, &[]).unwrap();
+    let mut out = Vec::new();
+    for push in pushes {
+        let buffer = Buffer::new(
+            &ctx,
+            &format!("{name} output"),
+            bytes as u64,
+            usage,
+            MemoryLocation::GpuOnly,
+        )
+        .unwrap();
+        let set = BoundSet::new(
+            &ctx,
+            &set_layout,
+            &format!("{name} set"),
+            &[(0, Bind::Storage(&buffer, Order::Tracked))],
+        )
+        .unwrap();
+        run_once(&ctx, name, |rec| {
+            rec.push_constants(&pipeline, push);
+            let b = Bindings {
+                pipeline: &pipeline,
+                sets: &[&set],
+            };
+            rec.dispatch_with(&b, groups);
+        })
+        .unwrap();
+        let raw = download(&ctx, &buffer, bytes).unwrap();
+        out.push(bytemuck::cast_slice(&raw).to_vec());
+    }
+    drop(pipeline);
+    assert_validation_clean(ctx);
+    out
+}
