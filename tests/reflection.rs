@@ -227,38 +227,38 @@ fn a_rough_sea_mirrors_the_sky_as_high_as_its_visible_facets_lean() {
     // below E (under the horizon too), one from E to 60° (the horizon, the zenith and the sky
     // the water's own light takes are black in both, so those terms are equal). Where the far
     // sea's red is the same under both, half its reflection comes from under E: E is the
-    // median elevation it mirrors. From 10 m up looking downwind, pitched
-    // 20° down, the sea 4–14 px under the horizon (1–2.5° down, 230–570 m out, its slopes
-    // along the view nearly all finer than the pixels hold): Cox & Munk's upwind mean square
-    // predicts the elevation (`predicted_elevation`), for clean seas at 10 and 5 m/s: the
-    // median must lie within 10 % of it (the reflection blurs symmetrically in rows about the
-    // turned ray, so the median is its centre): the split at 0.9 and 1.1 times it has the
-    // red from above, then from below, the greater. Measured by halving (7 steps, 0.4°):
-    // 24.0° (predicted 25.0°: the longest waves are resolved) and 17.7° (17.8°); the build
-    // before, without the turn, 2.5° at 10 m/s (a mirror: 1.8°). At `--quality high`: at
-    // `low` the reflection texture is 90 rows and its most blurred layer two, which hold
-    // positions too coarsely for the median (5.5° for that mirror). A slick's sea (3 m/s,
-    // `--slicks 1`, predicted 12.1°) is left out: its far rows mirror nothing between 10.5°
-    // and 13° and plenty on either side, so its median is not one number (measured 10–13°).
+    // median elevation it mirrors. From 10 m up looking downwind, pitched 20° down, the sea
+    // 4–14 px under the horizon (1–2.5° down, 230–570 m out, its slopes along the view nearly
+    // all finer than the pixels hold): Cox & Munk's upwind mean square predicts the elevation
+    // (`predicted_elevation`), for clean seas at 10 and 5 m/s, and at 10 m/s looking level
+    // (where the turned ray lands near the reflection texture's edge and the sky cube takes
+    // the blur's share past it): the median must lie within 10 % of it (the reflection blurs
+    // symmetrically in rows about the turned ray, so the median is its centre): the split at
+    // 0.9 and 1.1 times it has the red from above, then from below, the greater. Measured by
+    // halving (7 steps, 0.4°): 23.9° (predicted 25.0°: the longest waves are resolved), 17.6°
+    // (17.8°) and 24.3° looking level (21.8° with the fixed ramp past the edge before
+    // 2026-12-04, which fails); the build before the turn 2.5° at 10 m/s (a mirror: 1.8°). At
+    // `--quality high`: at `low` nearly every slope is unresolved and the blur is clamped at
+    // the last layer, two texels of 45 rows (about 30°) each at this size, which average
+    // whatever the texture spans, so the median follows the pitch (21.4°, 20.5° and 29.3° at
+    // 0°, 5° and 20° down; README). A slick's sea (3 m/s, `--slicks 1`, predicted 12.1°) is
+    // left out: its far rows mirror nothing between 10.5° and 13° and plenty on either side,
+    // so its median is not one number (measured 10–13°).
     let (w, h) = (640usize, 360usize);
-    let pitch = 20f64;
     let focal = h as f64 / 2.0 / 30f64.to_radians().tan();
-    let horizon = (h as f64 / 2.0 - focal * pitch.to_radians().tan()).round() as usize;
-    let rows = horizon + 4..horizon + 15;
-    let depression = ((horizon as f64 + 9.5 - h as f64 / 2.0) / focal)
-        .atan()
-        .to_degrees()
-        + pitch;
     let eye = [4000.0, 10.0, 4000.0];
     let camera = format!("{},{},{}", eye[0], eye[1], eye[2]);
-    let look = format!(
-        "{},{},{}",
-        eye[0] + 100.0,
-        eye[1] - 100.0 * pitch.to_radians().tan(),
-        eye[2]
-    );
     let dir = common::scratch("reflection-lean");
-    let far_red = |name: &str, sky: &std::path::Path, sea: &[&str]| -> f64 {
+    // The mean red of the sea 4–14 px under the horizon, pitched `pitch` degrees down.
+    let far_red = |name: &str, sky: &std::path::Path, sea: &[&str], pitch: f64| -> f64 {
+        let horizon = (h as f64 / 2.0 - focal * pitch.to_radians().tan()).round() as usize;
+        let rows = horizon + 4..horizon + 15;
+        let look = format!(
+            "{},{},{}",
+            eye[0] + 100.0,
+            eye[1] - 100.0 * pitch.to_radians().tan(),
+            eye[2]
+        );
         let mut args = vec![
             "--skybox",
             sky.to_str().unwrap(),
@@ -284,7 +284,7 @@ fn a_rough_sea_mirrors_the_sky_as_high_as_its_visible_facets_lean() {
     };
     // The share of the far sea's reflection from under `e` is over a half where its red under
     // the sky below `e` is the greater.
-    let mostly_below = |what: &str, sea: &[&str], e: f64| -> bool {
+    let mostly_below = |what: &str, sea: &[&str], pitch: f64, e: f64| -> bool {
         let (below, above) = (
             dir.join(format!("{what}-below-{e:.2}")),
             dir.join(format!("{what}-above-{e:.2}")),
@@ -292,26 +292,34 @@ fn a_rough_sea_mirrors_the_sky_as_high_as_its_visible_facets_lean() {
         band_sky(&below, -90.0, e);
         band_sky(&above, e, 60.0);
         let (b, a) = (
-            far_red(&format!("lean-{e:.2}-below"), &below, sea),
-            far_red(&format!("lean-{e:.2}-above"), &above, sea),
+            far_red(&format!("lean-{e:.2}-below"), &below, sea, pitch),
+            far_red(&format!("lean-{e:.2}-above"), &above, sea, pitch),
         );
         println!("{what}: split at {e:.1}°: red {b:.2} from below, {a:.2} from above");
         b > a
     };
-    for (what, sea, mean_square) in [
-        (
-            "10",
-            ["--wind-speed", "10", "--slicks", "0"],
-            3.16e-3 * 10.0,
-        ),
-        ("5", ["--wind-speed", "5", "--slicks", "0"], 3.16e-3 * 5.0),
+    let (windy, gentle) = (
+        ["--wind-speed", "10", "--slicks", "0"],
+        ["--wind-speed", "5", "--slicks", "0"],
+    );
+    for (what, sea, pitch, mean_square) in [
+        ("10 m/s", windy, 20f64, 3.16e-3 * 10.0),
+        ("5 m/s", gentle, 20.0, 3.16e-3 * 5.0),
+        ("10 m/s looking level", windy, 0.0, 3.16e-3 * 10.0),
     ] {
+        // The rows' middle (9.5 px under the horizon) lies this far under the horizontal.
+        let horizon = (h as f64 / 2.0 - focal * pitch.to_radians().tan()).round();
+        let depression = ((horizon + 9.5 - h as f64 / 2.0) / focal)
+            .atan()
+            .to_degrees()
+            + pitch;
         // The median within 10 % of the prediction: under it 0.9 times as high, over it 1.1.
         let predicted = predicted_elevation(mean_square, depression);
         let (low, high) = (0.9 * predicted, 1.1 * predicted);
+        let tag = what.replace([' ', '/', '°'], "-");
         assert!(
-            !mostly_below(what, &sea, low) && mostly_below(what, &sea, high),
-            "{what} m/s: the far sea's median mirrored elevation is not within {low:.1}–{high:.1}° \
+            !mostly_below(&tag, &sea, pitch, low) && mostly_below(&tag, &sea, pitch, high),
+            "{what}: the far sea's median mirrored elevation is not within {low:.1}–{high:.1}° \
              (its visible facets', Cox & Munk's upwind slopes: {predicted:.1}°)"
         );
     }

@@ -266,8 +266,8 @@ fn the_noon_sea_is_dark_blue_and_darker_than_the_sky_above_the_horizon() {
     // grows with the sun, and so does everything it is seen beside. That is the water's own
     // light, compared under a clear sky: the facets the eye sees lean toward it and reflect
     // the sky 15–25° up (water.frag, `mean_visible_slope`), where the preset's clouds, white
-    // under the noon sun, are brighter than the low sun's (there noon's water measured 1.02
-    // times the day's, and under a clear sky 0.57 times). And it is blue under either sky:
+    // under the noon sun, are brighter than the low sun's (there noon's water measured 1.04
+    // times the day's, and under a clear sky 0.59 times). And it is blue under either sky:
     // hue 200–250° (cyan is 180°) with blue at least 1.5 times green in linear light.
     let water = H * 3 / 4..H;
     let (day_clear, noon_clear) = (
@@ -277,6 +277,13 @@ fn the_noon_sea_is_dark_blue_and_darker_than_the_sky_above_the_horizon() {
     let (day_l, noon_l) = (
         linear_luma(mean_linear(&day_clear, W, water.clone())),
         linear_luma(mean_linear(&noon_clear, W, water.clone())),
+    );
+    eprintln!(
+        "open water, noon over the default day: {:.3} under a clear sky, {:.3} under the \
+         preset's clouds",
+        noon_l / day_l,
+        linear_luma(mean_linear(&noon, W, water.clone()))
+            / linear_luma(mean_linear(&day, W, water.clone()))
     );
     assert!(
         noon_l <= day_l,
@@ -304,6 +311,10 @@ fn the_noon_sea_is_dark_blue_and_darker_than_the_sky_above_the_horizon() {
     ] {
         let sky = linear_luma(mean_linear(p, W, H / 2 - 13..H / 2 - 3));
         let sea = linear_luma(mean_linear(p, W, H / 2 + 3..H / 2 + 13));
+        eprintln!(
+            "{what}: the sea under the horizon over the sky above it {:.3}",
+            sea / sky
+        );
         assert!(
             sea <= 0.85 * sky,
             "{what}: the sea 3–12 px below the horizon {sea:.4} against the sky above it {sky:.4}: \

@@ -35,6 +35,20 @@ float beckmann_lobe(vec3 n, vec3 h, vec2 along, vec3 m) {
     return exp(-0.5 * q) / (6.28318531 * sqrt(det) * c2 * c2);
 }
 
+// erfc(x) = erfc_factor(x)·e^(−x²) for x ≥ 0 (Abramowitz & Stegun 7.1.26, |error| < 1.5·10⁻⁷).
+float erfc_factor(float x) {
+    float t = 1.0 / (1.0 + 0.3275911 * x);
+    return t * (0.254829592 + t * (-0.284496736 + t * (1.421413741
+           + t * (-1.453152027 + t * 1.061405429))));
+}
+
+// The standard normal distribution's upper tail, 1 − Φ(a).
+float normal_tail(float a) {
+    float x = abs(a) * 0.70710678;
+    float tail = 0.5 * erfc_factor(x) * exp(-x * x);
+    return a >= 0.0 ? tail : 1.0 - tail;
+}
+
 // The mean slope toward the eye of the facets the eye sees, on a surface whose slopes along
 // the view are Gaussian with standard deviation `sigma` about a plane the view meets at
 // cot θ = `mu` (θ the angle of incidence). A facet of slope s toward the eye shows the eye
@@ -43,15 +57,13 @@ float beckmann_lobe(vec3 n, vec3 h, vec2 along, vec3 m) {
 // takes the same share of every facet that faces the eye); facets with s < −μ face away. So
 // s̄ = ∫ s (μ + s) p(s) ds / ∫ (μ + s) p(s) ds over s > −μ = σ Φ(a) / (a Φ(a) + φ(a)) with
 // a = μ/σ: σ²/μ seen from high above (a ≫ 1), 1.25 σ at the horizon (a = 0). Φ from
-// Abramowitz & Stegun 7.1.26 (|error| < 1.5·10⁻⁷). shaders/test/visible_slope.comp runs it
-// for tests/sun_glitter.rs, which integrates the distribution itself.
+// Abramowitz & Stegun 7.1.26 (`erfc_factor`). shaders/test/visible_slope.comp runs it for
+// tests/reflection.rs, which integrates the distribution itself.
 float mean_visible_slope(float mu, float sigma) {
     float a = max(mu, 0.0) / max(sigma, 1e-6);
     float x = a * 0.70710678;
-    float t = 1.0 / (1.0 + 0.3275911 * x);
-    float poly = t * (0.254829592 + t * (-0.284496736 + t * (1.421413741
-                 + t * (-1.453152027 + t * 1.061405429))));
-    float cdf = 1.0 - 0.5 * poly * exp(-x * x);
-    float pdf = 0.39894228 * exp(-0.5 * a * a);
+    float gauss = exp(-x * x); // e^(−a²/2): erfc's factor and φ(a)'s are one
+    float cdf = 1.0 - 0.5 * erfc_factor(x) * gauss;
+    float pdf = 0.39894228 * gauss;
     return sigma * cdf / (a * cdf + pdf);
 }

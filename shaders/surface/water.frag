@@ -586,34 +586,42 @@ void main() {
     float texels_per_rad = frame.lod.x * reflection_size.y * frame.viewport.w;
     float spread = 2.0 * sqrt(unresolved.x) * texels_per_rad;
     float layer = clamp(log2(max(2.0 * spread, 1.0)), 0.0, reflection_size.z - 1.0);
-    // The facets the eye sees lean toward it (`mean_visible_slope`, by s̄ on average), so they
-    // reflect higher sky: the reflected ray turns up by 2·atan s̄, its mirror image down as far
-    // (the direction −v turned toward −ŷ, both projected as points at infinity). A rough sea at
-    // grazing views mirrors the darker sky well above the horizon (a slick the horizon's).
-    // Where that leaves the reflection's texture (below the picture's bottom edge: sky higher
-    // than the view shows), the sky cube along the turned ray takes over, so the sea's colour
-    // does not follow the camera's pitch.
-    // About the mean plane (the view's slope to it, tan e): the planar mirror and `offset`
-    // stand for the drawn slopes' own turn, and about the drawn normal the lean would follow
-    // the drawn slopes the other way (faces toward the eye leaning less) and alias far out.
+    // The facets the eye sees lean toward it (`mean_visible_slope`: s̄), so they reflect higher
+    // sky: the reflected ray turns up by 2·atan s̄, its mirror image down as far (−v turned
+    // toward −ŷ; both projected as points at infinity). About the mean plane (tan e): about the
+    // drawn normal it would follow the drawn slopes the wrong way and alias far out.
+    // The blur (σ: half a texel of the layer's ⌊H/2^l⌋ rows stretched over H) reaches past the
+    // texture's bottom edge (higher sky) for a share 1 − Φ(a), a = (H − y)/σ (y in rows): the
+    // sky cube's, along the ray turned on to that share's mean row y + σφ(a)/(1 − Φ(a)).
     float rise = clamp(v.y, 1e-3, 0.9999);
     float lean_s = mean_visible_slope(rise / sqrt(1.0 - rise * rise), sqrt(unresolved.x));
-    float tilt = 2.0 * atan(lean_s);
     vec3 down = vec3(0.0, -1.0, 0.0) + v.y * v; // −ŷ less its part along −v
-    vec3 turned = -v * cos(tilt) + down * (sin(tilt) / max(length(down), 1e-4));
+    down /= max(length(down), 1e-4);
+    // cos and sin of 2·atan s̄, without the trigonometry: (1 − s̄², 2s̄) / (1 + s̄²).
+    vec3 turned = (-v * (1.0 - lean_s * lean_s) + down * (2.0 * lean_s)) / (1.0 + lean_s * lean_s);
     vec4 seen = VIEW.view_proj * vec4(-v, 0.0);
     vec4 lean = VIEW.view_proj * vec4(turned, 0.0);
-    vec2 lean_uv = lean.w > 1e-4 * length(turned) ? (lean.xy / lean.w - seen.xy / seen.w) * 0.5
-                                                    : vec2(0.0, 1.0);
+    vec2 lean_uv = lean.w > 1e-4 ? (lean.xy / lean.w - seen.xy / seen.w) * 0.5 : vec2(0.0, 1.0);
     vec2 leaned_uv = mirror_uv + offset + lean_uv;
     vec2 reflect_uv = clamp(leaned_uv, 0.001, 0.999);
     float below = floor(layer);
+    float above = min(below + 1.0, reflection_size.z - 1.0);
     vec3 c_reflect = mix(blurred_reflection(reflect_uv, below, reflection_size.y),
-                         blurred_reflection(reflect_uv, min(below + 1.0, reflection_size.z - 1.0),
-                                            reflection_size.y),
-                         layer - below);
-    c_reflect = mix(c_reflect, sky_lookup(turned * vec3(1.0, -1.0, 1.0)),
-                    smoothstep(1.0, 1.1, leaned_uv.y));
+                         blurred_reflection(reflect_uv, above, reflection_size.y), layer - below);
+    vec2 texel = reflection_size.y / max(floor(reflection_size.y / exp2(vec2(below, above))), 1.0);
+    float sigma = 0.5 * mix(texel.x, texel.y, layer - below);
+    float to_edge = (1.0 - leaned_uv.y) * reflection_size.y / sigma; // a
+    if (to_edge < 3.0) { // most pixels: lavapipe skips the cube for their blocks
+        float past = normal_tail(to_edge);
+        float mills = 0.39894228 * exp(-0.5 * to_edge * to_edge) / max(past, 1e-3);
+        // Rows per radian of turn where the turned ray lands: the projection's derivative.
+        vec4 dl = VIEW.view_proj * vec4(v * (2.0 * lean_s) + down * (1.0 - lean_s * lean_s), 0.0);
+        float rate = 0.5 * reflection_size.y * abs(dl.y * lean.w - lean.y * dl.w)
+                     / max(lean.w * lean.w * (1.0 + lean_s * lean_s), 1e-8);
+        float beyond = min(2.0 * atan(lean_s) + sigma * mills / max(rate, 1.0), acos(clamp(v.y, 0.0, 1.0)));
+        vec3 ray = -v * cos(beyond) + down * sin(beyond);
+        c_reflect = mix(c_reflect, sky_lookup(ray * vec3(1.0, -1.0, 1.0)), past);
+    }
 
     // Water thickness along the ray: refraction depth behind the surface minus the surface's.
     float near_m = frame.water.w; // Camera::near_m (depth = near / view distance)
@@ -652,8 +660,7 @@ void main() {
     vec3 deep = WATER_COLOUR * frame.sky_light.rgb * (1.0 - sun_share * (1.0 - sun_here));
     vec3 transmitted = mix(deep, c_refract, exp(-thickness * ABSORPTION_PER_M));
     // The light through the crests (crest_light), scaled as the shallows scale the waves.
-    transmitted += crest_light(v, sun, sunlight, in_displacement.y, shore.z,
-                               compression * shore.x);
+    transmitted += crest_light(v, sun, sunlight, in_displacement.y, shore.z, compression * shore.x);
 
     float cos_theta = clamp(dot(n, v), 0.0, 1.0);
     // The unresolved slopes' spread along the view.
