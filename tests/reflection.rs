@@ -1,4 +1,4 @@
-//! The reflection's blurred layers (`Recorder::halve_down_layers`, read by water.frag to blur
+//! The reflection's blurred layers (`Recorder::halve_down_layers`, read by reflection.glsl to blur
 //! what the water reflects by the slopes it does not resolve): on lavapipe, layer l of an image
 //! against a CPU reference, layer l − 1's rows averaged in pairs, columns kept; validation-clean.
 
@@ -144,7 +144,7 @@ fn visible_mean_by_integral(mu: f64, sigma: f64) -> f64 {
 
 #[test]
 fn the_visible_facets_mean_slope_is_their_distribution_s() {
-    // water.frag turns the reflection up by the facets the eye sees (`mean_visible_slope`,
+    // reflection.glsl turns the reflection up by the facets the eye sees (`mean_visible_slope`,
     // common/glitter.glsl, a closed form with Abramowitz & Stegun's erf): against the integral
     // of its definition from straight above (μ = 5.7, 10° from the normal) to the horizon
     // (μ = 0), for a slick's to a storm's slopes. Within 0.2 % (float and the erf's 1.5e-7);
@@ -222,7 +222,7 @@ fn predicted_elevation(upwind_mean_square: f64, depression: f64) -> f64 {
 #[test]
 fn a_rough_sea_mirrors_the_sky_as_high_as_its_visible_facets_lean() {
     // The facets of a rough sea that the eye sees lean toward it, so at grazing views it
-    // mirrors sky far above the horizon (water.frag: the reflection's lookup turned by
+    // mirrors sky far above the horizon (reflection.glsl: the reflection's lookup turned by
     // 2·atan s̄, `mean_visible_slope`). Measured with skies black but for a red band: one red
     // below E (under the horizon too), one from E to 60° (the horizon, the zenith and the sky
     // the water's own light takes are black in both, so those terms are equal). Where the far
@@ -238,10 +238,12 @@ fn a_rough_sea_mirrors_the_sky_as_high_as_its_visible_facets_lean() {
     // halving (7 steps, 0.4°): 23.9° (predicted 25.0°: the longest waves are resolved), 17.6°
     // (17.8°) and 24.3° looking level (21.8° with the fixed ramp past the edge before
     // 2026-12-04, which fails); the build before the turn 2.5° at 10 m/s (a mirror: 1.8°). At
-    // `--quality high`: at `low` nearly every slope is unresolved and the blur is clamped at
-    // the last layer, two texels of 45 rows (about 30°) each at this size, which average
-    // whatever the texture spans, so the median follows the pitch (21.4°, 20.5° and 29.3° at
-    // 0°, 5° and 20° down; README). A slick's sea (3 m/s, `--slicks 1`, predicted 12.1°) is
+    // `--quality high`, and at `low` (its reflection 90 rows high at this size) looking level
+    // and 20° down: 24.4° and 24.1°. Until 2026-12-04 `low`'s blur chain went down to layers
+    // of 2 rows (45 each, about 30°), which average whatever the texture spans, so the median
+    // followed the pitch (21.4°, 20.5° and 29.3° at 0°, 5° and 20° down; both cases fail);
+    // now it stops at 5 rows (src/render/targets.rs, REFLECTION_MIN_ROWS). A slick's sea
+    // (3 m/s, `--slicks 1`, predicted 12.1°) is
     // left out: its far rows mirror nothing between 10.5° and 13° and plenty on either side,
     // so its median is not one number (measured 10–13°).
     let (w, h) = (640usize, 360usize);
@@ -250,7 +252,7 @@ fn a_rough_sea_mirrors_the_sky_as_high_as_its_visible_facets_lean() {
     let camera = format!("{},{},{}", eye[0], eye[1], eye[2]);
     let dir = common::scratch("reflection-lean");
     // The mean red of the sea 4–14 px under the horizon, pitched `pitch` degrees down.
-    let far_red = |name: &str, sky: &std::path::Path, sea: &[&str], pitch: f64| -> f64 {
+    let far_red = |name: &str, sky: &std::path::Path, sea: &[&str], pitch: f64, quality: &str| {
         let horizon = (h as f64 / 2.0 - focal * pitch.to_radians().tan()).round() as usize;
         let rows = horizon + 4..horizon + 15;
         let look = format!(
@@ -271,7 +273,7 @@ fn a_rough_sea_mirrors_the_sky_as_high_as_its_visible_facets_lean() {
             "--time",
             "5",
             "--quality",
-            "high",
+            quality,
         ];
         args.extend_from_slice(sea);
         let p = common::shot(name, (w as u32, h as u32), &args, &[]);
@@ -284,7 +286,7 @@ fn a_rough_sea_mirrors_the_sky_as_high_as_its_visible_facets_lean() {
     };
     // The share of the far sea's reflection from under `e` is over a half where its red under
     // the sky below `e` is the greater.
-    let mostly_below = |what: &str, sea: &[&str], pitch: f64, e: f64| -> bool {
+    let mostly_below = |what: &str, sea: &[&str], pitch: f64, quality: &str, e: f64| -> bool {
         let (below, above) = (
             dir.join(format!("{what}-below-{e:.2}")),
             dir.join(format!("{what}-above-{e:.2}")),
@@ -292,8 +294,8 @@ fn a_rough_sea_mirrors_the_sky_as_high_as_its_visible_facets_lean() {
         band_sky(&below, -90.0, e);
         band_sky(&above, e, 60.0);
         let (b, a) = (
-            far_red(&format!("lean-{e:.2}-below"), &below, sea, pitch),
-            far_red(&format!("lean-{e:.2}-above"), &above, sea, pitch),
+            far_red(&format!("lean-{e:.2}-below"), &below, sea, pitch, quality),
+            far_red(&format!("lean-{e:.2}-above"), &above, sea, pitch, quality),
         );
         println!("{what}: split at {e:.1}°: red {b:.2} from below, {a:.2} from above");
         b > a
@@ -302,10 +304,18 @@ fn a_rough_sea_mirrors_the_sky_as_high_as_its_visible_facets_lean() {
         ["--wind-speed", "10", "--slicks", "0"],
         ["--wind-speed", "5", "--slicks", "0"],
     );
-    for (what, sea, pitch, mean_square) in [
-        ("10 m/s", windy, 20f64, 3.16e-3 * 10.0),
-        ("5 m/s", gentle, 20.0, 3.16e-3 * 5.0),
-        ("10 m/s looking level", windy, 0.0, 3.16e-3 * 10.0),
+    for (what, sea, pitch, quality, mean_square) in [
+        ("10 m/s", windy, 20f64, "high", 3.16e-3 * 10.0),
+        ("5 m/s", gentle, 20.0, "high", 3.16e-3 * 5.0),
+        ("10 m/s looking level", windy, 0.0, "high", 3.16e-3 * 10.0),
+        ("10 m/s at low", windy, 20.0, "low", 3.16e-3 * 10.0),
+        (
+            "10 m/s at low looking level",
+            windy,
+            0.0,
+            "low",
+            3.16e-3 * 10.0,
+        ),
     ] {
         // The rows' middle (9.5 px under the horizon) lies this far under the horizontal.
         let horizon = (h as f64 / 2.0 - focal * pitch.to_radians().tan()).round();
@@ -318,7 +328,8 @@ fn a_rough_sea_mirrors_the_sky_as_high_as_its_visible_facets_lean() {
         let (low, high) = (0.9 * predicted, 1.1 * predicted);
         let tag = what.replace([' ', '/', '°'], "-");
         assert!(
-            !mostly_below(&tag, &sea, pitch, low) && mostly_below(&tag, &sea, pitch, high),
+            !mostly_below(&tag, &sea, pitch, quality, low)
+                && mostly_below(&tag, &sea, pitch, quality, high),
             "{what}: the far sea's median mirrored elevation is not within {low:.1}–{high:.1}° \
              (its visible facets', Cox & Munk's upwind slopes: {predicted:.1}°)"
         );

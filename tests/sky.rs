@@ -265,7 +265,7 @@ fn the_noon_sea_is_dark_blue_and_darker_than_the_sky_above_the_horizon() {
     // adapted to daylight, noon's water is no brighter than the default day's: its own light
     // grows with the sun, and so does everything it is seen beside. That is the water's own
     // light, compared under a clear sky: the facets the eye sees lean toward it and reflect
-    // the sky 15–25° up (water.frag, `mean_visible_slope`), where the preset's clouds, white
+    // the sky 15–25° up (reflection.glsl, `mean_visible_slope`), where the preset's clouds, white
     // under the noon sun, are brighter than the low sun's (there noon's water measured 1.04
     // times the day's, and under a clear sky 0.59 times). And it is blue under either sky:
     // hue 200–250° (cyan is 180°) with blue at least 1.5 times green in linear light.

@@ -17,8 +17,15 @@ pub const HDR_FORMAT: vk::Format = vk::Format::R16G16B16A16_SFLOAT;
 pub const DEPTH_FORMAT: vk::Format = vk::Format::D32_SFLOAT;
 /// Layers of the reflection colour at most: layer 0 is drawn, layer l holds it blurred over 2^l
 /// rows (`Recorder::halve_down_layers`), for the water to blur what it reflects up and down by
-/// the slopes it does not resolve (shaders/surface/water.frag), up to 32 rows (layer 5).
+/// the slopes it does not resolve (shaders/common/reflection.glsl), up to 32 rows (layer 5).
 pub const REFLECTION_LAYERS: u32 = 6;
+/// Rows the last of those layers keeps at least (⌊H/2^l⌋ ≥ 5, but for the two layers the array
+/// needs under 10 rows). A layer of fewer rows, each a large share of the sky the texture
+/// spans, averages whatever it spans, so the far sea's mirrored sky followed the camera's pitch (at 640x360 `low`, H = 90, six layers to 2 rows:
+/// the median mirrored elevation 21.4°, 20.5° and 29.3° looking level, 5° and 20° down, against
+/// Cox & Munk's 25°; tests/reflection.rs). At 1280x720 (H = 180 at `low`, 360 at `high`) the
+/// six layers keep 5 and 11 rows: this stops nothing there.
+pub const REFLECTION_MIN_ROWS: u32 = 5;
 
 /// A colour + depth pair.
 pub struct ColourDepth {
@@ -83,8 +90,9 @@ pub struct Targets {
     /// anti-aliasing pass's edge mask.
     pub main: ColourDepth,
     /// What the water reflects (mirrored camera, clipped below the water); its colour has
-    /// layers (REFLECTION_LAYERS), layer 0 drawn, the others filled from it blurred up and
-    /// down, for the water to blur what it reflects.
+    /// layers (up to REFLECTION_LAYERS, fewer under 160 rows: REFLECTION_MIN_ROWS), layer 0
+    /// drawn, the others filled from it blurred up and down, for the water to blur what it
+    /// reflects.
     pub reflection: ColourDepth,
     /// What lies under the water (clipped above it); its depth gives the water's thickness.
     pub refraction: ColourDepth,
@@ -119,9 +127,10 @@ impl Targets {
         let rtt = scaled(output, rtt_scale);
         let main_extent = scaled(output, render_scale);
         let hdr = (HDR_FORMAT, vk::ImageUsageFlags::SAMPLED, 1);
-        // The reflection's layers halve its height down to REFLECTION_LAYERS or one row (at
-        // least 2 layers: the water samples an array).
-        let layers = (32 - rtt.height.leading_zeros()).clamp(2, REFLECTION_LAYERS);
+        // The reflection's layers halve its height down to REFLECTION_LAYERS or while a layer
+        // keeps REFLECTION_MIN_ROWS rows (at least 2 layers: the water samples an array).
+        let layers =
+            (32 - (rtt.height / REFLECTION_MIN_ROWS).leading_zeros()).clamp(2, REFLECTION_LAYERS);
         let blits = vk::ImageUsageFlags::TRANSFER_SRC | vk::ImageUsageFlags::TRANSFER_DST;
         let blurred = (HDR_FORMAT, vk::ImageUsageFlags::SAMPLED | blits, layers);
         // The output pass copies the main colour or (into an output without TRANSFER_DST)

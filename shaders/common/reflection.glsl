@@ -1,0 +1,79 @@
+// What the sea reflects from above (surface/water.frag): the reflection texture, blurred by the
+// slopes the pixel does not resolve and leaning toward the sky the visible facets face, and the
+// sky cube past the texture's edge. Needs common/frame.glsl (VIEW, frame, sky_lookup) and
+// common/glitter.glsl (mean_visible_slope, normal_tail) included before it, and the sampler
+// `reflection_colour` (layer 0: the reflection as drawn; layer l: blurred over 2^l rows in its
+// top H / 2^l rows, Recorder::halve_down_layers) declared before it (no include guards).
+
+// The reflection at `uv` (of the view) from layer `layer`, whose top max(⌊h / 2^layer⌋, 1) rows
+// of the `h` hold it (the rows below are not written: the lookup stays half a row inside).
+vec3 blurred_reflection(vec2 uv, float layer, float h) {
+    float rows = max(floor(h / exp2(layer)), 1.0);
+    float y = clamp(uv.y * rows, 0.5, rows - 0.5) / h;
+    return textureLod(reflection_colour, vec3(uv.x, y, layer), 0.0).rgb;
+}
+
+// The reflection seen at the point `rel_pos` (camera-relative, m) of the surface, `height` (m)
+// above the still water level, toward the eye along `v`, with the slopes' screen-space offset
+// `offset` and the unresolved slopes' mean square `along_ms` in the plane of incidence.
+//
+// The reflection texture mirrors the scene about the still water level. A point of the
+// surface h above that level mirrors it about its own height instead: the image of what
+// stands near it lies 2h lower, where the still-water mirror shows (P − 2h ŷ). Looking it
+// up there keeps the reflections of the pillars and the buoy on the faces of big waves.
+//
+// The slopes the pixel does not resolve (Cox & Munk's mean square less what the cascades
+// drawn here carry) scatter the reflected ray: a facet tilted by s in the plane of
+// incidence turns it by 2s up or down, one tilted across it by 2s·cos θ sideways (θ the
+// angle of incidence, near 90° where the sea meets the sky). So the mirror image spreads
+// by 2σ·f texels up and down (σ² the unresolved mean square along the view, f the
+// reflection's texels per radian): vertical streaks. The reflection's layers blur it over
+// 2^l rows (a kernel of standard deviation 2^l / 2 once filtered), so the lookup blends the
+// two layers around l = log2(2 · 2σf). The sideways spread is left out (small but near the
+// camera).
+//
+// The facets the eye sees lean toward it (`mean_visible_slope`: s̄), so they reflect higher
+// sky: the reflected ray turns up by 2·atan s̄, its mirror image down as far (−v turned
+// toward −ŷ; both projected as points at infinity). About the mean plane (tan e): about the
+// drawn normal it would follow the drawn slopes the wrong way and alias far out.
+// The blur (σ: half a texel of the layer's ⌊H/2^l⌋ rows stretched over H) reaches past the
+// texture's bottom edge (higher sky) for a share 1 − Φ(a), a = (H − y)/σ (y in rows): the
+// sky cube's, along the ray turned on to that share's mean row y + σφ(a)/(1 − Φ(a)).
+vec3 sea_reflection(vec3 rel_pos, float height, vec2 screen, vec2 offset, vec3 v, float along_ms) {
+    vec4 mirror = VIEW.view_proj * vec4(rel_pos - vec3(0.0, 2.0 * height, 0.0), 1.0);
+    vec2 mirror_uv = mirror.w > 0.0 ? mirror.xy / mirror.w * 0.5 + 0.5 : screen;
+    vec3 reflection_size = vec3(textureSize(reflection_colour, 0));
+    float texels_per_rad = frame.lod.x * reflection_size.y * frame.viewport.w;
+    float spread = 2.0 * sqrt(along_ms) * texels_per_rad;
+    float layer = clamp(log2(max(2.0 * spread, 1.0)), 0.0, reflection_size.z - 1.0);
+    float rise = clamp(v.y, 1e-3, 0.9999);
+    float lean_s = mean_visible_slope(rise / sqrt(1.0 - rise * rise), sqrt(along_ms));
+    vec3 down = vec3(0.0, -1.0, 0.0) + v.y * v; // −ŷ less its part along −v
+    down /= max(length(down), 1e-4);
+    // cos and sin of 2·atan s̄, without the trigonometry: (1 − s̄², 2s̄) / (1 + s̄²).
+    vec3 turned = (-v * (1.0 - lean_s * lean_s) + down * (2.0 * lean_s)) / (1.0 + lean_s * lean_s);
+    vec4 seen = VIEW.view_proj * vec4(-v, 0.0);
+    vec4 lean = VIEW.view_proj * vec4(turned, 0.0);
+    vec2 lean_uv = lean.w > 1e-4 ? (lean.xy / lean.w - seen.xy / seen.w) * 0.5 : vec2(0.0, 1.0);
+    vec2 leaned_uv = mirror_uv + offset + lean_uv;
+    vec2 reflect_uv = clamp(leaned_uv, 0.001, 0.999);
+    float below = floor(layer);
+    float above = min(below + 1.0, reflection_size.z - 1.0);
+    vec3 c_reflect = mix(blurred_reflection(reflect_uv, below, reflection_size.y),
+                         blurred_reflection(reflect_uv, above, reflection_size.y), layer - below);
+    vec2 texel = reflection_size.y / max(floor(reflection_size.y / exp2(vec2(below, above))), 1.0);
+    float sigma = 0.5 * mix(texel.x, texel.y, layer - below);
+    float to_edge = (1.0 - leaned_uv.y) * reflection_size.y / sigma; // a
+    if (to_edge < 3.0) { // most pixels: lavapipe skips the cube for their blocks
+        float past = normal_tail(to_edge);
+        float mills = 0.39894228 * exp(-0.5 * to_edge * to_edge) / max(past, 1e-3);
+        // Rows per radian of turn where the turned ray lands: the projection's derivative.
+        vec4 dl = VIEW.view_proj * vec4(v * (2.0 * lean_s) + down * (1.0 - lean_s * lean_s), 0.0);
+        float rate = 0.5 * reflection_size.y * abs(dl.y * lean.w - lean.y * dl.w)
+                     / max(lean.w * lean.w * (1.0 + lean_s * lean_s), 1e-8);
+        float beyond = min(2.0 * atan(lean_s) + sigma * mills / max(rate, 1.0), acos(clamp(v.y, 0.0, 1.0)));
+        vec3 ray = -v * cos(beyond) + down * sin(beyond);
+        c_reflect = mix(c_reflect, sky_lookup(ray * vec3(1.0, -1.0, 1.0)), past);
+    }
+    return c_reflect;
+}
