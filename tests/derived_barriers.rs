@@ -9,8 +9,8 @@ mod common;
 use common::{assert_validation_clean, gpu_context, test_image as image};
 use vkocean::gpu::oneshot::run_once;
 use vkocean::gpu::{
-    check_bindings, vk, Bind, Bindings, BoundSet, Context, DescriptorSetLayout, GraphicsDesc, Load,
-    Order, Pipeline, PipelineLayout, Sampler, Target,
+    check_bindings, vk, Bind, Bindings, BoundSet, Context, DescriptorSetLayout, GraphicsDesc,
+    Image, Load, Order, Pipeline, PipelineLayout, Sampler, Target,
 };
 use vkocean::shaders;
 
@@ -24,6 +24,24 @@ fn pipeline(
     DescriptorSetLayout,
     Result<Pipeline, vkocean::gpu::GpuError>,
 ) {
+    made(ctx, visible, Pipeline::graphics)
+}
+
+type Make = fn(
+    &std::sync::Arc<Context>,
+    &PipelineLayout,
+    &GraphicsDesc,
+) -> Result<Pipeline, vkocean::gpu::GpuError>;
+
+/// The test pipeline as `make` makes it (at once or on first use).
+fn made(
+    ctx: &std::sync::Arc<Context>,
+    visible: vk::ShaderStageFlags,
+    make: Make,
+) -> (
+    DescriptorSetLayout,
+    Result<Pipeline, vkocean::gpu::GpuError>,
+) {
     let set_layout = DescriptorSetLayout::new(
         ctx,
         "test texture layout",
@@ -31,7 +49,7 @@ fn pipeline(
     )
     .unwrap();
     let layout = PipelineLayout::new(ctx, "test layout", &[&set_layout], None).unwrap();
-    let pipeline = Pipeline::graphics(
+    let pipeline = make(
         ctx,
         &layout,
         &GraphicsDesc {
@@ -50,14 +68,20 @@ fn pipeline(
     (set_layout, pipeline)
 }
 
+/// The texture the test pipeline's vertex shader samples, a target to draw into, a sampler.
+fn images(ctx: &std::sync::Arc<Context>) -> (Image, Image, Sampler) {
+    let sampled = vk::ImageUsageFlags::COLOR_ATTACHMENT | vk::ImageUsageFlags::SAMPLED;
+    let texture = image(ctx, "vertex texture", sampled);
+    let target = image(ctx, "test target", vk::ImageUsageFlags::COLOR_ATTACHMENT);
+    let sampler =
+        Sampler::linear(ctx, "test sampler", vk::SamplerAddressMode::CLAMP_TO_EDGE).unwrap();
+    (texture, target, sampler)
+}
+
 #[test]
 fn a_texture_sampled_in_the_vertex_stage_is_waited_for_there() {
     let ctx = gpu_context();
-    let sampled = vk::ImageUsageFlags::COLOR_ATTACHMENT | vk::ImageUsageFlags::SAMPLED;
-    let texture = image(&ctx, "vertex texture", sampled);
-    let target = image(&ctx, "test target", vk::ImageUsageFlags::COLOR_ATTACHMENT);
-    let sampler =
-        Sampler::linear(&ctx, "test sampler", vk::SamplerAddressMode::CLAMP_TO_EDGE).unwrap();
+    let (texture, target, sampler) = images(&ctx);
     let (set_layout, pipeline) = pipeline(&ctx, vk::ShaderStageFlags::VERTEX);
     let pipeline = pipeline.unwrap();
     // Nothing says "vertex" below: the stage comes from the vertex shader's SPIR-V.
@@ -255,4 +279,53 @@ fn a_read_ordered_by_a_wait_in_a_submission_without_waits_is_refused() {
         let target = [Target::new(&target, Load::DontCare)];
         let _ = rec.rendering("early reader", &target, None, &[draw]);
     });
+}
+
+#[test]
+fn a_pipeline_made_on_first_use_is_made_by_the_first_draw_with_it_and_only_then() {
+    let ctx = gpu_context();
+    let (texture, target, sampler) = images(&ctx);
+    let visible = vk::ShaderStageFlags::VERTEX;
+    let (set_layout, pipeline) = made(&ctx, visible, Pipeline::graphics_on_first_use);
+    let pipeline = pipeline.unwrap();
+    let bind = Bind::Sampled(&texture, &sampler, Order::Tracked);
+    let set = BoundSet::new(&ctx, &set_layout, "test texture set", &[(0, bind)]).unwrap();
+    let sets = [&set];
+    let draw = Bindings {
+        pipeline: &pipeline,
+        sets: &sets,
+    };
+    // Its interface is read at creation: the checks need no handle.
+    check_bindings("vertex reader", &[draw]).unwrap();
+    let frame = |with_draw: bool| {
+        run_once(&ctx, "first use test", |rec| {
+            let clear = Load::Clear(vk::ClearValue {
+                color: vk::ClearColorValue {
+                    float32: [0.5, 0.0, 0.0, 1.0],
+                },
+            });
+            rec.rendering("writer", &[Target::new(&texture, clear)], None, &[])
+                .record(|| {});
+            let target = [Target::new(&target, Load::DontCare)];
+            let draws: &[Bindings] = if with_draw { &[draw] } else { &[] };
+            rec.rendering("vertex reader", &target, None, draws)
+                .record(|| {
+                    if with_draw {
+                        rec.bind(&draw);
+                        rec.draw(3, 1);
+                    }
+                });
+        })
+        .unwrap();
+        ctx.live_objects()
+    };
+    let before = ctx.live_objects();
+    // A frame that declares and draws nothing with it does not make it ...
+    assert_eq!(frame(false), before, "made without a draw");
+    // ... the first draw makes it: one pipeline (its shader modules live only for the call) ...
+    assert_eq!(frame(true), before + 1, "the first draw made no pipeline");
+    // ... and later draws use it.
+    assert_eq!(frame(true), before + 1, "a second draw made another");
+    drop((set, pipeline, set_layout, sampler, texture, target));
+    assert_validation_clean(ctx);
 }

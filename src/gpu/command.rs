@@ -43,7 +43,7 @@ pub(super) struct Attachment {
 /// A [`super::pass::Bindings`]' identity (its pipeline and sets), to tell a declared draw
 /// from another.
 #[derive(Clone, PartialEq, Eq)]
-pub(super) struct BindingsKey(pub vk::Pipeline, pub Vec<vk::DescriptorSet>);
+pub(super) struct BindingsKey(pub u64, pub Vec<vk::DescriptorSet>);
 
 /// The semaphore waits a command buffer's reads rely on: (semaphore name, stages).
 pub(super) type RequiredWaits = std::cell::RefCell<Vec<(&'static str, vk::PipelineStageFlags2)>>;
@@ -66,6 +66,9 @@ pub struct Recorder<'a> {
     pub(super) scope: std::cell::RefCell<Option<Vec<BindingsKey>>>,
     /// What `Recorder::bind` bound last.
     pub(super) bound_key: std::cell::RefCell<Option<BindingsKey>>,
+    /// A pipeline made on first use failed to be made in a bind: no draw or dispatch is
+    /// recorded after it (the error waits in the context for the submission).
+    failed: std::cell::Cell<bool>,
 }
 
 impl<'a> Recorder<'a> {
@@ -81,6 +84,7 @@ impl<'a> Recorder<'a> {
             bound: std::cell::Cell::new(None),
             scope: std::cell::RefCell::new(None),
             bound_key: std::cell::RefCell::new(None),
+            failed: std::cell::Cell::new(false),
         }
     }
 
@@ -233,13 +237,25 @@ impl<'a> Recorder<'a> {
         unsafe { self.ctx.device.cmd_end_rendering(self.cmd) };
     }
 
+    /// Binds `pipeline`, made now if it is made on first use. If making it fails, the error
+    /// waits in the context for the submission ([`Context::fail_recording`]) and the draws
+    /// and dispatches recorded after it are left out.
     pub(super) fn bind_pipeline(&self, pipeline: &Pipeline) {
+        let raw = match pipeline.handle() {
+            Ok(raw) => raw,
+            Err(e) => {
+                self.ctx.fail_recording(self.cmd, e);
+                self.failed.set(true);
+                self.bound.set(None);
+                return;
+            }
+        };
         self.bound.set(Some(pipeline.bind_point));
         // SAFETY: recording-state invariant; the pipeline is live.
         unsafe {
             self.ctx
                 .device
-                .cmd_bind_pipeline(self.cmd, pipeline.bind_point, pipeline.raw)
+                .cmd_bind_pipeline(self.cmd, pipeline.bind_point, raw)
         };
     }
 
@@ -280,7 +296,9 @@ impl<'a> Recorder<'a> {
     }
 
     pub fn draw(&self, vertices: u32, instances: u32) {
-        self.expect_bound(vk::PipelineBindPoint::GRAPHICS);
+        if !self.may_record(vk::PipelineBindPoint::GRAPHICS) {
+            return;
+        }
         // SAFETY: recording-state invariant; inside a rendering scope with a bound pipeline.
         unsafe {
             self.ctx
@@ -292,7 +310,9 @@ impl<'a> Recorder<'a> {
     /// `instances` instances of `vertices` vertices, from instance `first` (gl_InstanceIndex
     /// counts from it).
     pub fn draw_instances(&self, vertices: u32, instances: u32, first: u32) {
-        self.expect_bound(vk::PipelineBindPoint::GRAPHICS);
+        if !self.may_record(vk::PipelineBindPoint::GRAPHICS) {
+            return;
+        }
         // SAFETY: recording-state invariant; inside a rendering scope with a bound pipeline.
         unsafe {
             self.ctx
@@ -317,7 +337,9 @@ impl<'a> Recorder<'a> {
     }
 
     pub fn draw_indexed(&self, indices: u32, instances: u32) {
-        self.expect_bound(vk::PipelineBindPoint::GRAPHICS);
+        if !self.may_record(vk::PipelineBindPoint::GRAPHICS) {
+            return;
+        }
         assert!(
             self.index_count.get().is_some_and(|n| indices <= n),
             "an indexed draw of {indices} indices beyond the bound index buffer"
@@ -331,9 +353,14 @@ impl<'a> Recorder<'a> {
         };
     }
 
-    /// Panics unless a pipeline of `point` is bound (and, for graphics, a rendering scope is
-    /// open): a draw or dispatch without one is undefined behaviour in Vulkan.
-    fn expect_bound(&self, point: vk::PipelineBindPoint) {
+    /// Whether to record a draw or dispatch: not after a pipeline failed to be made (the
+    /// submission returns that error). Otherwise panics unless a pipeline of `point` is bound
+    /// (and, for graphics, a rendering scope is open): a draw or dispatch without one is
+    /// undefined behaviour in Vulkan.
+    fn may_record(&self, point: vk::PipelineBindPoint) -> bool {
+        if self.failed.get() {
+            return false;
+        }
         assert_eq!(
             self.bound.get(),
             Some(point),
@@ -350,11 +377,14 @@ impl<'a> Recorder<'a> {
                 "a draw with a pipeline and sets its rendering scope did not declare"
             );
         }
+        true
     }
 
     pub(super) fn dispatch_indirect_raw(&self, args: &Buffer, offset: vk::DeviceSize) {
         self.expect_outside_scope("a dispatch");
-        self.expect_bound(vk::PipelineBindPoint::COMPUTE);
+        if !self.may_record(vk::PipelineBindPoint::COMPUTE) {
+            return;
+        }
         assert!(
             offset + 12 <= args.size(),
             "indirect dispatch arguments past the buffer's end"
@@ -369,7 +399,9 @@ impl<'a> Recorder<'a> {
     }
 
     pub(super) fn draw_indirect_raw(&self, args: &Buffer, offset: vk::DeviceSize) {
-        self.expect_bound(vk::PipelineBindPoint::GRAPHICS);
+        if !self.may_record(vk::PipelineBindPoint::GRAPHICS) {
+            return;
+        }
         assert!(
             offset + 16 <= args.size(),
             "indirect draw arguments past the buffer's end"
@@ -386,7 +418,9 @@ impl<'a> Recorder<'a> {
 
     pub(super) fn dispatch(&self, x: u32, y: u32, z: u32) {
         self.expect_outside_scope("a dispatch");
-        self.expect_bound(vk::PipelineBindPoint::COMPUTE);
+        if !self.may_record(vk::PipelineBindPoint::COMPUTE) {
+            return;
+        }
         // SAFETY: recording-state invariant; a compute pipeline is bound.
         unsafe { self.ctx.device.cmd_dispatch(self.cmd, x, y, z) };
     }

@@ -90,6 +90,9 @@ pub struct Context {
     /// Device objects created and destroyed through the GPU layer (`live_objects`).
     objects_created: AtomicU64,
     objects_destroyed: AtomicU64,
+    /// Command buffers whose recording failed (a pipeline made on first use could not be
+    /// made) and the error their submission returns (`fail_recording`).
+    recording_failures: Mutex<Vec<(vk::CommandBuffer, GpuError)>>,
     /// The frame graph being recorded (`capture_frame_graph`), if any.
     journal: Mutex<Option<Journal>>,
     /// Semaphore names, for the frame graph.
@@ -284,6 +287,7 @@ impl Context {
             counters,
             objects_created: AtomicU64::new(0),
             objects_destroyed: AtomicU64::new(0),
+            recording_failures: Mutex::new(Vec::new()),
             journal: Mutex::new(None),
             semaphore_names: Mutex::new(Default::default()),
             wait_timeout_s: if desc.validation && desc.validation_extras.gpu_assisted {
@@ -471,6 +475,29 @@ impl Context {
                 result,
             }),
         }
+    }
+
+    /// Keeps the first error of `cmd`'s recording (a pipeline made on first use that could not
+    /// be made) for its submission, which returns it instead of submitting.
+    pub(super) fn fail_recording(&self, cmd: vk::CommandBuffer, error: GpuError) {
+        let mut failures = self
+            .recording_failures
+            .lock()
+            .unwrap_or_else(|e| e.into_inner());
+        if !failures.iter().any(|(c, _)| *c == cmd) {
+            failures.push((cmd, error));
+        }
+    }
+
+    /// `cmd`'s recording error, if it failed (`fail_recording`); taken, so it is returned once
+    /// (and a recording begun again in `cmd` starts clean: `submit::begin_one_time`).
+    pub(super) fn take_recording_failure(&self, cmd: vk::CommandBuffer) -> Option<GpuError> {
+        let mut failures = self
+            .recording_failures
+            .lock()
+            .unwrap_or_else(|e| e.into_inner());
+        let i = failures.iter().position(|(c, _)| *c == cmd)?;
+        Some(failures.swap_remove(i).1)
     }
 
     /// Counts `n` device objects just created (every `vkCreate*` of the GPU layer reports here).

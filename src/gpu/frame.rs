@@ -73,7 +73,9 @@ struct Slot {
     cmds: [vk::CommandBuffer; 2],
 }
 
-/// The frame loop's command buffers and pacing.
+/// The frame loop's command buffers and pacing. After a submission of a frame failed (an error
+/// from `submit_scene` or `submit`), the frame's other work may have gone to the GPU without
+/// it: end the loop (as every caller does, passing the error up), do not begin another frame.
 pub struct Frames {
     ctx: Arc<Context>,
     slots: Vec<Slot>,

@@ -122,7 +122,7 @@ pub struct Bindings<'a> {
 
 impl Bindings<'_> {
     fn key(&self) -> BindingsKey {
-        BindingsKey(self.pipeline.raw, self.sets.iter().map(|s| s.raw).collect())
+        BindingsKey(self.pipeline.id, self.sets.iter().map(|s| s.raw).collect())
     }
 }
 

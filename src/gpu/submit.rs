@@ -31,6 +31,8 @@ pub(super) unsafe fn begin_one_time(ctx: &Context, cmds: &[vk::CommandBuffer]) -
     for &cmd in cmds {
         // SAFETY: the caller guarantees `cmd` is in the initial state.
         unsafe { ctx.device.begin_command_buffer(cmd, &begin) }.vk("vkBeginCommandBuffer")?;
+        // An earlier recording of `cmd` that failed and was never submitted leaves no error.
+        ctx.take_recording_failure(cmd);
     }
     Ok(())
 }
@@ -51,6 +53,10 @@ pub(super) unsafe fn end_and_submit(
 ) -> GpuResult<()> {
     // SAFETY: `cmd` is recording (caller).
     unsafe { ctx.device.end_command_buffer(cmd) }.vk("vkEndCommandBuffer")?;
+    // A pipeline made on first use failed while `cmd` was recorded: its draws are missing.
+    if let Some(failure) = ctx.take_recording_failure(cmd) {
+        return Err(failure);
+    }
     ctx.journal_submit(queue, waits, signals);
     let cmds = [vk::CommandBufferSubmitInfo::default().command_buffer(cmd)];
     let submit = vk::SubmitInfo2::default()

@@ -160,7 +160,9 @@ const DISPLAY_CONSTANT_ID: usize = 8;
 /// A scene pipeline drawing into `target`'s colour + depth; `desc.constants` are the shaders'
 /// own specialization constants (ids 0, 1, …), `DISPLAY_TARGET` is added at id 8 and the ids
 /// between are specialized to 0 (so a scene shader's own constant must be given a value here,
-/// not left to its default).
+/// not left to its default). Made on first use (`Pipeline::graphics_on_first_use`): most runs
+/// draw with a few of the scene's variants (under the water, at the waterline, wireframe,
+/// floating bodies), and the driver's compile of the others was most of a run's start-up.
 pub fn scene_pipeline(
     ctx: &Arc<Context>,
     layout: &PipelineLayout,
@@ -178,7 +180,7 @@ pub fn scene_pipeline(
     let mut constants = desc.constants.to_vec();
     constants.resize(DISPLAY_CONSTANT_ID, 0);
     constants.push(target.display_mode());
-    Pipeline::graphics(
+    Pipeline::graphics_on_first_use(
         ctx,
         layout,
         &GraphicsDesc {
