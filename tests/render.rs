@@ -552,7 +552,8 @@ fn the_clipmap_shades_fewer_fragments_per_covered_pixel_than_the_tessellation() 
     // the lower half). Mesa 22.3's lavapipe counts 16 invocations for every 4x4 block a
     // triangle touches (it runs the shader on whole blocks): measured 2.61 per covered pixel
     // for the clipmap, 3.48 tessellated, over the same 0.525 M pixels. Mesa 25.0's counts the
-    // covered pixels only (1.00 for both, in tools/debian13's root): there the ratio says
+    // covered pixels only (1.00 for both, in `VKOCEAN_DEBIAN13_ALL=1 tools/debian13`'s root;
+    // this test runs on the host only otherwise): there the ratio says
     // nothing of the blocks, and only "never more" is asked.
     let counts_blocks = |c: &DrawCounts| c.per_pixel > 1.2;
     let clipmap = draw_counts("clipmap", "16", "1280x720");
