@@ -96,6 +96,7 @@ fn water_reads(geometry: &str, vertex_stage: &str) {
     // compute timeline's wait (in GENERAL), the others by barriers.
     for (resource, stage) in [
         ("reflection colour", FRAGMENT),
+        ("reflection depth", FRAGMENT),
         ("refraction colour", FRAGMENT),
         ("refraction depth", FRAGMENT),
         ("dudv map", FRAGMENT),

@@ -21,7 +21,7 @@
 //!                                                 writes refraction colour + depth
 //!    scene       island + objects (main camera; caustics from under the water)
 //!                                                        writes main colour + depth
-//!    water       tessellated patches; samples reflection, refraction (colour and depth) and,
+//!    water       tessellated patches; samples reflection, refraction (colour and depth each) and,
 //!                through the compute wait, the simulation images   writes main colour + depth
 //!    sky         where nothing else was drawn                        writes main colour
 //!    spray       --spray on, final view: the spray's puffs, an indirect draw of what the

@@ -101,7 +101,8 @@ fn check_formats(
             format: DEPTH_FORMAT,
             // Sampling D32 is required by Vulkan; rendering to it is required of D32 or X8_D24.
             features: F::DEPTH_STENCIL_ATTACHMENT | F::SAMPLED_IMAGE,
-            what: "the depth buffers (the refraction depth is sampled by the water)",
+            what:
+                "the depth buffers (the refraction and reflection depths are sampled by the water)",
         },
         FormatUse {
             format: display,
@@ -156,7 +157,7 @@ pub struct Renderer {
     dudv: Image,
     /// Linear, clamped: reflection and refraction colour.
     clamp_sampler: Sampler,
-    /// Nearest, clamped: the refraction depth.
+    /// Nearest, clamped: the refraction and reflection depths.
     depth_sampler: Sampler,
     /// Linear, repeating: the DU/DV map.
     repeat_sampler: Sampler,

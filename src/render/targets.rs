@@ -92,7 +92,8 @@ pub struct Targets {
     /// What the water reflects (mirrored camera, clipped below the water); its colour has
     /// layers (up to REFLECTION_LAYERS, fewer under 160 rows: REFLECTION_MIN_ROWS), layer 0
     /// drawn, the others filled from it blurred up and down, for the water to blur what it
-    /// reflects.
+    /// reflects; alpha the share of objects (the sky writes 0). Its depth tells the water
+    /// which of them stand nearer than a sea point, out of that point's reflection.
     pub reflection: ColourDepth,
     /// What lies under the water (clipped above it); its depth gives the water's thickness.
     pub refraction: ColourDepth,
@@ -140,7 +141,8 @@ impl Targets {
         } else {
             vk::ImageUsageFlags::TRANSFER_SRC | vk::ImageUsageFlags::SAMPLED
         };
-        // The refraction depth is sampled by the water; the other depths are attachments only.
+        // The refraction and reflection depths are sampled by the water (the water's thickness;
+        // which objects stand nearer than a sea point); the main depth is an attachment only.
         let (only, sampled) = (vk::ImageUsageFlags::empty(), vk::ImageUsageFlags::SAMPLED);
         let anti_aliased = anti_aliased
             .then(|| {
@@ -160,7 +162,7 @@ impl Targets {
                 (display_format, main_usage, 1),
                 only,
             )?,
-            reflection: ColourDepth::new(ctx, "reflection", rtt, blurred, only)?,
+            reflection: ColourDepth::new(ctx, "reflection", rtt, blurred, sampled)?,
             refraction: ColourDepth::new(ctx, "refraction", rtt, hdr, sampled)?,
             anti_aliased,
             output,

@@ -38,14 +38,14 @@ pub use crate::shared::PATCHES;
 pub struct WaterSamplers<'a> {
     /// Linear, clamped: reflection (all its layers) and refraction colour.
     pub clamp: &'a Sampler,
-    /// Nearest, clamped: refraction depth.
+    /// Nearest, clamped: refraction and reflection depth.
     pub depth: &'a Sampler,
     /// Linear, repeating: the DU/DV map.
     pub repeat: &'a Sampler,
 }
 
 /// The water's textures (set 1 of the water and of the textures view): reflection colour,
-/// refraction colour and depth, the DU/DV map.
+/// refraction colour and depth, the DU/DV map, the reflection's depth.
 pub struct WaterTextures {
     ctx: Arc<Context>,
     pub layout: DescriptorSetLayout,
@@ -70,6 +70,7 @@ impl WaterTextures {
                 (1, sampled, fragment),
                 (2, sampled, fragment),
                 (3, sampled, fragment),
+                (4, sampled, fragment),
             ],
         )?;
         let set = Self::set(ctx, &layout, targets, dudv, samplers)?;
@@ -108,6 +109,10 @@ impl WaterTextures {
                     Bind::Sampled(&targets.refraction.depth, samplers.depth, t),
                 ),
                 (3, Bind::Sampled(dudv, samplers.repeat, t)),
+                (
+                    4,
+                    Bind::Sampled(&targets.reflection.depth, samplers.depth, t),
+                ),
             ],
         )
     }
