@@ -49,10 +49,17 @@ impl MessageCounters {
 
 /// Warnings in which the validation layer describes its own set-up, not our use of the API:
 /// logged at info and not counted. With GPU-assisted validation (`--validation-extra
-/// gpu-assisted`) layers 1.4 say that core checks slow it down (`VALIDATION-SETTINGS`) and that
+/// gpu-assisted`) layers 1.4 say that core checks slow it down (`VALIDATION-SETTINGS`), that
 /// they forced the device features their instrumentation needs on
-/// (`WARNING-Setting-Limit-Adjusted`).
-const LAYER_NOTICES: [&str; 2] = ["VALIDATION-SETTINGS", "WARNING-Setting-Limit-Adjusted"];
+/// (`WARNING-Setting-Limit-Adjusted`), and that a shader with many buffer reads will be slow to
+/// instrument and run under GPU-AV (`GPUAV-Compile-time-general-buffer`, said by 1.4.364 of one
+/// pipeline a run since the water's reflection lookup reads the reflection's depth: the layer's
+/// own cost, and the remedy it names is a GPU-AV setting).
+const LAYER_NOTICES: [&str; 3] = [
+    "VALIDATION-SETTINGS",
+    "WARNING-Setting-Limit-Adjusted",
+    "GPUAV-Compile-time-general-buffer",
+];
 
 /// Severities we subscribe to: the ones that mean our API use is wrong or questionable.
 pub(super) fn severities() -> vk::DebugUtilsMessageSeverityFlagsEXT {
