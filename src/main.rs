@@ -53,10 +53,13 @@ fn main() -> ExitCode {
 static PANIC: std::sync::Mutex<Option<String>> = std::sync::Mutex::new(None);
 
 /// A panic as the user's one line. winit panics when the X server goes away (an `unwrap` on a
-/// lost connection: a killed window, a closed Xvfb); anything else is a bug of ours.
+/// lost connection: a killed window, a closed Xvfb): the same line as Xlib's I/O error handler
+/// prints (platform/x11.rs), whichever of the two notices first, winit's place in the log
+/// (`RUST_LOG=debug`); anything else is a bug of ours.
 fn panic_line(message: &str) -> String {
     if message.contains("Connection(") || message.contains("X11") || message.contains("xlib") {
-        format!("lost the connection to the X server (the window was killed or the display closed): {message}")
+        log::debug!("the X connection's loss as winit met it: {message}");
+        "lost the connection to the X server (the window was killed or the display closed)".into()
     } else {
         format!("internal error (a bug; please report it): {message}")
     }
