@@ -5,16 +5,9 @@
 
 mod common;
 
-use common::linear;
+use common::linear_luminance;
 use glam::Vec3;
 use vkocean::render::{clouds, Camera};
-
-/// Linear Rec. 709 luminance of each RGBA pixel.
-fn linear_luma(p: &[u8]) -> Vec<f64> {
-    p.chunks(4)
-        .map(|c| 0.2126 * linear(c[0]) + 0.7152 * linear(c[1]) + 0.0722 * linear(c[2]))
-        .collect()
-}
 
 /// Back to an sRGB-encoded grey level (0..255) from a linear luminance.
 fn encoded(l: f64) -> f64 {
@@ -74,13 +67,13 @@ fn a_grazing_view_away_from_the_sun_holds_no_more_detail_than_a_supersampled_one
         "--time",
         "3",
     ];
-    let small = linear_luma(&common::shot(
+    let small = linear_luminance(&common::shot(
         "far-grazing-1x",
         (w as u32, h as u32),
         &args,
         &[],
     ));
-    let big = linear_luma(&common::shot(
+    let big = linear_luminance(&common::shot(
         "far-grazing-4x",
         (4 * w as u32, 4 * h as u32),
         &args,
@@ -141,7 +134,7 @@ fn the_clouds_shadows_take_the_sun_off_the_sea_where_the_sky_casts_them() {
             "--time",
             "3",
         ];
-        linear_luma(&common::shot(name, (w as u32, h as u32), &args, &[]))
+        linear_luminance(&common::shot(name, (w as u32, h as u32), &args, &[]))
     };
     let clouded = shot("far-clouds", "0.6");
     let clear = shot("far-clear", "0");

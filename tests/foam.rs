@@ -121,10 +121,7 @@ fn foam_pictures(name: &str, args: &[&str]) -> (Vec<f64>, Vec<Option<f64>>) {
     let size = (FW as u32, FH as u32);
     let pictures = common::shots(&format!("foam-{name}"), size, 1, &all);
     let (picture, view) = (&pictures[0], &pictures[1]);
-    let luminance = picture
-        .chunks(4)
-        .map(|c| 0.2126 * linear(c[0]) + 0.7152 * linear(c[1]) + 0.0722 * linear(c[2]))
-        .collect();
+    let luminance = common::linear_luminance(picture);
     let alpha = view
         .chunks(4)
         .map(|c| (c[0] == c[1] && c[1] == c[2]).then(|| linear(c[0])))

@@ -16,7 +16,7 @@
 
 mod common;
 
-use common::{linear, luma, shot};
+use common::{luma, shot};
 
 const W: usize = 640;
 const H: usize = 360;
@@ -50,10 +50,8 @@ fn floor(time: &str, extra: &[&str]) -> Vec<f64> {
 
 /// Mean linear luminance (Rec. 709 weights on the linear channels).
 fn linear_luma(rgba: &[u8]) -> f64 {
-    rgba.chunks(4)
-        .map(|p| 0.2126 * linear(p[0]) + 0.7152 * linear(p[1]) + 0.0722 * linear(p[2]))
-        .sum::<f64>()
-        / (rgba.len() / 4) as f64
+    let all = common::linear_luminance(rgba);
+    all.iter().sum::<f64>() / all.len() as f64
 }
 
 /// The mean absolute difference of two equally long series.

@@ -269,6 +269,30 @@ pub fn linear(v: u8) -> f64 {
     }
 }
 
+/// Linear Rec. 709 luminance of each RGBA pixel (its sRGB bytes decoded, 0..1).
+pub fn linear_luminance(p: &[u8]) -> Vec<f64> {
+    p.chunks(4)
+        .map(|c| 0.2126 * linear(c[0]) + 0.7152 * linear(c[1]) + 0.0722 * linear(c[2]))
+        .collect()
+}
+
+/// Mean of `values` (a `w`-wide picture's, row by row) over `rows` and `columns`.
+pub fn mean_over(
+    values: &[f64],
+    w: usize,
+    rows: std::ops::Range<usize>,
+    columns: std::ops::Range<usize>,
+) -> f64 {
+    let n = (rows.len() * columns.len()) as f64;
+    rows.map(|y| {
+        values[y * w + columns.start..y * w + columns.end]
+            .iter()
+            .sum::<f64>()
+    })
+    .sum::<f64>()
+        / n
+}
+
 /// Rec. 709 luma of each RGBA pixel (0..255).
 pub fn luma(p: &[u8]) -> Vec<f64> {
     p.chunks(4)
