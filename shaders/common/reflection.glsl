@@ -4,47 +4,33 @@
 // point. Needs common/frame.glsl (VIEW, frame, sky_lookup, view_ray) and common/glitter.glsl
 // (mean_visible_slope, normal_tail) included before it, the samplers `reflection_colour`
 // (layer 0: the reflection as drawn; layer l: blurred over 2^l rows in its top H / 2^l rows,
-// Recorder::halve_down_layers; alpha: the share of objects, the sky's 0) and `reflection_depth`
-// (layer 0's) declared before it (no include guards), and runs in a fragment shader drawing
-// the surface (gl_FragCoord.z: its depth).
+// Recorder::halve_down_layers) and `reflection_distance` (its distances, layered and blurred
+// alike: src/render/passes/reflection_distance.rs) declared before it (no include guards), and
+// runs in a fragment shader drawing the surface (gl_FragCoord.z: its depth).
 
-// The reflection at `uv` (of the view) from layer `layer`, whose top max(⌊h / 2^layer⌋, 1) rows
-// of the `h` hold it (the rows below are not written: the lookup stays half a row inside).
-vec4 blurred_reflection(vec2 uv, float layer, float h) {
+// The reflection's `image` (colour or distances) at `uv` (of the view) from layer `layer`, whose
+// top max(⌊h / 2^layer⌋, 1) rows of the `h` hold it (the rows below are not written: the lookup
+// stays half a row inside).
+vec4 blurred_layer(sampler2DArray image, vec2 uv, float layer, float h) {
     float rows = max(floor(h / exp2(layer)), 1.0);
     float y = clamp(uv.y * rows, 0.5, rows - 0.5) / h;
-    return textureLod(reflection_colour, vec3(uv.x, y, layer), 0.0);
+    return textureLod(image, vec3(uv.x, y, layer), 0.0);
 }
 
-// Of the objects the reflection's layers `layer` (and the next, which the lookup blends) hold
-// around `uv`, the share standing nearer than the surface point drawn, from the depth of layer
-// 0 (reversed-Z: the larger the nearer; 0: the sky) at 3 taps, 1.5 texels of the next layer
-// apart (as far as its bilinear lookup reaches), centred at uv·⌊H/c⌋·c/H (c = 2^l of that
-// layer): where that layer's texel would sit were each the mean of c rows of the top ⌊H/c⌋·c.
-// The blits stretch a layer's rows over all of the one before, which puts the lookup's rows at
-// uv itself; but taps centred there caught less of the boat's column (tests/reflection.rs's
-// scene, 960x540, c/H = 32/270: 0.835 of the sea beside it against 0.970), not understood yet.
-// The taps alternate half a texel right and left, as the lookup's bilinear reaches across
-// columns. (7 taps removed no more of the column, at twice the cost.) The surface and the
-// reflection's mirrored camera share a projection, so an object's depth there is its mirror
-// image's in this view: it stands nearer than the surface point where that depth is the greater
-// (along the same ray the mirror image stands beyond the object; at the taps, beside it, this
-// is the approximation).
-float nearer_objects(vec2 uv, float layer, vec3 size) {
-    float coarse = exp2(min(floor(layer) + 1.0, size.z - 1.0));
-    float rows = max(floor(size.y / coarse), 1.0);
-    float centre = uv.y * rows * coarse / size.y;
-    float objects = 0.0;
-    float nearer = 0.0;
-    for (int k = -1; k <= 1; k++) {
-        vec2 tap = vec2(uv.x + (float(k * k) - 0.5) / size.x, centre + 1.5 * float(k) / rows);
-        float depth = textureLod(reflection_depth, tap, 0.0).r;
-        if (depth > 0.0) {
-            objects += 1.0;
-            nearer += depth > gl_FragCoord.z ? 1.0 : 0.0;
-        }
-    }
-    return objects > 0.0 ? nearer / objects : 0.0;
+// Of the objects `distances` (the reflection's, blurred as its colour at the same place and
+// layers: their share α and α·u, u = log2(distance / near)) says the lookup mixed in, the share
+// standing nearer than the surface point drawn (gl_FragCoord.z: its depth, near / distance).
+// The surface and the reflection's mirrored camera share a projection, so an object's distance
+// there is its mirror image's in this view: it stands nearer than the surface point where that
+// distance is the smaller (along the same ray the mirror image stands beyond the object). The
+// objects of a kernel are taken at their mean u: all nearer or all beyond, but for a ramp
+// NEARER_RAMP wide in u around the surface point's (±7 % in distance), so that the cut does not
+// alias where the surface's distance crosses theirs.
+const float NEARER_RAMP = 0.2;
+float nearer_objects(vec2 distances) {
+    float mean_u = distances.y / distances.x;
+    float surface_u = -log2(gl_FragCoord.z);
+    return clamp(0.5 + (surface_u - mean_u) / NEARER_RAMP, 0.0, 1.0);
 }
 
 // The reflection seen at the point `rel_pos` (camera-relative, m) of the surface, `height` (m)
@@ -93,22 +79,31 @@ vec3 sea_reflection(vec3 rel_pos, float height, vec2 screen, vec2 offset, vec3 v
     vec2 reflect_uv = clamp(leaned_uv, 0.001, 0.999);
     float below = floor(layer);
     float above = min(below + 1.0, reflection_size.z - 1.0);
-    vec4 blurred = mix(blurred_reflection(reflect_uv, below, reflection_size.y),
-                       blurred_reflection(reflect_uv, above, reflection_size.y), layer - below);
-    vec3 c_reflect = blurred.rgb;
+    float h = reflection_size.y;
+    vec3 c_reflect = mix(blurred_layer(reflection_colour, reflect_uv, below, h),
+                         blurred_layer(reflection_colour, reflect_uv, above, h), layer - below).rgb;
+    vec2 distances = mix(blurred_layer(reflection_distance, reflect_uv, below, h),
+                         blurred_layer(reflection_distance, reflect_uv, above, h), layer - below).xy;
     // What stands nearer than this sea point cannot be in its reflection: the reflected ray
     // leaves toward what lies beyond. The blur and the lean took the far sea's lookup onto the
     // mirror images of near objects (the boat, the buoy): a darker column up to the horizon.
-    // Where the layers hold objects (alpha over 0), their share n nearer than the sea point
-    // (`nearer_objects`) gives way to the sky behind them: with the objects there of one colour
-    // O and the sky S, C = (1 − α)S + αO becomes (1 − α)S + α(1 − n)O + αnS = mix(C, S, n).
-    if (blurred.a > 1e-3) {
-        float nearer = nearer_objects(reflect_uv, layer, reflection_size);
-        vec3 behind = view_ray(reflect_uv * 2.0 - 1.0) * vec3(1.0, -1.0, 1.0);
-        c_reflect = mix(c_reflect, sky_lookup(behind), nearer);
-    }
+    // Where the kernel holds objects (their share α over 0), the share n of them nearer than
+    // the sea point (`nearer_objects`) gives way to the sky behind them: with the objects there
+    // of one colour O and the sky S, C = (1 − α)S + αO becomes (1 − α)S + α(1 − n)O + αnS =
+    // mix(C, S, n).
     vec2 texel = reflection_size.y / max(floor(reflection_size.y / exp2(vec2(below, above))), 1.0);
     float sigma = 0.5 * mix(texel.x, texel.y, layer - below);
+    if (distances.x > 1e-3) {
+        float nearer = nearer_objects(distances);
+        // The sky behind them blurred as the kernel blurs (σ rows): Gauss-Hermite's 3 nodes.
+        vec2 node = vec2(0.0, 1.7320508 * sigma / h);
+        vec3 behind = vec3(0.0);
+        for (int k = -1; k <= 1; k++) {
+            vec3 ray = view_ray((reflect_uv + float(k) * node) * 2.0 - 1.0);
+            behind += (k == 0 ? 2.0 / 3.0 : 1.0 / 6.0) * sky_lookup(ray * vec3(1.0, -1.0, 1.0));
+        }
+        c_reflect = mix(c_reflect, behind, nearer);
+    }
     float to_edge = (1.0 - leaned_uv.y) * reflection_size.y / sigma; // a
     if (to_edge < 3.0) { // most pixels: lavapipe skips the cube for their blocks
         float past = normal_tail(to_edge);

@@ -36,9 +36,4 @@ void main() {
     vec4 sky = textureLod(sky_cube, dir, 0.0);
     vec3 through_air = frame.sun_light.rgb / frame.light.z;
     out_colour = target_colour(sky.rgb + frame.light.x * through_air * sky.a * disc);
-    // In the reflection (HDR) alpha is the objects' cover, 0 for the sky: its blurred layers
-    // tell the water where objects are near (common/reflection.glsl).
-    if (DISPLAY_TARGET == 0) {
-        out_colour.a = 0.0;
-    }
 }

@@ -182,8 +182,16 @@ pub fn record_frame(
                 r.terrain.record(&rec, &set, view, false, r.bodies());
                 r.sky.record(&rec, &set, view);
             });
-            // Its blurred layers, for the water to blur it by the slopes it does not resolve.
+            // Its blurred layers, for the water to blur it by the slopes it does not resolve;
+            // its distances (from its depth), blurred alike, to leave out what stands nearer.
             rec.halve_down_layers(&t.reflection.colour);
+            let target = [Target::new(&t.reflection_distance, Load::DontCare)];
+            let pass = &r.reflection_distance;
+            let set = pass.set_ref();
+            let draw = pass.draw(&set);
+            rec.rendering(names::REFLECTION_DISTANCE, &target, None, &[draw])
+                .record(|| pass.record(&rec, &draw));
+            rec.halve_down_layers(&t.reflection_distance);
         });
         profiler.pause(&rec);
         rec.end_label();

@@ -13,12 +13,12 @@ use super::camera::Camera;
 use super::passes::output::OutputPass;
 use super::passes::water::{TileView, WaterKind, WaterSamplers};
 use super::passes::{
-    AntiAliasingPass, ShaftsPass, SkyCube, SkyPass, SprayPass, TerrainPass, TexturesViewPass,
-    WaterPass,
+    AntiAliasingPass, ReflectionDistancePass, ShaftsPass, SkyCube, SkyPass, SprayPass, TerrainPass,
+    TexturesViewPass, WaterPass,
 };
 use super::scene::{dudv_size, generate_dudv, load_dudv, DUDV_SIDE};
 use super::targets::Targets;
-use super::targets::{DEPTH_FORMAT, HDR_FORMAT};
+use super::targets::{DEPTH_FORMAT, DISTANCE_FORMAT, HDR_FORMAT};
 use super::uniforms::{
     sky_uniforms, FrameInputs, FrameParams, FrameUniforms, OceanBindings, SkyLight, ViewIndex,
 };
@@ -98,11 +98,21 @@ fn check_formats(
             what: "the reflection, refraction and sky textures",
         },
         FormatUse {
+            format: DISTANCE_FORMAT,
+            // Blurred down its layers as the reflection's colour.
+            features: F::COLOR_ATTACHMENT
+                | F::SAMPLED_IMAGE
+                | F::SAMPLED_IMAGE_FILTER_LINEAR
+                | F::BLIT_SRC
+                | F::BLIT_DST,
+            what: "the reflection's distances",
+        },
+        FormatUse {
             format: DEPTH_FORMAT,
             // Sampling D32 is required by Vulkan; rendering to it is required of D32 or X8_D24.
             features: F::DEPTH_STENCIL_ATTACHMENT | F::SAMPLED_IMAGE,
             what:
-                "the depth buffers (the refraction and reflection depths are sampled by the water)",
+                "the depth buffers (the refraction's sampled by the water, the reflection's by a pass)",
         },
         FormatUse {
             format: display,
@@ -167,6 +177,9 @@ pub struct Renderer {
     pub(super) sky: SkyPass,
     /// The island and the objects, in each view.
     pub(super) terrain: TerrainPass,
+    /// The reflection's distances, from its depth, for the water to leave out what stands
+    /// nearer than a sea point.
+    pub(super) reflection_distance: ReflectionDistancePass,
     /// The light shafts' means, drawn before the scene when the camera is under the water.
     pub(super) shafts: ShaftsPass,
     /// The ocean (tessellated or clipmap) and its textures set.
@@ -379,6 +392,8 @@ impl Renderer {
             targets.display_format(),
             water_kind,
         )?;
+        let reflection_distance =
+            ReflectionDistancePass::new(ctx, &targets.reflection.depth, &depth_sampler)?;
         let water = WaterPass::new(
             ctx,
             &frame_set_layout,
@@ -440,6 +455,7 @@ impl Renderer {
             repeat_sampler,
             sky,
             terrain,
+            reflection_distance,
             shafts,
             water,
             spray,
@@ -475,6 +491,8 @@ impl Renderer {
             }
         }
         check_bindings(names::SHAFTS, &[self.shafts.draw(&frame)])?;
+        let set = self.reflection_distance.set_ref();
+        check_bindings(names::REFLECTION, &[self.reflection_distance.draw(&set)])?;
         let draws: Vec<Bindings> = self
             .water
             .pipelines()
@@ -568,6 +586,9 @@ impl Renderer {
             repeat: &self.repeat_sampler,
         };
         self.water.resize(&self.targets, &self.dudv, &samplers)?;
+        let depth = &self.targets.reflection.depth;
+        self.reflection_distance
+            .resize(depth, &self.depth_sampler)?;
         if let Some(pass) = &mut self.anti_aliasing {
             pass.resize(&self.targets.main.colour, &self.clamp_sampler)?;
         }

@@ -13,6 +13,9 @@ use crate::gpu::{Context, GpuResult, Image, ImageDesc};
 /// Reflection and refraction colour: linear radiance, which the water mixes before its tone
 /// map (shaders/common/display.glsl).
 pub const HDR_FORMAT: vk::Format = vk::Format::R16G16B16A16_SFLOAT;
+/// The reflection's distances (`Targets::reflection_distance`): two channels that filter
+/// linearly and blit (both required of R16G16_SFLOAT by Vulkan).
+pub const DISTANCE_FORMAT: vk::Format = vk::Format::R16G16_SFLOAT;
 /// Scene depth (reversed-Z).
 pub const DEPTH_FORMAT: vk::Format = vk::Format::D32_SFLOAT;
 /// Layers of the reflection colour at most: layer 0 is drawn, layer l holds it blurred over 2^l
@@ -92,9 +95,13 @@ pub struct Targets {
     /// What the water reflects (mirrored camera, clipped below the water); its colour has
     /// layers (up to REFLECTION_LAYERS, fewer under 160 rows: REFLECTION_MIN_ROWS), layer 0
     /// drawn, the others filled from it blurred up and down, for the water to blur what it
-    /// reflects; alpha the share of objects (the sky writes 0). Its depth tells the water
-    /// which of them stand nearer than a sea point, out of that point's reflection.
+    /// reflects. Its depth is sampled by the reflection distance pass.
     pub reflection: ColourDepth,
+    /// The reflection's distances, layered and blurred as its colour: per texel the share of
+    /// objects and that share times the log2 of their distance (passes/reflection_distance.rs),
+    /// which tell the water which of them stand nearer than a sea point, out of that point's
+    /// reflection.
+    pub reflection_distance: Image,
     /// What lies under the water (clipped above it); its depth gives the water's thickness.
     pub refraction: ColourDepth,
     /// `--aa fxaa`: the main colour anti-aliased (same size and format), copied or scaled into
@@ -141,8 +148,8 @@ impl Targets {
         } else {
             vk::ImageUsageFlags::TRANSFER_SRC | vk::ImageUsageFlags::SAMPLED
         };
-        // The refraction and reflection depths are sampled by the water (the water's thickness;
-        // which objects stand nearer than a sea point); the main depth is an attachment only.
+        // The refraction depth is sampled by the water (the water's thickness), the
+        // reflection's by the reflection distance pass; the main depth is an attachment only.
         let (only, sampled) = (vk::ImageUsageFlags::empty(), vk::ImageUsageFlags::SAMPLED);
         let anti_aliased = anti_aliased
             .then(|| {
@@ -163,6 +170,14 @@ impl Targets {
                 only,
             )?,
             reflection: ColourDepth::new(ctx, "reflection", rtt, blurred, sampled)?,
+            reflection_distance: plain_image(
+                ctx,
+                "reflection distance",
+                rtt,
+                DISTANCE_FORMAT,
+                vk::ImageUsageFlags::COLOR_ATTACHMENT | vk::ImageUsageFlags::SAMPLED | blits,
+                layers,
+            )?,
             refraction: ColourDepth::new(ctx, "refraction", rtt, hdr, sampled)?,
             anti_aliased,
             output,

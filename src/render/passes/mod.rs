@@ -12,6 +12,7 @@
 
 pub mod anti_aliasing;
 pub mod output;
+pub mod reflection_distance;
 pub mod shafts;
 pub mod sky;
 pub mod spray;
@@ -24,6 +25,7 @@ use std::sync::Arc;
 use ash::vk;
 
 pub use anti_aliasing::AntiAliasingPass;
+pub use reflection_distance::ReflectionDistancePass;
 pub use shafts::ShaftsPass;
 pub use sky::{SkyCube, SkyPass};
 pub use spray::SprayPass;

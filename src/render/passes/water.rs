@@ -36,16 +36,17 @@ pub use crate::shared::PATCHES;
 
 /// Samplers the water's textures use.
 pub struct WaterSamplers<'a> {
-    /// Linear, clamped: reflection (all its layers) and refraction colour.
+    /// Linear, clamped: reflection (all its layers, colour and distances) and refraction
+    /// colour.
     pub clamp: &'a Sampler,
-    /// Nearest, clamped: refraction and reflection depth.
+    /// Nearest, clamped: the refraction's depth.
     pub depth: &'a Sampler,
     /// Linear, repeating: the DU/DV map.
     pub repeat: &'a Sampler,
 }
 
 /// The water's textures (set 1 of the water and of the textures view): reflection colour,
-/// refraction colour and depth, the DU/DV map, the reflection's depth.
+/// refraction colour and depth, the DU/DV map, the reflection's distances.
 pub struct WaterTextures {
     ctx: Arc<Context>,
     pub layout: DescriptorSetLayout,
@@ -111,7 +112,7 @@ impl WaterTextures {
                 (3, Bind::Sampled(dudv, samplers.repeat, t)),
                 (
                     4,
-                    Bind::Sampled(&targets.reflection.depth, samplers.depth, t),
+                    Bind::Sampled(&targets.reflection_distance, samplers.clamp, t),
                 ),
             ],
         )
