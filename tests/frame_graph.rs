@@ -97,6 +97,7 @@ fn water_reads(geometry: &str, vertex_stage: &str) {
     for (resource, stage) in [
         ("reflection colour", FRAGMENT),
         ("reflection distance", FRAGMENT),
+        ("reflection sky", FRAGMENT),
         ("refraction colour", FRAGMENT),
         ("refraction depth", FRAGMENT),
         ("dudv map", FRAGMENT),
@@ -111,12 +112,15 @@ fn water_reads(geometry: &str, vertex_stage: &str) {
         );
         assert_eq!(r["access"][0], "VK_ACCESS_2_SHADER_SAMPLED_READ_BIT");
     }
-    // The reflection's distances are drawn from its depth (after the reflection pass wrote it).
+    // The reflection's distances and sky are drawn from its depth (after the reflection pass
+    // wrote it) and the sky cube.
     let distance = passes(&g, "reflection distance");
     assert_eq!(distance.len(), 1, "one reflection distance pass");
     let depth = read(distance[0], "reflection depth");
     assert_eq!(names(&depth["stages"]), [FRAGMENT]);
     assert_eq!(depth["access"][0], "VK_ACCESS_2_SHADER_SAMPLED_READ_BIT");
+    let cube = read(distance[0], "sky cube");
+    assert_eq!(names(&cube["stages"]), [FRAGMENT]);
     let displacement = read(water, "ocean displacement slot 0");
     assert_eq!(displacement["ordered_by"], "compute timeline");
     assert_eq!(displacement["layout"], "VK_IMAGE_LAYOUT_GENERAL");

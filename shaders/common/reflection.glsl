@@ -4,11 +4,12 @@
 // point. Needs common/frame.glsl (VIEW, frame, sky_lookup, view_ray) and common/glitter.glsl
 // (mean_visible_slope, normal_tail) included before it, the samplers `reflection_colour`
 // (layer 0: the reflection as drawn; layer l: blurred over 2^l rows in its top H / 2^l rows,
-// Recorder::halve_down_layers) and `reflection_distance` (its distances, layered and blurred
-// alike: src/render/passes/reflection_distance.rs) declared before it (no include guards), and
-// runs in a fragment shader drawing the surface (gl_FragCoord.z: its depth).
+// Recorder::halve_down_layers), `reflection_distance` (its distances) and `reflection_sky` (the
+// sky its objects hide), both layered and blurred alike (src/render/passes/
+// reflection_distance.rs), declared before it (no include guards), and runs in a fragment
+// shader drawing the surface (gl_FragCoord.z: its depth).
 
-// The reflection's `image` (colour or distances) at `uv` (of the view) from layer `layer`, whose
+// The reflection's `image` (colour, distances or sky) at `uv` (of the view) from layer `layer`, whose
 // top max(⌊h / 2^layer⌋, 1) rows of the `h` hold it (the rows below are not written: the lookup
 // stays half a row inside).
 vec4 blurred_layer(sampler2DArray image, vec2 uv, float layer, float h) {
@@ -90,18 +91,14 @@ vec3 sea_reflection(vec3 rel_pos, float height, vec2 screen, vec2 offset, vec3 v
     // Where the kernel holds objects (their share α over 0), the share n of them nearer than
     // the sea point (`nearer_objects`) gives way to the sky behind them: with the objects there
     // of one colour O and the sky S, C = (1 − α)S + αO becomes (1 − α)S + α(1 − n)O + αnS =
-    // mix(C, S, n).
+    // mix(C, S, n), S from the sky image blurred by the same kernel (3 sky cube lookups over
+    // its σ had cost the water 2 ms a frame at `low` on lavapipe; one left a faint column).
     vec2 texel = reflection_size.y / max(floor(reflection_size.y / exp2(vec2(below, above))), 1.0);
     float sigma = 0.5 * mix(texel.x, texel.y, layer - below);
     if (distances.x > 1e-3) {
         float nearer = nearer_objects(distances);
-        // The sky behind them blurred as the kernel blurs (σ rows): Gauss-Hermite's 3 nodes.
-        vec2 node = vec2(0.0, 1.7320508 * sigma / h);
-        vec3 behind = vec3(0.0);
-        for (int k = -1; k <= 1; k++) {
-            vec3 ray = view_ray((reflect_uv + float(k) * node) * 2.0 - 1.0);
-            behind += (k == 0 ? 2.0 / 3.0 : 1.0 / 6.0) * sky_lookup(ray * vec3(1.0, -1.0, 1.0));
-        }
+        vec3 behind = mix(blurred_layer(reflection_sky, reflect_uv, below, h),
+                          blurred_layer(reflection_sky, reflect_uv, above, h), layer - below).rgb;
         c_reflect = mix(c_reflect, behind, nearer);
     }
     float to_edge = (1.0 - leaned_uv.y) * reflection_size.y / sigma; // a

@@ -45,6 +45,7 @@ layout(set = 1, binding = 1) uniform sampler2D refraction_colour;
 layout(set = 1, binding = 2) uniform sampler2D refraction_depth;
 layout(set = 1, binding = 3) uniform sampler2D dudv_map;
 layout(set = 1, binding = 4) uniform sampler2DArray reflection_distance; // objects nearer than P
+layout(set = 1, binding = 5) uniform sampler2DArray reflection_sky; // the sky behind them
 #include "common/reflection.glsl"
 
 // WATER_COLOUR (c_o: deep water, seen through nothing) and ABSORPTION_PER_M (red absorbed

@@ -183,15 +183,20 @@ pub fn record_frame(
                 r.sky.record(&rec, &set, view);
             });
             // Its blurred layers, for the water to blur it by the slopes it does not resolve;
-            // its distances (from its depth), blurred alike, to leave out what stands nearer.
+            // its distances (from its depth) and the sky its objects hide, blurred alike, to
+            // put that sky in place of what stands nearer than a sea point.
             rec.halve_down_layers(&t.reflection.colour);
-            let target = [Target::new(&t.reflection_distance, Load::DontCare)];
+            let targets = [
+                Target::new(&t.reflection_distance, Load::DontCare),
+                Target::new(&t.reflection_sky, Load::DontCare),
+            ];
             let pass = &r.reflection_distance;
-            let set = pass.set_ref();
-            let draw = pass.draw(&set);
-            rec.rendering(names::REFLECTION_DISTANCE, &target, None, &[draw])
+            let sets = pass.sets(set[0]);
+            let draw = pass.draw(&sets);
+            rec.rendering(names::REFLECTION_DISTANCE, &targets, None, &[draw])
                 .record(|| pass.record(&rec, &draw));
             rec.halve_down_layers(&t.reflection_distance);
+            rec.halve_down_layers(&t.reflection_sky);
         });
         profiler.pause(&rec);
         rec.end_label();

@@ -89,7 +89,7 @@ fn check_formats(
     ctx.require_formats(&[
         FormatUse {
             format: HDR_FORMAT,
-            // Blits: the reflection's blurred layers (Targets::reflection).
+            // Blits: the blurred layers of the reflection and of the sky its objects hide.
             features: F::COLOR_ATTACHMENT
                 | F::SAMPLED_IMAGE
                 | F::SAMPLED_IMAGE_FILTER_LINEAR
@@ -392,8 +392,12 @@ impl Renderer {
             targets.display_format(),
             water_kind,
         )?;
-        let reflection_distance =
-            ReflectionDistancePass::new(ctx, &targets.reflection.depth, &depth_sampler)?;
+        let reflection_distance = ReflectionDistancePass::new(
+            ctx,
+            &frame_set_layout,
+            &targets.reflection.depth,
+            &depth_sampler,
+        )?;
         let water = WaterPass::new(
             ctx,
             &frame_set_layout,
@@ -491,8 +495,8 @@ impl Renderer {
             }
         }
         check_bindings(names::SHAFTS, &[self.shafts.draw(&frame)])?;
-        let set = self.reflection_distance.set_ref();
-        check_bindings(names::REFLECTION, &[self.reflection_distance.draw(&set)])?;
+        let sets = self.reflection_distance.sets(frame[0]);
+        check_bindings(names::REFLECTION, &[self.reflection_distance.draw(&sets)])?;
         let draws: Vec<Bindings> = self
             .water
             .pipelines()

@@ -102,6 +102,10 @@ pub struct Targets {
     /// which tell the water which of them stand nearer than a sea point, out of that point's
     /// reflection.
     pub reflection_distance: Image,
+    /// The sky the reflection's objects hide, layered and blurred as its colour (the
+    /// reflection distance pass draws it): what the water puts in place of the objects that
+    /// stand nearer than a sea point, blurred exactly as the colour it replaces.
+    pub reflection_sky: Image,
     /// What lies under the water (clipped above it); its depth gives the water's thickness.
     pub refraction: ColourDepth,
     /// `--aa fxaa`: the main colour anti-aliased (same size and format), copied or scaled into
@@ -175,6 +179,14 @@ impl Targets {
                 "reflection distance",
                 rtt,
                 DISTANCE_FORMAT,
+                vk::ImageUsageFlags::COLOR_ATTACHMENT | vk::ImageUsageFlags::SAMPLED | blits,
+                layers,
+            )?,
+            reflection_sky: plain_image(
+                ctx,
+                "reflection sky",
+                rtt,
+                HDR_FORMAT,
                 vk::ImageUsageFlags::COLOR_ATTACHMENT | vk::ImageUsageFlags::SAMPLED | blits,
                 layers,
             )?,

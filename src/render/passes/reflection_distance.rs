@@ -1,36 +1,47 @@
-//! The reflection's distances (shaders/post/reflection_distance.frag): from the reflection's
-//! depth, per texel the share of objects (1, or 0 for the sky) and that share times the log2 of
-//! their distance, into layer 0 of `Targets::reflection_distance`; the frame then blurs its
-//! layers down as it blurs the reflection's colour (`Recorder::halve_down_layers`). The water
-//! reads both at the same place and layer: the blurred pair is the share of objects under its
-//! lookup's kernel and their mean log distance, exactly the objects whose colour the kernel
-//! mixed in, which it takes out where they stand nearer than the sea point
-//! (shaders/common/reflection.glsl). Three taps of the depth itself had stood for the kernel
-//! before, and missed the buoy, a few texels wide, in the blurred layers' tall kernels.
+//! The reflection's distances and the sky its objects hide (shaders/post/reflection_distance.frag):
+//! from the reflection's depth, per texel the share of objects (1, or 0 for the sky) and that
+//! share times the log2 of their distance, into layer 0 of `Targets::reflection_distance`, and
+//! the sky along the mirrored view's ray into layer 0 of `Targets::reflection_sky`; the frame
+//! then blurs both down their layers as it blurs the reflection's colour
+//! (`Recorder::halve_down_layers`). The water reads all three at the same place and layer: the
+//! blurred pair is the share of objects under its lookup's kernel and their mean log distance,
+//! exactly the objects whose colour the kernel mixed in, and the blurred sky is what stands
+//! behind them under that kernel, which replaces them where they stand nearer than the sea
+//! point (shaders/common/reflection.glsl). Three taps of the depth itself had stood for the
+//! kernel before, and missed the buoy, a few texels wide, in the blurred layers' tall kernels.
 
 use std::sync::Arc;
 
 use ash::vk;
 
+use super::bind_scene;
+use super::scene_layout;
 use crate::gpu::{
     Bind, Bindings, BoundSet, Context, DescriptorSetLayout, GpuResult, GraphicsDesc, Image, Order,
-    Pipeline, PipelineLayout, Recorder, Sampler,
+    Pipeline, Recorder, Sampler,
 };
-use crate::render::targets::DISTANCE_FORMAT;
+use crate::render::targets::{DISTANCE_FORMAT, HDR_FORMAT};
+use crate::render::uniforms::ViewIndex;
 use crate::shaders;
 
 pub struct ReflectionDistancePass {
     ctx: Arc<Context>,
     pipeline: Pipeline,
-    /// Binding 0: the reflection's depth. Kept: `resize` makes a set.
+    /// Set 1, binding 0: the reflection's depth. Kept: `resize` makes a set.
     set_layout: DescriptorSetLayout,
     /// Binds the reflection's depth (remade on resize).
     set: BoundSet,
 }
 
 impl ReflectionDistancePass {
-    /// Reads `depth` (the reflection's, texel by texel through `sampler`).
-    pub fn new(ctx: &Arc<Context>, depth: &Image, sampler: &Sampler) -> GpuResult<Self> {
+    /// Reads the frame's set (`frame_layout`: the reflection's view, the sky cube) and `depth`
+    /// (the reflection's, texel by texel through `sampler`).
+    pub fn new(
+        ctx: &Arc<Context>,
+        frame_layout: &DescriptorSetLayout,
+        depth: &Image,
+        sampler: &Sampler,
+    ) -> GpuResult<Self> {
         let set_layout = DescriptorSetLayout::new(
             ctx,
             "reflection distance set layout",
@@ -41,7 +52,12 @@ impl ReflectionDistancePass {
             )],
         )?;
         let set = Self::set(ctx, &set_layout, depth, sampler)?;
-        let layout = PipelineLayout::new(ctx, "reflection distance layout", &[&set_layout], None)?;
+        let layout = scene_layout(
+            ctx,
+            "reflection distance layout",
+            frame_layout,
+            &[&set_layout],
+        )?;
         let pipeline = Pipeline::graphics(
             ctx,
             &layout,
@@ -57,7 +73,7 @@ impl ReflectionDistancePass {
                         shaders::POST_REFLECTION_DISTANCE_FRAG,
                     ),
                 ],
-                colour_formats: &[DISTANCE_FORMAT],
+                colour_formats: &[DISTANCE_FORMAT, HDR_FORMAT],
                 ..Default::default()
             },
         )?;
@@ -87,23 +103,23 @@ impl ReflectionDistancePass {
         Ok(())
     }
 
-    /// Its draw, with the set `set_ref` gives.
-    pub fn draw<'a>(&'a self, sets: &'a [&'a BoundSet; 1]) -> Bindings<'a> {
+    /// Its draw, with the sets `sets` gives.
+    pub fn draw<'a>(&'a self, sets: &'a [&'a BoundSet; 2]) -> Bindings<'a> {
         Bindings {
             pipeline: &self.pipeline,
             sets,
         }
     }
 
-    /// The set `draw` takes.
-    pub fn set_ref(&self) -> [&BoundSet; 1] {
-        [&self.set]
+    /// The frame's set `frame` and this pass's own, which `draw` takes.
+    pub fn sets<'a>(&'a self, frame: &'a BoundSet) -> [&'a BoundSet; 2] {
+        [frame, &self.set]
     }
 
-    /// Draws the distances, inside a rendering scope into layer 0 of
-    /// `Targets::reflection_distance` that declared `draw`.
+    /// Draws the distances and the sky, inside a rendering scope into layer 0 of
+    /// `Targets::reflection_distance` and `Targets::reflection_sky` that declared `draw`.
     pub fn record(&self, rec: &Recorder, draw: &Bindings) {
-        rec.bind(draw);
+        bind_scene(rec, draw, ViewIndex::Reflection);
         rec.draw(3, 1);
     }
 }

@@ -72,6 +72,7 @@ impl WaterTextures {
                 (2, sampled, fragment),
                 (3, sampled, fragment),
                 (4, sampled, fragment),
+                (5, sampled, fragment),
             ],
         )?;
         let set = Self::set(ctx, &layout, targets, dudv, samplers)?;
@@ -114,6 +115,7 @@ impl WaterTextures {
                     4,
                     Bind::Sampled(&targets.reflection_distance, samplers.clamp, t),
                 ),
+                (5, Bind::Sampled(&targets.reflection_sky, samplers.clamp, t)),
             ],
         )
     }
