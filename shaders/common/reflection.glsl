@@ -1,21 +1,30 @@
 // What the sea reflects from above (surface/water.frag): the reflection texture, blurred by the
-// slopes the pixel does not resolve and leaning toward the sky the visible facets face, and the
-// sky cube past the texture's edge and behind the objects that stand nearer than the sea
-// point. Needs common/frame.glsl (VIEW, frame, sky_lookup, view_ray) and common/glitter.glsl
+// slopes the pixel does not resolve and leaning toward the sky the visible facets face, the sky
+// cube past the texture's edge, and the sky in place of the objects that stand nearer than the
+// sea point. Needs common/frame.glsl (VIEW, frame, sky_lookup, view_ray) and common/glitter.glsl
 // (mean_visible_slope, normal_tail) included before it, the samplers `reflection_colour`
 // (layer 0: the reflection as drawn; layer l: blurred over 2^l rows in its top H / 2^l rows,
 // Recorder::halve_down_layers), `reflection_distance` (its distances) and `reflection_sky` (the
-// sky its objects hide), both layered and blurred alike (src/render/passes/
+// sky its objects hide), layered and blurred alike (src/render/passes/
 // reflection_distance.rs), declared before it (no include guards), and runs in a fragment
 // shader drawing the surface (gl_FragCoord.z: its depth).
 
-// The reflection's `image` (colour, distances or sky) at `uv` (of the view) from layer `layer`, whose
-// top max(⌊h / 2^layer⌋, 1) rows of the `h` hold it (the rows below are not written: the lookup
-// stays half a row inside).
+// The reflection's `image` (colour, distances or sky) at `uv` (of the view) from layer `layer`,
+// whose top max(⌊h / 2^layer⌋, 1) rows of the `h` hold it (the rows below are not written: the
+// lookup stays half a row inside).
 vec4 blurred_layer(sampler2DArray image, vec2 uv, float layer, float h) {
     float rows = max(floor(h / exp2(layer)), 1.0);
     float y = clamp(uv.y * rows, 0.5, rows - 0.5) / h;
     return textureLod(image, vec3(uv.x, y, layer), 0.0);
+}
+
+// The reflection's `image` at `uv` blurred by the fractional layer `layer`: its two nearest
+// layers mixed (`size`: the image's texels and layers; the last layer blurs no further).
+vec4 blurred(sampler2DArray image, vec2 uv, float layer, vec3 size) {
+    float below = floor(layer);
+    float above = min(below + 1.0, size.z - 1.0);
+    return mix(blurred_layer(image, uv, below, size.y), blurred_layer(image, uv, above, size.y),
+               layer - below);
 }
 
 // Of the objects `distances` (the reflection's, blurred as its colour at the same place and
@@ -78,13 +87,8 @@ vec3 sea_reflection(vec3 rel_pos, float height, vec2 screen, vec2 offset, vec3 v
     vec2 lean_uv = lean.w > 1e-4 ? (lean.xy / lean.w - seen.xy / seen.w) * 0.5 : vec2(0.0, 1.0);
     vec2 leaned_uv = mirror_uv + offset + lean_uv;
     vec2 reflect_uv = clamp(leaned_uv, 0.001, 0.999);
-    float below = floor(layer);
-    float above = min(below + 1.0, reflection_size.z - 1.0);
-    float h = reflection_size.y;
-    vec3 c_reflect = mix(blurred_layer(reflection_colour, reflect_uv, below, h),
-                         blurred_layer(reflection_colour, reflect_uv, above, h), layer - below).rgb;
-    vec2 distances = mix(blurred_layer(reflection_distance, reflect_uv, below, h),
-                         blurred_layer(reflection_distance, reflect_uv, above, h), layer - below).xy;
+    vec3 c_reflect = blurred(reflection_colour, reflect_uv, layer, reflection_size).rgb;
+    vec2 distances = blurred(reflection_distance, reflect_uv, layer, reflection_size).xy;
     // What stands nearer than this sea point cannot be in its reflection: the reflected ray
     // leaves toward what lies beyond. The blur and the lean took the far sea's lookup onto the
     // mirror images of near objects (the boat, the buoy): a darker column up to the horizon.
@@ -93,14 +97,15 @@ vec3 sea_reflection(vec3 rel_pos, float height, vec2 screen, vec2 offset, vec3 v
     // of one colour O and the sky S, C = (1 − α)S + αO becomes (1 − α)S + α(1 − n)O + αnS =
     // mix(C, S, n), S from the sky image blurred by the same kernel (3 sky cube lookups over
     // its σ had cost the water 2 ms a frame at `low` on lavapipe; one left a faint column).
-    vec2 texel = reflection_size.y / max(floor(reflection_size.y / exp2(vec2(below, above))), 1.0);
-    float sigma = 0.5 * mix(texel.x, texel.y, layer - below);
     if (distances.x > 1e-3) {
         float nearer = nearer_objects(distances);
-        vec3 behind = mix(blurred_layer(reflection_sky, reflect_uv, below, h),
-                          blurred_layer(reflection_sky, reflect_uv, above, h), layer - below).rgb;
+        vec3 behind = blurred(reflection_sky, reflect_uv, layer, reflection_size).rgb;
         c_reflect = mix(c_reflect, behind, nearer);
     }
+    float below = floor(layer);
+    float above = min(below + 1.0, reflection_size.z - 1.0);
+    vec2 texel = reflection_size.y / max(floor(reflection_size.y / exp2(vec2(below, above))), 1.0);
+    float sigma = 0.5 * mix(texel.x, texel.y, layer - below);
     float to_edge = (1.0 - leaned_uv.y) * reflection_size.y / sigma; // a
     if (to_edge < 3.0) { // most pixels: lavapipe skips the cube for their blocks
         float past = normal_tail(to_edge);

@@ -36,7 +36,7 @@ pub use crate::shared::PATCHES;
 
 /// Samplers the water's textures use.
 pub struct WaterSamplers<'a> {
-    /// Linear, clamped: reflection (all its layers, colour and distances) and refraction
+    /// Linear, clamped: reflection (all its layers: colour, distances and sky) and refraction
     /// colour.
     pub clamp: &'a Sampler,
     /// Nearest, clamped: the refraction's depth.
@@ -46,7 +46,7 @@ pub struct WaterSamplers<'a> {
 }
 
 /// The water's textures (set 1 of the water and of the textures view): reflection colour,
-/// refraction colour and depth, the DU/DV map, the reflection's distances.
+/// refraction colour and depth, the DU/DV map, the reflection's distances and sky.
 pub struct WaterTextures {
     ctx: Arc<Context>,
     pub layout: DescriptorSetLayout,
