@@ -7,8 +7,8 @@
 pub const SKY_CUBE: &str = "sky cube";
 /// The mirrored scene above the water, into the reflection texture.
 pub const REFLECTION: &str = "reflection";
-/// The reflection's distances from its depth (a debug label only: timed within
-/// `REFLECTION`, with the blurs of its layers).
+/// The reflection's distances (from its depth) and the sky its objects hide (a debug label
+/// only: timed within `REFLECTION`, with the blurs of its layers).
 pub const REFLECTION_DISTANCE: &str = "reflection distance";
 /// From under the water: the caustics' means along the camera's rays, for the light shafts.
 pub const SHAFTS: &str = "light shafts";

@@ -53,8 +53,8 @@ impl MessageCounters {
 /// they forced the device features their instrumentation needs on
 /// (`WARNING-Setting-Limit-Adjusted`), and that a shader with many buffer reads will be slow to
 /// instrument and run under GPU-AV (`GPUAV-Compile-time-general-buffer`, said by 1.4.364 of one
-/// pipeline a run since the water's reflection lookup reads the reflection's depth: the layer's
-/// own cost, and the remedy it names is a GPU-AV setting).
+/// pipeline a run since the water's reflection lookup reads more of the reflection's images:
+/// the layer's own cost, and the remedy it names is a GPU-AV setting).
 const LAYER_NOTICES: [&str; 3] = [
     "VALIDATION-SETTINGS",
     "WARNING-Setting-Limit-Adjusted",

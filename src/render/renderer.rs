@@ -177,8 +177,8 @@ pub struct Renderer {
     pub(super) sky: SkyPass,
     /// The island and the objects, in each view.
     pub(super) terrain: TerrainPass,
-    /// The reflection's distances, from its depth, for the water to leave out what stands
-    /// nearer than a sea point.
+    /// The reflection's distances (from its depth) and the sky its objects hide, for the water
+    /// to put that sky in place of what stands nearer than a sea point.
     pub(super) reflection_distance: ReflectionDistancePass,
     /// The light shafts' means, drawn before the scene when the camera is under the water.
     pub(super) shafts: ShaftsPass,

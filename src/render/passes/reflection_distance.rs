@@ -14,8 +14,7 @@ use std::sync::Arc;
 
 use ash::vk;
 
-use super::bind_scene;
-use super::scene_layout;
+use super::{bind_scene, scene_layout};
 use crate::gpu::{
     Bind, Bindings, BoundSet, Context, DescriptorSetLayout, GpuResult, GraphicsDesc, Image, Order,
     Pipeline, Recorder, Sampler,
