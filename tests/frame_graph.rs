@@ -96,7 +96,6 @@ fn water_reads(geometry: &str, vertex_stage: &str) {
     // compute timeline's wait (in GENERAL), the others by barriers.
     for (resource, stage) in [
         ("reflection colour", FRAGMENT),
-        ("reflection distance", FRAGMENT),
         ("reflection sky", FRAGMENT),
         ("refraction colour", FRAGMENT),
         ("refraction depth", FRAGMENT),
@@ -112,7 +111,7 @@ fn water_reads(geometry: &str, vertex_stage: &str) {
         );
         assert_eq!(r["access"][0], "VK_ACCESS_2_SHADER_SAMPLED_READ_BIT");
     }
-    // The reflection's distances and sky are drawn from its depth (after the reflection pass
+    // The reflection's sky and distances are drawn from its depth (after the reflection pass
     // wrote it) and the sky cube.
     let distance = passes(&g, "reflection distance");
     assert_eq!(distance.len(), 1, "one reflection distance pass");

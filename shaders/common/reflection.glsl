@@ -4,12 +4,12 @@
 // sea point. Needs common/frame.glsl (VIEW, frame, sky_lookup, view_ray) and common/glitter.glsl
 // (mean_visible_slope, normal_tail) included before it, the samplers `reflection_colour`
 // (layer 0: the reflection as drawn; layer l: blurred over 2^l rows in its top H / 2^l rows,
-// Recorder::halve_down_layers), `reflection_distance` (its distances) and `reflection_sky` (the
-// sky its objects hide), layered and blurred alike (src/render/passes/
-// reflection_distance.rs), declared before it (no include guards), and runs in a fragment
-// shader drawing the surface (gl_FragCoord.z: its depth).
+// Recorder::halve_down_layers; alpha: the share of objects) and `reflection_sky` (the sky its
+// objects hide; alpha: that share times log2 of their distance), layered and blurred alike
+// (src/render/passes/reflection_distance.rs), declared before it (no include guards), and runs
+// in a fragment shader drawing the surface (gl_FragCoord.z: its depth).
 
-// The reflection's `image` (colour, distances or sky) at `uv` (of the view) from layer `layer`,
+// The reflection's `image` (colour or sky) at `uv` (of the view) from layer `layer`,
 // whose top max(⌊h / 2^layer⌋, 1) rows of the `h` hold it (the rows below are not written: the
 // lookup stays half a row inside).
 vec4 blurred_layer(sampler2DArray image, vec2 uv, float layer, float h) {
@@ -28,7 +28,7 @@ vec4 blurred(sampler2DArray image, vec2 uv, float layer, vec3 size) {
 }
 
 // Of the objects `distances` (the reflection's, blurred as its colour at the same place and
-// layers: their share α and α·u, u = log2(distance / near)) says the lookup mixed in, the share
+// layers: their share α and α·u, u = log2(distance / near)) say the lookup mixed in, the share
 // standing nearer than the surface point drawn (gl_FragCoord.z: its depth, near / distance).
 // The surface and the reflection's mirrored camera share a projection, so an object's distance
 // there is its mirror image's in this view: it stands nearer than the surface point where that
@@ -87,8 +87,8 @@ vec3 sea_reflection(vec3 rel_pos, float height, vec2 screen, vec2 offset, vec3 v
     vec2 lean_uv = lean.w > 1e-4 ? (lean.xy / lean.w - seen.xy / seen.w) * 0.5 : vec2(0.0, 1.0);
     vec2 leaned_uv = mirror_uv + offset + lean_uv;
     vec2 reflect_uv = clamp(leaned_uv, 0.001, 0.999);
-    vec3 c_reflect = blurred(reflection_colour, reflect_uv, layer, reflection_size).rgb;
-    vec2 distances = blurred(reflection_distance, reflect_uv, layer, reflection_size).xy;
+    vec4 colour = blurred(reflection_colour, reflect_uv, layer, reflection_size);
+    vec3 c_reflect = colour.rgb;
     // What stands nearer than this sea point cannot be in its reflection: the reflected ray
     // leaves toward what lies beyond. The blur and the lean took the far sea's lookup onto the
     // mirror images of near objects (the boat, the buoy): a darker column up to the horizon.
@@ -97,17 +97,20 @@ vec3 sea_reflection(vec3 rel_pos, float height, vec2 screen, vec2 offset, vec3 v
     // of one colour O and the sky S, C = (1 − α)S + αO becomes (1 − α)S + α(1 − n)O + αnS =
     // mix(C, S, n), S from the sky image blurred by the same kernel (3 sky cube lookups over
     // its σ had cost the water 2 ms a frame at `low` on lavapipe; one left a faint column).
-    if (distances.x > 1e-3) {
-        float nearer = nearer_objects(distances);
-        vec3 behind = blurred(reflection_sky, reflect_uv, layer, reflection_size).rgb;
-        c_reflect = mix(c_reflect, behind, nearer);
+    // α is the colour's alpha and α·u the sky's, so the lookups are the ones the mix needs (an
+    // image of the distances of its own had cost the water 2 lookups more, 0.6 ms at `low`).
+    if (colour.a > 1e-3) {
+        vec4 behind = blurred(reflection_sky, reflect_uv, layer, reflection_size);
+        c_reflect = mix(c_reflect, behind.rgb, nearer_objects(vec2(colour.a, behind.a)));
     }
     float below = floor(layer);
     float above = min(below + 1.0, reflection_size.z - 1.0);
     vec2 texel = reflection_size.y / max(floor(reflection_size.y / exp2(vec2(below, above))), 1.0);
     float sigma = 0.5 * mix(texel.x, texel.y, layer - below);
     float to_edge = (1.0 - leaned_uv.y) * reflection_size.y / sigma; // a
-    if (to_edge < 3.0) { // most pixels: lavapipe skips the cube for their blocks
+    // Most pixels are farther from the edge: a GPU skips the cube for their blocks; lavapipe
+    // runs the branch for every pixel (0.6-1.1 ms of the water pass at `low`, 2026-12-05).
+    if (to_edge < 3.0) {
         float past = normal_tail(to_edge);
         float mills = 0.39894228 * exp(-0.5 * to_edge * to_edge) / max(past, 1e-3);
         // Rows per radian of turn where the turned ray lands: the projection's derivative.

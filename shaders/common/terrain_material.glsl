@@ -43,13 +43,17 @@ vec3 value_noise(vec2 p) {
 // Fractal sum of `octaves` of value noise, the first `wavelength_m` long, each next one 2.03
 // times shorter and half as strong, each faded out as a pixel `pixel_m` across stops
 // resolving it (gone at two pixels a wavelength): x the sum in about [−1, 1], yz its gradient
-// per metre.
+// per metre. The octaves after the first one gone are not evaluated (all shorter, all gone):
+// the far island's pixels skip most of them.
 vec3 noise_fbm(vec2 xz, float wavelength_m, int octaves, float pixel_m) {
     vec3 sum = vec3(0.0);
     float amplitude = 0.5;
     float length_m = wavelength_m;
     for (int o = 0; o < octaves; ++o) {
         float seen = clamp(length_m / (2.0 * pixel_m) - 1.0, 0.0, 1.0);
+        if (seen <= 0.0) {
+            break;
+        }
         vec3 n = value_noise(xz / length_m + vec2(17.3, 5.1) * float(o));
         sum += amplitude * seen * vec3(2.0 * n.x - 1.0, 2.0 * n.yz / length_m);
         amplitude *= 0.5;

@@ -5,6 +5,7 @@
 // and limb-darkened (common/sky.glsl). The reflection view leaves the disc out: a mirror image
 // of it was a second sharp sun in the water, whose sun is the specular term of water.frag. With
 // the test background on (modes.w), the main view paints a solid colour found nowhere else.
+// In the HDR targets its alpha is 0 (objects: 1).
 #include "common/frame.glsl"
 #include "common/display.glsl"
 #include "common/sky.glsl"
@@ -36,4 +37,10 @@ void main() {
     vec4 sky = textureLod(sky_cube, dir, 0.0);
     vec3 through_air = frame.sun_light.rgb / frame.light.z;
     out_colour = target_colour(sky.rgb + frame.light.x * through_air * sky.a * disc);
+    // In the reflection and the refraction (HDR targets) alpha is the share of objects, 0 for
+    // the sky (the terrain's pixels write 1): blurred down the reflection's layers, the share
+    // under a lookup's kernel (common/reflection.glsl).
+    if (DISPLAY_TARGET == 0) {
+        out_colour.a = 0.0;
+    }
 }

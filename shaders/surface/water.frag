@@ -31,6 +31,7 @@ layout(location = 4) in float in_sun_through; // water_vertex.glsl: the clouds' 
 layout(location = 5) flat in vec3 in_sky_zenith; // and the frame's sky radiance at the zenith
 layout(location = 6) in vec4 in_surf; // water_vertex.glsl: the bores' phase, share, gradient
 layout(location = 7) in float in_slick; // water_vertex.glsl: the share of a natural slick here
+layout(location = 8) in vec3 in_horizon; // water_vertex.glsl: the sky at the horizon behind P
 layout(location = 0) out vec4 out_colour;
 
 // Which side the main view sees the surface from (src/render/passes/water.rs, `WaterSide`):
@@ -40,12 +41,13 @@ layout(constant_id = 2) const int UNDERWATER_VIEW = 0;
 
 // Layer 0: the reflection as drawn; layer l: blurred over 2^l rows in its top H / 2^l rows
 // (Recorder::halve_down_layers); common/reflection.glsl looks it up.
+// Alpha: the share of objects (src/render/passes/reflection_distance.rs).
 layout(set = 1, binding = 0) uniform sampler2DArray reflection_colour;
 layout(set = 1, binding = 1) uniform sampler2D refraction_colour;
 layout(set = 1, binding = 2) uniform sampler2D refraction_depth;
 layout(set = 1, binding = 3) uniform sampler2D dudv_map;
-layout(set = 1, binding = 4) uniform sampler2DArray reflection_distance; // objects nearer than P
-layout(set = 1, binding = 5) uniform sampler2DArray reflection_sky; // the sky behind them
+// The sky behind the objects; alpha: their share times their log2 distance.
+layout(set = 1, binding = 4) uniform sampler2DArray reflection_sky;
 #include "common/reflection.glsl"
 
 // WATER_COLOUR (c_o: deep water, seen through nothing) and ABSORPTION_PER_M (red absorbed
@@ -327,7 +329,7 @@ vec3 crest_light(vec3 v, vec3 l, vec3 sunlight, float h, float hs, float compres
 // under white light, and at sunset as warm and bright as the sky around it. `lace`: thicker
 // foam is whiter, its thin lace greyer.
 vec3 foam_light(vec3 n, vec3 v, vec3 l, vec3 sunlight, vec3 horizon, float lace) {
-    vec3 surface = sunlight * max(dot(n, l), 0.0) / PI + sky_ambient(n);
+    vec3 surface = sunlight * max(dot(n, l), 0.0) / PI + sky_ambient_under(n, in_sky_zenith);
     vec3 sides = sunlight * henyey_greenstein(dot(-l, v), 0.5) + horizon;
     return FOAM_ALBEDO * (0.4 + 0.6 * lace) * (surface + 0.5 * sides);
 }
@@ -426,7 +428,7 @@ vec3 mirrored_floor(vec3 p, vec3 r) {
     // The casters' shadows on it (common/shadow.glsl; with --shadows), cast from half a metre
     // over the ground as for the floor seen directly, and the clouds' above it.
     lambert *= lambert > 0.0 ? sun_shadow(vec3(q.x, max(q.y, h) + 0.5, q.z), -1) : 1.0;
-    vec3 light = sun_light_at(q) * lambert / 3.14159265 + sky_ambient(n);
+    vec3 light = sun_light_at(q) * lambert / 3.14159265 + sky_ambient_under(n, in_sky_zenith);
     vec3 colour = terrain_albedo(q.y, n.y) * light * exp(-depth * ABSORPTION_PER_M);
     return underwater_fog(colour, colour, r, hit);
 }
@@ -612,7 +614,7 @@ void main() {
 
     // Whitecaps: a layer of foam of reflectance R over the water (foam_layer), lit as a
     // scattering medium (foam_light). The horizon's sky behind the pixel lights it and hazes it.
-    vec3 horizon = sky_lookup(normalize(vec3(-v.x, 0.0, -v.z) + vec3(0.0, 0.002, 0.0)));
+    vec3 horizon = in_horizon;
     // Evaluated at every pixel: lavapipe runs both sides of a branch anyway (a branch on the
     // field with two more lace lookups for the relief cost it 3.7 ms more at `low`), and the
     // relief's screen-space derivatives need every pixel of a quad.

@@ -182,20 +182,17 @@ pub fn record_frame(
                 r.terrain.record(&rec, &set, view, false, r.bodies());
                 r.sky.record(&rec, &set, view);
             });
-            // Its blurred layers, for the water to blur it by the slopes it does not resolve;
-            // its distances (from its depth) and the sky its objects hide, blurred alike, to
-            // put that sky in place of what stands nearer than a sea point.
+            // Its blurred layers, for the water to blur it by the slopes it does not resolve
+            // (their alpha: the share of objects, as the sky writes 0); the sky its objects
+            // hide with their distances (from its depth) as alpha, blurred alike, to put that
+            // sky in place of what stands nearer than a sea point.
             rec.halve_down_layers(&t.reflection.colour);
-            let targets = [
-                Target::new(&t.reflection_distance, Load::DontCare),
-                Target::new(&t.reflection_sky, Load::DontCare),
-            ];
+            let targets = [Target::new(&t.reflection_sky, Load::DontCare)];
             let pass = &r.reflection_distance;
             let sets = pass.sets(set[0]);
             let draw = pass.draw(&sets);
             rec.rendering(names::REFLECTION_DISTANCE, &targets, None, &[draw])
                 .record(|| pass.record(&rec, &draw));
-            rec.halve_down_layers(&t.reflection_distance);
             rec.halve_down_layers(&t.reflection_sky);
         });
         profiler.pause(&rec);

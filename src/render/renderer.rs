@@ -18,7 +18,7 @@ use super::passes::{
 };
 use super::scene::{dudv_size, generate_dudv, load_dudv, DUDV_SIDE};
 use super::targets::Targets;
-use super::targets::{DEPTH_FORMAT, DISTANCE_FORMAT, HDR_FORMAT};
+use super::targets::{DEPTH_FORMAT, HDR_FORMAT};
 use super::uniforms::{
     sky_uniforms, FrameInputs, FrameParams, FrameUniforms, OceanBindings, SkyLight, ViewIndex,
 };
@@ -98,16 +98,6 @@ fn check_formats(
             what: "the reflection, refraction and sky textures",
         },
         FormatUse {
-            format: DISTANCE_FORMAT,
-            // Blurred down its layers as the reflection's colour.
-            features: F::COLOR_ATTACHMENT
-                | F::SAMPLED_IMAGE
-                | F::SAMPLED_IMAGE_FILTER_LINEAR
-                | F::BLIT_SRC
-                | F::BLIT_DST,
-            what: "the reflection's distances",
-        },
-        FormatUse {
             format: DEPTH_FORMAT,
             // Sampling D32 is required by Vulkan; rendering to it is required of D32 or X8_D24.
             features: F::DEPTH_STENCIL_ATTACHMENT | F::SAMPLED_IMAGE,
@@ -177,8 +167,8 @@ pub struct Renderer {
     pub(super) sky: SkyPass,
     /// The island and the objects, in each view.
     pub(super) terrain: TerrainPass,
-    /// The reflection's distances (from its depth) and the sky its objects hide, for the water
-    /// to put that sky in place of what stands nearer than a sea point.
+    /// Where the reflection's objects stand and how far (from its depth), and the sky they
+    /// hide, for the water to put that sky in place of what stands nearer than a sea point.
     pub(super) reflection_distance: ReflectionDistancePass,
     /// The light shafts' means, drawn before the scene when the camera is under the water.
     pub(super) shafts: ShaftsPass,

@@ -11,11 +11,9 @@ use ash::vk;
 use crate::gpu::{Context, GpuResult, Image, ImageDesc};
 
 /// Reflection and refraction colour: linear radiance, which the water mixes before its tone
-/// map (shaders/common/display.glsl).
+/// map (shaders/common/display.glsl). The reflection's and its sky's alphas carry where its
+/// objects stand and how far (passes/reflection_distance.rs).
 pub const HDR_FORMAT: vk::Format = vk::Format::R16G16B16A16_SFLOAT;
-/// The reflection's distances (`Targets::reflection_distance`): two channels that filter
-/// linearly and blit (both required of R16G16_SFLOAT by Vulkan).
-pub const DISTANCE_FORMAT: vk::Format = vk::Format::R16G16_SFLOAT;
 /// Scene depth (reversed-Z).
 pub const DEPTH_FORMAT: vk::Format = vk::Format::D32_SFLOAT;
 /// Layers of the reflection colour at most: layer 0 is drawn, layer l holds it blurred over 2^l
@@ -95,16 +93,14 @@ pub struct Targets {
     /// What the water reflects (mirrored camera, clipped below the water); its colour has
     /// layers (up to REFLECTION_LAYERS, fewer under 160 rows: REFLECTION_MIN_ROWS), layer 0
     /// drawn, the others filled from it blurred up and down, for the water to blur what it
-    /// reflects. Its depth is sampled by the reflection distance pass.
+    /// reflects. Its depth is sampled by the reflection distance pass, which writes the
+    /// colour's alpha: the share of objects (passes/reflection_distance.rs).
     pub reflection: ColourDepth,
-    /// The reflection's distances, layered and blurred as its colour: per texel the share of
-    /// objects and that share times the log2 of their distance (passes/reflection_distance.rs),
-    /// which tell the water which of them stand nearer than a sea point, out of that point's
-    /// reflection.
-    pub reflection_distance: Image,
     /// The sky the reflection's objects hide, layered and blurred as its colour (the
     /// reflection distance pass draws it): what the water puts in place of the objects that
-    /// stand nearer than a sea point, blurred exactly as the colour it replaces.
+    /// stand nearer than a sea point, blurred exactly as the colour it replaces. Its alpha:
+    /// the share of objects times the log2 of their distance, which tells the water which
+    /// of them stand nearer than a sea point, out of that point's reflection.
     pub reflection_sky: Image,
     /// What lies under the water (clipped above it); its depth gives the water's thickness.
     pub refraction: ColourDepth,
@@ -174,14 +170,6 @@ impl Targets {
                 only,
             )?,
             reflection: ColourDepth::new(ctx, "reflection", rtt, blurred, sampled)?,
-            reflection_distance: plain_image(
-                ctx,
-                "reflection distance",
-                rtt,
-                DISTANCE_FORMAT,
-                vk::ImageUsageFlags::COLOR_ATTACHMENT | vk::ImageUsageFlags::SAMPLED | blits,
-                layers,
-            )?,
             reflection_sky: plain_image(
                 ctx,
                 "reflection sky",

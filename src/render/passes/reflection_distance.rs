@@ -1,14 +1,16 @@
 //! The reflection's distances and the sky its objects hide (shaders/post/reflection_distance.frag):
-//! from the reflection's depth, per texel the share of objects (1, or 0 for the sky) and that
-//! share times the log2 of their distance, into layer 0 of `Targets::reflection_distance`, and
-//! the sky along the mirrored view's ray into layer 0 of `Targets::reflection_sky`; the frame
-//! then blurs both down their layers as it blurs the reflection's colour
-//! (`Recorder::halve_down_layers`). The water reads all three at the same place and layer: the
-//! blurred pair is the share of objects under its lookup's kernel and their mean log distance,
-//! exactly the objects whose colour the kernel mixed in, and the blurred sky is what stands
-//! behind them under that kernel, which replaces them where they stand nearer than the sea
-//! point (shaders/common/reflection.glsl). Three taps of the depth itself had stood for the
-//! kernel before, and missed the buoy, a few texels wide, in the blurred layers' tall kernels.
+//! the sky along the mirrored view's ray, and as its alpha, from the reflection's depth, the
+//! share of objects (1, or 0 for the sky) times the log2 of their distance, into layer 0 of
+//! `Targets::reflection_sky`; the frame then blurs it down its layers as it blurs the
+//! reflection's colour (`Recorder::halve_down_layers`), whose alpha is the share of objects
+//! (the sky draws 0 there: shaders/sky/sky.frag). The water reads both at the same place and
+//! layer: the blurred alphas are the share of objects under its lookup's kernel and that share
+//! times their mean log distance, exactly the objects whose colour the kernel mixed in, and the
+//! blurred sky is what stands behind them under that kernel, which replaces them where they
+//! stand nearer than the sea point (shaders/common/reflection.glsl). Three taps of the depth
+//! itself had stood for the kernel before, and missed the buoy, a few texels wide, in the
+//! blurred layers' tall kernels; an image of the distances of its own, blurred alike, cost the
+//! water two lookups more than the alphas.
 
 use std::sync::Arc;
 
@@ -19,7 +21,7 @@ use crate::gpu::{
     Bind, Bindings, BoundSet, Context, DescriptorSetLayout, GpuResult, GraphicsDesc, Image, Order,
     Pipeline, Recorder, Sampler,
 };
-use crate::render::targets::{DISTANCE_FORMAT, HDR_FORMAT};
+use crate::render::targets::HDR_FORMAT;
 use crate::render::uniforms::ViewIndex;
 use crate::shaders;
 
@@ -72,7 +74,7 @@ impl ReflectionDistancePass {
                         shaders::POST_REFLECTION_DISTANCE_FRAG,
                     ),
                 ],
-                colour_formats: &[DISTANCE_FORMAT, HDR_FORMAT],
+                colour_formats: &[HDR_FORMAT],
                 ..Default::default()
             },
         )?;
@@ -115,8 +117,8 @@ impl ReflectionDistancePass {
         [frame, &self.set]
     }
 
-    /// Draws the distances and the sky, inside a rendering scope into layer 0 of
-    /// `Targets::reflection_distance` and `Targets::reflection_sky` that declared `draw`.
+    /// Draws the sky and the distances, inside a rendering scope into layer 0 of
+    /// `Targets::reflection_sky` that declared `draw`.
     pub fn record(&self, rec: &Recorder, draw: &Bindings) {
         bind_scene(rec, draw, ViewIndex::Reflection);
         rec.draw(3, 1);

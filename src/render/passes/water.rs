@@ -72,7 +72,6 @@ impl WaterTextures {
                 (2, sampled, fragment),
                 (3, sampled, fragment),
                 (4, sampled, fragment),
-                (5, sampled, fragment),
             ],
         )?;
         let set = Self::set(ctx, &layout, targets, dudv, samplers)?;
@@ -111,11 +110,7 @@ impl WaterTextures {
                     Bind::Sampled(&targets.refraction.depth, samplers.depth, t),
                 ),
                 (3, Bind::Sampled(dudv, samplers.repeat, t)),
-                (
-                    4,
-                    Bind::Sampled(&targets.reflection_distance, samplers.clamp, t),
-                ),
-                (5, Bind::Sampled(&targets.reflection_sky, samplers.clamp, t)),
+                (4, Bind::Sampled(&targets.reflection_sky, samplers.clamp, t)),
             ],
         )
     }
