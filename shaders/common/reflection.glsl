@@ -98,7 +98,7 @@ vec3 sea_reflection(vec3 rel_pos, float height, vec2 screen, vec2 offset, vec3 v
     // mix(C, S, n), S from the sky image blurred by the same kernel (3 sky cube lookups over
     // its σ had cost the water 2 ms a frame at `low` on lavapipe; one left a faint column).
     // α is the colour's alpha and α·u the sky's, so the lookups are the ones the mix needs (an
-    // image of the distances of its own had cost the water 2 lookups more, 0.6 ms at `low`).
+    // image of the distances of its own had cost the water 2 lookups more, 0.4 ms at `low`).
     if (colour.a > 1e-3) {
         vec4 behind = blurred(reflection_sky, reflect_uv, layer, reflection_size);
         c_reflect = mix(c_reflect, behind.rgb, nearer_objects(vec2(colour.a, behind.a)));

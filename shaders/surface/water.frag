@@ -41,7 +41,7 @@ layout(constant_id = 2) const int UNDERWATER_VIEW = 0;
 
 // Layer 0: the reflection as drawn; layer l: blurred over 2^l rows in its top H / 2^l rows
 // (Recorder::halve_down_layers); common/reflection.glsl looks it up.
-// Alpha: the share of objects (src/render/passes/reflection_distance.rs).
+// Alpha: the share of objects (the sky draws 0 there, the terrain and objects 1).
 layout(set = 1, binding = 0) uniform sampler2DArray reflection_colour;
 layout(set = 1, binding = 1) uniform sampler2D refraction_colour;
 layout(set = 1, binding = 2) uniform sampler2D refraction_depth;

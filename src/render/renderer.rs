@@ -167,8 +167,8 @@ pub struct Renderer {
     pub(super) sky: SkyPass,
     /// The island and the objects, in each view.
     pub(super) terrain: TerrainPass,
-    /// Where the reflection's objects stand and how far (from its depth), and the sky they
-    /// hide, for the water to put that sky in place of what stands nearer than a sea point.
+    /// The sky the reflection's objects hide, with how far they stand (from its depth) as its
+    /// alpha, for the water to put that sky in place of what stands nearer than a sea point.
     pub(super) reflection_distance: ReflectionDistancePass,
     /// The light shafts' means, drawn before the scene when the camera is under the water.
     pub(super) shafts: ShaftsPass,

@@ -93,8 +93,8 @@ pub struct Targets {
     /// What the water reflects (mirrored camera, clipped below the water); its colour has
     /// layers (up to REFLECTION_LAYERS, fewer under 160 rows: REFLECTION_MIN_ROWS), layer 0
     /// drawn, the others filled from it blurred up and down, for the water to blur what it
-    /// reflects. Its depth is sampled by the reflection distance pass, which writes the
-    /// colour's alpha: the share of objects (passes/reflection_distance.rs).
+    /// reflects. Its alpha is the share of objects (the sky draws 0, the terrain and objects 1);
+    /// its depth is sampled by the reflection distance pass (passes/reflection_distance.rs).
     pub reflection: ColourDepth,
     /// The sky the reflection's objects hide, layered and blurred as its colour (the
     /// reflection distance pass draws it): what the water puts in place of the objects that
