@@ -613,8 +613,8 @@ void main() {
     vec3 colour = mix(transmitted, c_reflect, f);
 
     // Whitecaps: a layer of foam of reflectance R over the water (foam_layer), lit as a
-    // scattering medium (foam_light). The horizon's sky behind the pixel lights it and hazes it.
-    vec3 horizon = in_horizon;
+    // scattering medium (foam_light). The horizon's sky behind the pixel (in_horizon) lights it
+    // and hazes it.
     // Evaluated at every pixel: lavapipe runs both sides of a branch anyway (a branch on the
     // field with two more lace lookups for the relief cost it 3.7 ms more at `low`), and the
     // relief's screen-space derivatives need every pixel of a quad.
@@ -633,7 +633,7 @@ void main() {
     vec3 grad = abs(det) > 1e-12 ? (dFdx(lace) * r1 + dFdy(lace) * r2) / det : vec3(0.0);
     vec3 foam_n = normalize(n - FOAM_RELIEF_M * grad);
     // Looking straight down there is no horizon behind the foam: the sky above it.
-    vec3 behind = mix(in_sky_zenith, horizon, clamp(2.0 * length(v.xz), 0.0, 1.0));
+    vec3 behind = mix(in_sky_zenith, in_horizon, clamp(2.0 * length(v.xz), 0.0, 1.0));
     colour = mix(colour, foam_light(foam_n, v, sun, sunlight, behind, lace), opacity);
     // c_h: the sun's glitter from the slopes the normal does not resolve (the sea's mean-square
     // slope, Cox & Munk 1954, less what the cascades drawn here carry), none on the foam.
@@ -641,5 +641,5 @@ void main() {
     colour += sunlight * glitter;
 
     vec3 haze = aerial_haze(dist);
-    out_colour = target_colour(from_under ? under_colour : mix(colour, horizon, haze));
+    out_colour = target_colour(from_under ? under_colour : mix(colour, in_horizon, haze));
 }
