@@ -6,11 +6,16 @@
 // DISPLAY_TARGET of common/display.glsl: 1 = the target has an sRGB format, so samples are
 // linear (decoded) and the attachment encodes; 2 = a UNORM target holding encoded values.
 layout(constant_id = 0) const int DISPLAY_TARGET = 1;
+// Lottes' fastest preset (FXAA 3.11's quality preset 10, 3 search steps, and his "low quality"
+// edge threshold, 0.25) instead of his defaults (preset 12, 0.166): `--quality low`
+// (src/render/passes/anti_aliasing.rs).
+layout(constant_id = 1) const bool FXAA_FAST = false;
 
 layout(set = 0, binding = 0) uniform sampler2D display_colour;
 
-// Lottes' defaults (FXAA 3.11, "quality" preset 12).
-const float EDGE_THRESHOLD = 0.166;      // local contrast needed, relative to the brightest luma
+// Lottes' defaults (FXAA 3.11, "quality" preset 12), or his low quality (FXAA_FAST). The
+// local contrast needed, relative to the brightest luma:
+const float EDGE_THRESHOLD = FXAA_FAST ? 0.25 : 0.166;
 const float EDGE_THRESHOLD_MIN = 0.0833; // ... and at least this (dark regions stay untouched)
 
 // Perceptual luma (the whitepaper's: Rec. 601 weights on gamma-encoded colour; the square root

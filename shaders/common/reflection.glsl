@@ -1,13 +1,13 @@
 // What the sea reflects from above (surface/water.frag): the reflection texture, blurred by the
 // slopes the pixel does not resolve and leaning toward the sky the visible facets face, the sky
-// cube past the texture's edge, and the sky in place of the objects that stand nearer than the
-// sea point. Needs common/frame.glsl (VIEW, frame, sky_lookup, view_ray) and common/glitter.glsl
-// (mean_visible_slope, normal_tail) included before it, the samplers `reflection_colour`
-// (layer 0: the reflection as drawn; layer l: blurred over 2^l rows in its top H / 2^l rows,
-// Recorder::halve_down_layers; alpha: the share of objects) and `reflection_sky` (the sky its
-// objects hide; alpha: that share times log2 of their distance), layered and blurred alike
-// (src/render/passes/reflection_distance.rs), declared before it (no include guards), and runs
-// in a fragment shader drawing the surface (gl_FragCoord.z: its depth).
+// past the texture's edge (the vertices'), and the sky in place of the objects that stand nearer
+// than the sea point. Needs common/frame.glsl (VIEW, frame, sky_lookup, view_ray) and
+// common/glitter.glsl (mean_visible_slope, normal_tail) included before it, the samplers
+// `reflection_colour` (layer 0: the reflection as drawn; layer l: blurred over 2^l rows in its top
+// H / 2^l rows, Recorder::halve_down_layers; alpha: the share of objects) and `reflection_sky`
+// (the sky its objects hide; alpha: that share times log2 of their distance), layered and blurred
+// alike (src/render/passes/reflection_distance.rs), declared before it (no include guards), and
+// runs in a fragment shader drawing the surface (gl_FragCoord.z: its depth).
 
 // The reflection's `image` (colour or sky) at `uv` (of the view) from layer `layer`,
 // whose top max(⌊h / 2^layer⌋, 1) rows of the `h` hold it (the rows below are not written: the
@@ -67,9 +67,12 @@ float nearer_objects(vec2 distances) {
 // toward −ŷ; both projected as points at infinity). About the mean plane (tan e): about the
 // drawn normal it would follow the drawn slopes the wrong way and alias far out.
 // The blur (σ: half a texel of the layer's ⌊H/2^l⌋ rows stretched over H) reaches past the
-// texture's bottom edge (higher sky) for a share 1 − Φ(a), a = (H − y)/σ (y in rows): the
-// sky cube's, along the ray turned on to that share's mean row y + σφ(a)/(1 − Φ(a)).
-vec3 sea_reflection(vec3 rel_pos, float height, vec2 screen, vec2 offset, vec3 v, float along_ms) {
+// texture's bottom edge (higher sky) for a share 1 − Φ(a), a = (H − y)/σ (y in rows): there
+// `edge_sky`, the sky along the mirrored ray turned up by the lean (common/water_vertex.glsl,
+// per vertex: those rays point high, where the sky changes slowly). Until 2026-12-05 each
+// pixel turned the ray on to that share's mean row, y + σφ(a)/(1 − Φ(a)), a degree or so more.
+vec3 sea_reflection(vec3 rel_pos, float height, vec2 screen, vec2 offset, vec3 v, float along_ms,
+                    vec3 edge_sky) {
     vec4 mirror = VIEW.view_proj * vec4(rel_pos - vec3(0.0, 2.0 * height, 0.0), 1.0);
     vec2 mirror_uv = mirror.w > 0.0 ? mirror.xy / mirror.w * 0.5 + 0.5 : screen;
     vec3 reflection_size = vec3(textureSize(reflection_colour, 0));
@@ -108,18 +111,9 @@ vec3 sea_reflection(vec3 rel_pos, float height, vec2 screen, vec2 offset, vec3 v
     vec2 texel = reflection_size.y / max(floor(reflection_size.y / exp2(vec2(below, above))), 1.0);
     float sigma = 0.5 * mix(texel.x, texel.y, layer - below);
     float to_edge = (1.0 - leaned_uv.y) * reflection_size.y / sigma; // a
-    // Most pixels are farther from the edge: a GPU skips the cube for their blocks; lavapipe
-    // runs the branch for every pixel (0.6-1.1 ms of the water pass at `low`, 2026-12-05).
-    if (to_edge < 3.0) {
-        float past = normal_tail(to_edge);
-        float mills = 0.39894228 * exp(-0.5 * to_edge * to_edge) / max(past, 1e-3);
-        // Rows per radian of turn where the turned ray lands: the projection's derivative.
-        vec4 dl = VIEW.view_proj * vec4(v * (2.0 * lean_s) + down * (1.0 - lean_s * lean_s), 0.0);
-        float rate = 0.5 * reflection_size.y * abs(dl.y * lean.w - lean.y * dl.w)
-                     / max(lean.w * lean.w * (1.0 + lean_s * lean_s), 1e-8);
-        float beyond = min(2.0 * atan(lean_s) + sigma * mills / max(rate, 1.0), acos(clamp(v.y, 0.0, 1.0)));
-        vec3 ray = -v * cos(beyond) + down * sin(beyond);
-        c_reflect = mix(c_reflect, sky_lookup(ray * vec3(1.0, -1.0, 1.0)), past);
-    }
+    // The share past the edge takes the sky the vertices looked up (`edge_sky`): on GPUs a
+    // branch here skips most pixels' blocks, but lavapipe ran its cube lookup and turn at
+    // every pixel (0.5 ms of the water pass at `low`, 2026-12-05).
+    c_reflect = mix(c_reflect, edge_sky, normal_tail(to_edge));
     return c_reflect;
 }

@@ -7,6 +7,7 @@
 // coefficient (water.frag finishes the shore), how much of the point lies in a natural slick.
 // Needs common/frame.glsl, water.glsl, terrain.glsl and shore.glsl included before it.
 #include "slicks.glsl"
+#include "glitter.glsl"
 
 layout(location = 0) out vec3 out_rel_pos;
 layout(location = 1) out vec2 out_xz;
@@ -28,6 +29,30 @@ layout(location = 7) out float out_slick;
 // with the azimuth, so the pixels take it between the vertices (a cube lookup a pixel had cost
 // the water pass 0.5 ms a frame at `low` on lavapipe).
 layout(location = 8) out vec3 out_horizon;
+// The sky the reflection shows past its texture's bottom edge (common/reflection.glsl): along
+// the ray the point mirrors toward the eye, turned up by twice the mean slope toward the eye of
+// the facets the eye sees (`mean_visible_slope`) for Cox & Munk's mean square along the view.
+// The pixels take off the slopes the cascades draw there; here they are left in, so near the
+// camera the ray turns a little higher. Those rays point high, where the sky changes slowly, so
+// the pixels take it between the vertices (a cube lookup and the turn's trigonometry a pixel
+// had cost the water pass 0.5 ms a frame at `low` on lavapipe).
+layout(location = 9) out vec3 out_edge_sky;
+
+// `out_edge_sky` for the point at `rel` (eye-relative, m) in a slick of share `slick`.
+vec3 edge_sky(vec3 rel, float slick) {
+    vec3 v = -rel / max(length(rel), 1e-6); // toward the eye
+    float flat_len = length(v.xz);
+    vec2 along = flat_len > 1e-5 ? -v.xz / flat_len : vec2(1.0, 0.0);
+    float along_ms = slope_covariance(mix(frame.light.y, frame.slicks.x, slick),
+                                      mix(frame.sea_slopes.xy, frame.slicks.yz, slick), along).x;
+    float rise = clamp(v.y, 1e-3, 0.9999);
+    float lean = mean_visible_slope(rise / sqrt(1.0 - rise * rise), sqrt(max(along_ms, 1e-3)));
+    float turn = min(2.0 * atan(lean), acos(clamp(v.y, 0.0, 1.0)));
+    vec3 down = vec3(0.0, -1.0, 0.0) + v.y * v; // −ŷ less its part along −v
+    down /= max(length(down), 1e-4);
+    vec3 ray = -v * cos(turn) + down * sin(turn);
+    return sky_lookup(ray * vec3(1.0, -1.0, 1.0));
+}
 
 void emit_water_vertex(vec2 xz) {
     vec3 eye = water_eye();
@@ -65,5 +90,6 @@ void emit_water_vertex(vec2 xz) {
     out_sky_zenith = sky_lookup(vec3(0.0, 1.0, 0.0));
     vec2 away = rel.xz / max(length(rel), 1e-6); // −v.xz, v toward the eye
     out_horizon = sky_lookup(normalize(vec3(away.x, 0.002, away.y)));
+    out_edge_sky = edge_sky(rel, out_slick);
     gl_Position = frame.views[0].view_proj * vec4(rel, 1.0);
 }

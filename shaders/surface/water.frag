@@ -32,12 +32,17 @@ layout(location = 5) flat in vec3 in_sky_zenith; // and the frame's sky radiance
 layout(location = 6) in vec4 in_surf; // water_vertex.glsl: the bores' phase, share, gradient
 layout(location = 7) in float in_slick; // water_vertex.glsl: the share of a natural slick here
 layout(location = 8) in vec3 in_horizon; // water_vertex.glsl: the sky at the horizon behind P
+layout(location = 9) in vec3 in_edge_sky; // and the sky past the reflection's edge
 layout(location = 0) out vec4 out_colour;
 
 // Which side the main view sees the surface from (src/render/passes/water.rs, `WaterSide`):
 // 0 above, 1 below (the pipeline that draws it from under the water), 2 either, pixel by
 // pixel, where the surface crosses the near plane (the picture splits at the waterline).
 layout(constant_id = 2) const int UNDERWATER_VIEW = 0;
+// Whether this pipeline draws the debug views (`--view displacement`, `normals`, `foam`,
+// `wireframe`: src/render/passes/water.rs, `WaterPass::draw`); the final picture's pipelines
+// leave their branches out (lavapipe ran them at every pixel: 0.6 ms a frame at `low`).
+layout(constant_id = 3) const bool DEBUG_VIEWS = false;
 
 // Layer 0: the reflection as drawn; layer l: blurred over 2^l rows in its top H / 2^l rows
 // (Recorder::halve_down_layers); common/reflection.glsl looks it up.
@@ -496,7 +501,7 @@ void main() {
         float bores = in_surf.y / SURF_SHARE;
         nf.w = max(nf.w, max(bores * roller, shore.y * (1.0 - bores) * crest));
     }
-    uint view = debug_view();
+    uint view = DEBUG_VIEWS ? debug_view() : VIEW_FINAL;
     if (view == VIEW_DISPLACEMENT) {
         out_colour = target_colour(0.5 + 0.25 * in_displacement.xzy);
         return;
@@ -566,7 +571,8 @@ void main() {
     unresolved.xy = max(unresolved.xy, 1e-3);
     float correlated = 0.95 * sqrt(unresolved.x * unresolved.y);
     unresolved.z = clamp(unresolved.z, -correlated, correlated);
-    vec3 c_reflect = sea_reflection(in_rel_pos, in_displacement.y, screen, offset, v, unresolved.x);
+    vec3 c_reflect = sea_reflection(in_rel_pos, in_displacement.y, screen, offset, v, unresolved.x,
+                                     in_edge_sky);
 
     // Water thickness along the ray: refraction depth behind the surface minus the surface's.
     float near_m = frame.water.w; // Camera::near_m (depth = near / view distance)

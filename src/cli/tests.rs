@@ -69,6 +69,23 @@ fn shadows_and_the_refraction_caustics_follow_the_quality_unless_given() {
     );
 }
 
+/// FXAA runs at Lottes' fastest preset at low only (what his default's search cost lavapipe
+/// there, README).
+#[test]
+fn the_fast_fxaa_preset_follows_the_quality() {
+    let fast = |quality: &str| {
+        Cli::parse_from(["vkocean", "--headless", "--quality", quality])
+            .settings()
+            .unwrap()
+            .scene
+            .fxaa_fast
+    };
+    assert_eq!(
+        [fast("low"), fast("medium"), fast("high")],
+        [true, false, false]
+    );
+}
+
 /// `--sharpen` follows the scale unless given: DEFAULT_SHARPEN where the scene target is scaled
 /// up (low and medium), none at full size; given with `--aa off` it is a usage error (the
 /// anti-aliasing pass sharpens), not given it is simply off there.

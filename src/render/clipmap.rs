@@ -17,17 +17,22 @@
 //!   - where a level-L tile meets a level L+1 tile, every shared point is farther than
 //!     range(L) (the L+1 tile lies beyond range(L)): the level-L side is fully morphed,
 //!     its vertices are level L+1's lattice points, and no T-junction opens a crack;
-//!   - the same points lie in a level-L node, which reaches at most range(L) + √2·node(L)
-//!     from the camera (its nearest point within range(L), plus its diagonal): the level
-//!     L+1 side is not morphed there yet when `morph_start(L+1) ≥ range(L) + √2·node(L)`;
-//!   - a node splits into its children when its nearest point comes within range(L-1): its
-//!     vertices are then at most range(L-1) + √2·node(L) away, unmorphed when
-//!     `morph_start(L) ≥ range(L-1) + √2·node(L)`, while the children, all beyond
-//!     range(L-1), are fully morphed: the same mesh before and after.
+//!   - the same points lie in the level-L node that drew the level-L tile, which reaches at
+//!     most range(L) + √2·node(L) from the camera (its nearest point within range(L), plus
+//!     its diagonal): the level L+1 side is not morphed there yet when
+//!     `morph_start(L+1) ≥ range(L) + √2·node(L)`;
+//!   - a quarter of a level-L node is handed to its child (the level L-1 node of the same
+//!     square) when the child's nearest point comes within range(L-1): the quarter's
+//!     vertices are then at most range(L-1) + √2·node(L)/2 away (the quarter's diagonal),
+//!     unmorphed when `morph_start(L) ≥ range(L-1) + √2·node(L)/2`, while the child's
+//!     quarters, all beyond range(L-1), are fully morphed: the same mesh before and after.
+//!     The node's other quarters are drawn at level L before and after, morphed alike.
 //!
-//!   Both conditions hold with `morph_start(L) = range(L)·(1/2 + √2/c)` for ranges
-//!   `range(L) = c·node(L)`, c > 2√2; `MIN_RANGE_FACTOR` keeps a morph zone of a seventh of
-//!   the range at least.
+//!   Both conditions are one, `morph_start(L) ≥ range(L)·(1/2 + 1/(c√2))` for ranges
+//!   `range(L) = c·node(L)` (node(L) = 2·node(L-1), range(L) = 2·range(L-1)), which leaves a
+//!   morph zone for any c > √2; `MIN_RANGE_FACTOR` keeps a seventh of the range at least.
+//!   (Until 2026-12-05 the handover was bounded by the whole node's diagonal, √2·node(L),
+//!   which asked for c > 2√2 and held `--quality low`'s cells at 39 px where it asks for 48.)
 //!
 //! Positions: tiles are world-aligned (fixed to the world lattice, so vertices never slide over
 //! the waves) and handed to the GPU relative to the water's grid centre (`WaterFrame`), as
@@ -40,8 +45,12 @@ pub const MAX_LEVELS: usize = 24;
 /// Most tiles a frame draws (the per-slot tile buffer's capacity): more than the largest range
 /// factor draws with no culling at all (`select` keeps the nearest if ever exceeded).
 pub const MAX_TILES: usize = 16384;
-/// Smallest range factor c (range(L) = c·node(L)); see the module's doc.
-pub const MIN_RANGE_FACTOR: f64 = 4.0;
+/// Smallest range factor c (range(L) = c·node(L)): the morph zone, from
+/// range·(1/2 + 1/(c√2)) to the range, is then a seventh of the range (see the module's doc).
+pub const MIN_RANGE_FACTOR: f64 = 2.0;
+/// The range factor a layout keeps while its tiles can get smaller (`Layout::for_screen`): a
+/// morph zone of a third of the range, and tiles culled finer; below it only with 1-cell tiles.
+pub const TILE_RANGE_FACTOR: f64 = 4.0;
 /// Largest range factor: the tile count grows with c², so cells finer than this allows (tiny
 /// `--tess-edge` on a large screen, with tiles already `MAX_QUARTER` wide) are drawn coarser.
 pub const MAX_RANGE_FACTOR: f64 = 8.0;
@@ -73,11 +82,13 @@ impl Layout {
     /// The layout that draws cells about `cell_px` wide (the narrowest, at each level's far
     /// end; twice that at its near end) for a focal length of `focal_px` pixels.
     /// `cell_px` at distance d is `f·cell/d`; at d = range(L) that is `f / (c·2·quarter)`.
+    /// The largest tiles that keep c at `TILE_RANGE_FACTOR` or more; with 1-cell tiles c may
+    /// fall to `MIN_RANGE_FACTOR` (the coarsest cells).
     pub fn for_screen(cell_px: f64, focal_px: f64) -> Layout {
         let cells_per_range = cells_per_range(cell_px, focal_px);
         let mut quarter = MIN_QUARTER;
         while quarter * 2 <= MAX_QUARTER
-            && cells_per_range / (2.0 * (quarter * 2) as f64) >= MIN_RANGE_FACTOR
+            && cells_per_range / (2.0 * (quarter * 2) as f64) >= TILE_RANGE_FACTOR
         {
             quarter *= 2;
         }
@@ -118,7 +129,7 @@ impl Layout {
     /// `MORPH_MARGIN` keeps the conditions true through the shader's f32 rounding.
     pub fn morph_start(&self, level: u32) -> f64 {
         self.range(level)
-            * (0.5 + std::f64::consts::SQRT_2 / self.range_factor)
+            * (0.5 + std::f64::consts::FRAC_1_SQRT_2 / self.range_factor)
             * (1.0 + MORPH_MARGIN)
     }
 

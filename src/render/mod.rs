@@ -130,6 +130,10 @@ pub struct SceneSettings {
     pub fresnel: FresnelModel,
     /// Applies to `--view final` only (`anti_aliased`).
     pub aa: AntiAliasing,
+    /// FXAA at Lottes' fastest preset, 3 search steps and the edge threshold 0.25 of his "low
+    /// quality", instead of his default, 5 steps and 0.166 (`--quality low`:
+    /// `Quality::fxaa_fast`; shaders/common/fxaa.glsl).
+    pub fxaa_fast: bool,
     /// `--sharpen`: how much the anti-aliasing pass sharpens the pixels off the edges (0 to 1;
     /// shaders/post/fxaa_edges.frag), before the output pass scales the picture up.
     pub sharpen: f32,
@@ -208,6 +212,7 @@ impl Default for SceneSettings {
             view: ViewMode::Final,
             fresnel: FresnelModel::Schlick,
             aa: AntiAliasing::default(),
+            fxaa_fast: false,
             sharpen: 0.0,
             upscale: Upscale::default(),
             rtt_scale: 0.5,

@@ -420,7 +420,14 @@ impl Renderer {
             targets.display_format(),
         )?;
         let anti_aliasing = anti_aliased
-            .then(|| AntiAliasingPass::new(ctx, &targets.main.colour, &clamp_sampler))
+            .then(|| {
+                AntiAliasingPass::new(
+                    ctx,
+                    &targets.main.colour,
+                    &clamp_sampler,
+                    settings.fxaa_fast,
+                )
+            })
             .transpose()?;
         if settings.view == ViewMode::Wireframe && !water.has_wireframe() {
             anyhow::bail!(
@@ -528,6 +535,7 @@ impl Renderer {
             || s.rtt_scale != new.rtt_scale
             || s.terrain_grid != new.terrain_grid
             || s.anti_aliased() != new.anti_aliased()
+            || s.fxaa_fast != new.fxaa_fast
             || s.dudv != new.dudv
             || s.skybox != new.skybox
             || (new.view == ViewMode::Wireframe && s.view != ViewMode::Wireframe)

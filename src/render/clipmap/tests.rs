@@ -42,12 +42,18 @@ fn layouts_follow_the_screen_and_keep_the_morph_conditions() {
         (16.0, 623.5),
         (24.0, 467.6),
         (48.0, 311.8),
+        (64.0, 311.8),
         (2.0, 2000.0),
         (256.0, 100.0),
     ] {
         let l = Layout::for_screen(px, f);
         assert!(l.quarter.is_power_of_two() && (MIN_QUARTER..=MAX_QUARTER).contains(&l.quarter));
         assert!(l.range_factor >= MIN_RANGE_FACTOR, "{l:?}");
+        // Below TILE_RANGE_FACTOR only with the smallest tiles.
+        assert!(
+            l.range_factor >= TILE_RANGE_FACTOR || l.quarter == MIN_QUARTER,
+            "{l:?}"
+        );
         assert!(l.range(l.levels - 1) >= REACH_M, "{l:?}");
         assert!(l.levels as usize <= MAX_LEVELS);
         // Cells at a level's far end (d = range) are px wide unless the factor was clamped:
@@ -62,11 +68,13 @@ fn layouts_follow_the_screen_and_keep_the_morph_conditions() {
         }
         assert!(l.range_factor <= MAX_RANGE_FACTOR);
         for level in 1..l.levels {
-            let diag = std::f64::consts::SQRT_2 * l.node_m(level);
-            // Splitting keeps the mesh; a coarser neighbour is unmorphed at the seam.
-            assert!(l.morph_start(level) >= l.range(level - 1) + diag - 1e-9);
-            assert!(l.morph_start(level) >= l.range(level - 1) + diag / 2.0);
-            assert!(l.morph_start(level) < l.morph_end(level));
+            // A quarter handed to its child is unmorphed (within its diagonal of the child's
+            // range); a coarser neighbour is unmorphed at its seam with the finer level's node.
+            let quarter_diag = std::f64::consts::SQRT_2 * l.node_m(level) / 2.0;
+            assert!(l.morph_start(level) >= l.range(level - 1) + quarter_diag);
+            // The morph zone: a seventh of the range at least.
+            let zone = l.morph_end(level) - l.morph_start(level);
+            assert!(zone >= l.range(level) / 7.2, "{l:?}: zone {zone}");
         }
     }
 }
@@ -77,14 +85,20 @@ fn layouts_follow_the_screen_and_keep_the_morph_conditions() {
 /// Levels further apart never meet.
 #[test]
 fn tiles_meet_without_cracks() {
-    // Tiles of 4 cells (--quality high's) and of 1 (low's: odd corners morph too).
-    for layout in [
-        Layout::for_screen(16.0, 623.5),
-        Layout::for_screen(48.0, 311.8),
+    // Tiles of 4 cells (--quality high's) and of 1 (low's: odd corners morph too), and of
+    // 1 at the smallest range factor (the narrowest morph zone).
+    for (layout, quarter) in [
+        (Layout::for_screen(16.0, 623.5), 4),
+        (Layout::for_screen(48.0, 311.8), 1),
+        (Layout::for_screen(96.0, 311.8), 1),
     ] {
-        assert!(layout.quarter == 4 || layout.quarter == 1, "{layout:?}");
+        assert_eq!(layout.quarter, quarter, "{layout:?}");
         tiles_of_layout_meet_without_cracks(&layout);
     }
+    assert_eq!(
+        Layout::for_screen(96.0, 311.8).range_factor,
+        MIN_RANGE_FACTOR
+    );
 }
 
 fn tiles_of_layout_meet_without_cracks(layout: &Layout) {
@@ -207,28 +221,31 @@ fn drawn_points(layout: &Layout, v: &Viewer, t: &Tile) -> Vec<[f64; 2]> {
 }
 
 /// A node's split into its children keeps the mesh: with the camera just outside the
-/// distance at which a node of each level splits, `select` draws it at its level and its
-/// vertices are unmorphed (its mesh is exactly that level's lattice); just inside, its
-/// square is drawn by finer tiles whose vertices all land on the same lattice points (fully
-/// morphed: the same mesh, no pop).
+/// distance at which a node of each level splits, `select` draws it at its level; just
+/// inside, the quarters that came within the split distance are drawn by finer tiles. Those
+/// quarters were unmorphed before (their mesh exactly that level's lattice) and their finer
+/// tiles are fully morphed after (every vertex on the same lattice points: no pop); the
+/// quarters that did not split are the same tiles, drawn where they were.
 #[test]
 fn splitting_a_node_does_not_pop() {
     for layout in [
         Layout::for_screen(16.0, 623.5),
         Layout::for_screen(48.0, 311.8),
+        Layout::for_screen(96.0, 311.8),
     ] {
         let h = 1.0;
         for level in 3..layout.levels - 1 {
             let node = layout.node_m(level);
+            let half = node / 2.0;
+            let coarse = layout.cell_m(level);
             // The node with corner (0, 0); the camera on the line z = node / 2, h up, at
             // ground distance `x` before the node's near edge.
             let split = layout.range(level - 1);
             let ground = (split * split - h * h).sqrt();
-            for (eps, before) in [(1e-6 * split, true), (-1e-6 * split, false)] {
-                let v = viewer(-(ground + eps), node / 2.0, h);
-                let tiles = select(&layout, &v);
-                let inside = tiles_inside(&layout, &tiles, [0.0, 0.0], node);
-                let area: f64 = inside
+            let at = |eps: f64| {
+                let v = viewer(-(ground + eps), half, h);
+                let tiles = tiles_inside(&layout, &select(&layout, &v), [0.0, 0.0], node);
+                let area: f64 = tiles
                     .iter()
                     .map(|t| (layout.cell_m(t.level) * layout.quarter as f64).powi(2))
                     .sum();
@@ -236,44 +253,59 @@ fn splitting_a_node_does_not_pop() {
                     (area - node * node).abs() < 1e-9 * node * node,
                     "level {level}"
                 );
-                let coarse = layout.cell_m(level);
-                // Before: the node's four quarters. After: its near quarters by finer
-                // tiles (the far ones may stay, as CDLOD draws a straddling node).
-                if before {
-                    assert!(
-                        inside.iter().all(|t| t.level == level),
-                        "level {level}: {inside:?}"
-                    );
-                } else {
-                    assert!(
-                        inside.iter().any(|t| t.level < level),
-                        "level {level} did not split"
-                    );
-                }
-                for t in &inside {
-                    for p in drawn_points(&layout, &v, t) {
-                        assert!(
-                            (p[0] / coarse).fract() == 0.0 && (p[1] / coarse).fract() == 0.0,
-                            "level {level} {}: a vertex of {t:?} at {p:?}, off the node's lattice",
-                            if before { "before its split" } else { "after" }
-                        );
+                (v, tiles)
+            };
+            let (v_before, before) = at(1e-6 * split);
+            let (v_after, after) = at(-1e-6 * split);
+            assert!(
+                before.iter().all(|t| t.level == level),
+                "level {level}: {before:?}"
+            );
+            let quarters = [[0.0, 0.0], [half, 0.0], [0.0, half], [half, half]];
+            let in_quarter = |tiles: &[Tile], q: [f64; 2]| tiles_inside(&layout, tiles, q, half);
+            let mut splits = 0;
+            for q in quarters {
+                let (was, is) = (in_quarter(&before, q), in_quarter(&after, q));
+                if is.iter().all(|t| t.level == level) {
+                    // Not split: the same tile, its vertices where they were (the camera
+                    // moved by 2·10⁻⁶ of the split distance).
+                    assert_eq!(was, is, "level {level}");
+                    for t in &was {
+                        let moved = drawn_points(&layout, &v_before, t)
+                            .iter()
+                            .zip(drawn_points(&layout, &v_after, t))
+                            .map(|(a, b)| (a[0] - b[0]).hypot(a[1] - b[1]))
+                            .fold(0.0, f64::max);
+                        assert!(moved < 1e-4 * coarse, "level {level}: {t:?} moved {moved}");
                     }
-                    if t.level == level {
-                        // Unmorphed: every vertex of the node's tiles at its own point.
-                        let q = layout.quarter;
-                        for i in 0..=q {
-                            for j in 0..=q {
-                                let p = morphed(&layout, &v, t, i, j);
-                                let c = [
-                                    t.corner_m[0] + i as f64 * coarse,
-                                    t.corner_m[1] + j as f64 * coarse,
-                                ];
-                                assert_eq!(p, c, "level {level}: {t:?} morphed before its split");
-                            }
+                    continue;
+                }
+                splits += 1;
+                for t in &was {
+                    // Unmorphed: every vertex of the quarter at its own lattice point.
+                    let q = layout.quarter;
+                    for i in 0..=q {
+                        for j in 0..=q {
+                            let p = morphed(&layout, &v_before, t, i, j);
+                            let c = [
+                                t.corner_m[0] + i as f64 * coarse,
+                                t.corner_m[1] + j as f64 * coarse,
+                            ];
+                            assert_eq!(p, c, "level {level}: {t:?} morphed before its split");
                         }
                     }
                 }
+                for t in &is {
+                    for p in drawn_points(&layout, &v_after, t) {
+                        assert!(
+                            (p[0] / coarse).fract() == 0.0 && (p[1] / coarse).fract() == 0.0,
+                            "level {level}: a vertex of {t:?} at {p:?}, off the node's lattice \
+                             after its split"
+                        );
+                    }
+                }
             }
+            assert!(splits > 0, "level {level} did not split");
         }
     }
 }

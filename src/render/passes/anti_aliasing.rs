@@ -41,8 +41,9 @@ pub struct AntiAliasingPass {
 
 impl AntiAliasingPass {
     /// Reads `main` (the main colour, display colour in an 8-bit format) through `sampler`
-    /// (linear, clamped) and draws into a target of `main`'s format.
-    pub fn new(ctx: &Arc<Context>, main: &Image, sampler: &Sampler) -> GpuResult<Self> {
+    /// (linear, clamped) and draws into a target of `main`'s format; `fast`: Lottes' fastest
+    /// preset (`SceneSettings::fxaa_fast`).
+    pub fn new(ctx: &Arc<Context>, main: &Image, sampler: &Sampler, fast: bool) -> GpuResult<Self> {
         let set_layout = DescriptorSetLayout::new(
             ctx,
             "anti-aliasing set layout",
@@ -60,7 +61,8 @@ impl AntiAliasingPass {
             &[&set_layout],
             Some((vk::ShaderStageFlags::FRAGMENT, 4)),
         )?;
-        // The shaders' DISPLAY_TARGET: whether samples come decoded (sRGB) or encoded (UNORM).
+        // The shaders' DISPLAY_TARGET (whether samples come decoded, sRGB, or encoded, UNORM)
+        // and FXAA_FAST.
         let display_mode = SceneTarget::Display(main.format()).display_mode();
         let pipeline = |name, fragment, depth_compare, depth_write| {
             Pipeline::graphics(
@@ -79,7 +81,7 @@ impl AntiAliasingPass {
                     depth_format: Some(DEPTH_FORMAT),
                     depth_compare: Some(depth_compare),
                     depth_write,
-                    constants: &[display_mode],
+                    constants: &[display_mode, fast as u32],
                     ..Default::default()
                 },
             )

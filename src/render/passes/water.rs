@@ -137,6 +137,10 @@ pub struct WaterPass {
     from_below: Pipeline,
     /// The surface from either side, pixel by pixel, when it crosses the near plane.
     waterline: Pipeline,
+    /// The debug views that show the water's data (`--view displacement`, `normals`, `foam`;
+    /// `wireframe` where the device draws no lines): water.frag's DEBUG_VIEWS (constant 3),
+    /// whose branches the three above leave out.
+    debug: Pipeline,
     /// Line rendering (`--view wireframe`), when the device has fillModeNonSolid.
     wireframe: Option<Pipeline>,
     textures: WaterTextures,
@@ -347,8 +351,9 @@ impl WaterPass {
             Geometry::Tessellated => (vk::PrimitiveTopology::PATCH_LIST, 4),
             Geometry::Clipmap => (vk::PrimitiveTopology::TRIANGLE_LIST, 0),
         };
-        // `side`: water.frag's UNDERWATER_VIEW (0 above, 1 below, 2 split at the waterline).
-        let pipeline = |name: &str, polygon_mode, side: u32| {
+        // `side`: water.frag's UNDERWATER_VIEW (0 above, 1 below, 2 split at the waterline);
+        // `debug`: its DEBUG_VIEWS.
+        let pipeline = |name: &str, polygon_mode, side: u32, debug: bool| {
             scene_pipeline(
                 ctx,
                 &layout,
@@ -359,13 +364,13 @@ impl WaterPass {
                     patch_control_points,
                     polygon_mode,
                     // common/water.glsl's CASCADES and OCEAN_MANUAL_FILTER, water.frag's
-                    // UNDERWATER_VIEW, (3 and 5, 6 unused), common/shadow.glsl's SHADOWS,
-                    // common/water.glsl's WAKE.
+                    // UNDERWATER_VIEW and DEBUG_VIEWS, common/shadow.glsl's SHADOWS, (5 and 6
+                    // unused), common/water.glsl's WAKE.
                     constants: &[
                         cascades,
                         manual_filter as u32,
                         side,
-                        0,
+                        debug as u32,
                         shadows as u32,
                         0,
                         0,
@@ -377,11 +382,12 @@ impl WaterPass {
                 target,
             )
         };
-        let fill = pipeline("water", vk::PolygonMode::FILL, 0)?;
-        let from_below = pipeline("water from below", vk::PolygonMode::FILL, 1)?;
-        let waterline = pipeline("water at the waterline", vk::PolygonMode::FILL, 2)?;
+        let fill = pipeline("water", vk::PolygonMode::FILL, 0, false)?;
+        let from_below = pipeline("water from below", vk::PolygonMode::FILL, 1, false)?;
+        let waterline = pipeline("water at the waterline", vk::PolygonMode::FILL, 2, false)?;
+        let debug = pipeline("water debug views", vk::PolygonMode::FILL, 0, true)?;
         let wireframe = if ctx.info.fill_mode_non_solid {
-            Some(pipeline("water wireframe", vk::PolygonMode::LINE, 0)?)
+            Some(pipeline("water wireframe", vk::PolygonMode::LINE, 0, true)?)
         } else {
             None
         };
@@ -390,6 +396,7 @@ impl WaterPass {
             fill,
             from_below,
             waterline,
+            debug,
             wireframe,
             textures,
             clipmap,
@@ -434,9 +441,17 @@ impl WaterPass {
 
     /// Its pipelines (the renderer checks their bindings at creation).
     pub fn pipelines(&self) -> impl Iterator<Item = &Pipeline> {
-        [&self.fill, &self.from_below, &self.waterline]
+        [&self.fill, &self.from_below, &self.waterline, &self.debug]
             .into_iter()
             .chain(self.wireframe.as_ref())
+    }
+
+    /// Whether `view` shows the water's own data (water.frag's DEBUG_VIEWS branches).
+    fn debug_view(view: ViewMode) -> bool {
+        matches!(
+            view,
+            ViewMode::Displacement | ViewMode::Normals | ViewMode::Foam | ViewMode::Wireframe
+        )
     }
 
     /// Whether `--view wireframe` can draw lines on this device.
@@ -445,8 +460,9 @@ impl WaterPass {
     }
 
     /// What `record` binds: the pipeline for `view` (lines for `ViewMode::Wireframe` where the
-    /// device draws lines, else filled, as seen from the camera's `side`) with `sets`
-    /// ([`WaterPass::sets`]).
+    /// device draws lines; the debug views' for the views of the water's data, from either
+    /// side, as they return before the side matters; else filled, as seen from the camera's
+    /// `side`) with `sets` ([`WaterPass::sets`]).
     pub fn draw<'a>(
         &'a self,
         sets: &'a [&'a BoundSet],
@@ -455,6 +471,7 @@ impl WaterPass {
     ) -> Bindings<'a> {
         let pipeline = match (&self.wireframe, view, side) {
             (Some(lines), ViewMode::Wireframe, _) => lines,
+            (_, v, _) if WaterPass::debug_view(v) => &self.debug,
             (_, _, WaterSide::Above) => &self.fill,
             (_, _, WaterSide::Below) => &self.from_below,
             (_, _, WaterSide::Split) => &self.waterline,
