@@ -130,6 +130,7 @@ pub fn measure(
         );
     }
     session.defer_measuring();
+    session.order_timestamps();
     let started = Instant::now();
     let mut last_progress = Instant::now();
     let mut progress = |text: String| {

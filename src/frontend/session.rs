@@ -97,7 +97,8 @@ impl Session {
         } else {
             None
         };
-        let profilers = Profilers::new(ctx, WARMUP_FRAMES, s.profile.is_some())?;
+        let mut profilers = Profilers::new(ctx, WARMUP_FRAMES, s.profile.is_some())?;
+        profilers.set_ordered(s.profile.is_some());
         if s.profile.is_some() && !profilers.graphics.enabled() {
             anyhow::bail!(
                 "--profile: {} has no timestamp queries on its graphics queue",
@@ -304,6 +305,12 @@ impl Session {
     pub fn defer_measuring(&mut self) {
         self.measure_from = u64::MAX;
         self.profilers.set_warmup(u64::MAX);
+    }
+
+    /// Orders each pass's opening timestamp before the pass's work, as `--profile` does
+    /// (`Profiler::ordered`): for `bench frames`, whose per-pass times are the point.
+    pub fn order_timestamps(&mut self) {
+        self.profilers.set_ordered(true);
     }
 
     /// Ends the warm-up now: statistics count only frames submitted from here on (instead of

@@ -455,6 +455,25 @@ impl<'a> Recorder<'a> {
         unsafe { self.ctx.device.cmd_end_query(self.cmd, pool, query) };
     }
 
+    /// `write_timestamp` where a span begins (a frame, a submission's share of it, a pass),
+    /// then an execution dependency from it to every later command. A timestamp's second
+    /// synchronization scope is its own write alone (Vulkan spec, vkCmdWriteTimestamp2), so the
+    /// commands after it may start before it is written, and Mesa 25's lavapipe starts them:
+    /// without the barrier the water pass read 0.3 ms there, its 10 ms falling before its
+    /// opening timestamp (README, Profile JSON). The span's closing timestamp needs none: it
+    /// waits for all earlier commands (`ALL_COMMANDS`).
+    pub(super) fn write_opening_timestamp(&self, pool: vk::QueryPool, query: u32) {
+        self.expect_outside_scope("an opening timestamp's barrier");
+        self.write_timestamp(pool, query);
+        let order = [vk::MemoryBarrier2::default()
+            .src_stage_mask(vk::PipelineStageFlags2::ALL_COMMANDS)
+            .dst_stage_mask(vk::PipelineStageFlags2::ALL_COMMANDS)];
+        let dependency = vk::DependencyInfo::default().memory_barriers(&order);
+        // SAFETY: recording-state invariant, outside a rendering scope (checked above); an
+        // execution dependency only: no access masks, no layout transition.
+        unsafe { self.ctx.device.cmd_pipeline_barrier2(self.cmd, &dependency) };
+    }
+
     pub(super) fn write_timestamp(&self, pool: vk::QueryPool, query: u32) {
         // SAFETY: recording-state invariant. The query is unavailable when this executes: the
         // only caller, `Profiler` (timestamps.rs), resets the slot's whole pool in `begin_frame`,

@@ -100,6 +100,15 @@ pub struct FrameTimes {
     pub passes: Vec<(&'static str, f64)>,
 }
 
+/// A span's opening timestamp: ordered before what follows when `ordered` ([`Profiler::ordered`]).
+fn write_opening(rec: &Recorder, ordered: bool, pool: vk::QueryPool, query: u32) {
+    if ordered {
+        rec.write_opening_timestamp(pool, query);
+    } else {
+        rec.write_timestamp(pool, query);
+    }
+}
+
 /// Timestamp queries around passes; disabled (labels only) when the queue has no timestamps.
 pub struct Profiler {
     ctx: Arc<Context>,
@@ -125,6 +134,12 @@ pub struct Profiler {
     timings: GpuTimings,
     /// Keep the last finished frame's times, warm-up or not (`latest`; the overlay).
     pub live: bool,
+    /// Order each span's opening timestamp before the commands that follow it
+    /// (`Recorder::write_opening_timestamp`): `--profile` and `bench frames`, whose per-pass
+    /// times are the point. Without it (the window, a plain headless run) a pass's draws may
+    /// start before its opening timestamp on drivers that start later commands early (Mesa
+    /// 25's lavapipe), and nothing waits for the sake of the measurement.
+    pub ordered: bool,
     latest: Option<FrameTimes>,
 }
 
@@ -215,6 +230,7 @@ impl Profiler {
             },
             timings: GpuTimings::default(),
             live: false,
+            ordered: false,
             latest: None,
         };
         if bits > 0 {
@@ -274,7 +290,7 @@ impl Profiler {
         }
         if let Some(&pool) = self.pools.get(frame.slot) {
             rec.reset_queries(pool, QUERIES_PER_FRAME);
-            rec.write_timestamp(pool, 0);
+            write_opening(rec, self.ordered, pool, 0);
             record.used = 2; // query 1 is the frame end
         }
         Ok(())
@@ -299,7 +315,7 @@ impl Profiler {
         if let (Some(&pool), Some((_, end))) =
             (self.pools.get(self.current), self.records[self.current].gap)
         {
-            rec.write_timestamp(pool, end);
+            write_opening(rec, self.ordered, pool, end);
         }
     }
 
@@ -322,7 +338,7 @@ impl Profiler {
         let record = &mut self.records[self.current];
         if let Some(&pool) = self.pools.get(self.current) {
             if record.used + 2 <= QUERIES_PER_FRAME {
-                rec.write_timestamp(pool, record.used);
+                write_opening(rec, self.ordered, pool, record.used);
                 self.open.push((name, record.used));
                 record.used += 2;
                 return;
@@ -516,6 +532,12 @@ impl Profilers {
             graphics: Profiler::new(ctx, warmup_frames, draw_statistics)?,
             compute: Profiler::for_compute(ctx, warmup_frames)?,
         })
+    }
+
+    /// [`Profiler::ordered`] on both.
+    pub fn set_ordered(&mut self, ordered: bool) {
+        self.graphics.ordered = ordered;
+        self.compute.ordered = ordered;
     }
 
     /// [`Profiler::set_warmup`] on both.
