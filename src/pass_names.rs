@@ -34,6 +34,8 @@ pub const OCEAN_EVOLVE: &str = "ocean evolve";
 pub const OCEAN_FFT: &str = "ocean fft";
 /// FFT model: the FFT output written into the displacement and normal images.
 pub const OCEAN_ASSEMBLE: &str = "ocean assemble";
+/// Above a 64² grid: the normal images' mip levels (after the wave model).
+pub const OCEAN_SLOPE_MIPS: &str = "ocean slope mips";
 /// FFT model: the foam near the camera (whitecaps, drift, residual foam, windrows).
 pub const OCEAN_FOAM: &str = "ocean foam";
 /// FFT model with `--spray on`: the spray's particles moved, landed and born (after the foam).

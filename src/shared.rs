@@ -132,6 +132,11 @@ shared_constants! {
     /// src/ocean/cpu.rs): where the choppy surface folds (J ≤ 0) its true normal points down,
     /// and the stored slopes stay those of a steep (J = 0.05) face.
     NORMAL_MIN_JACOBIAN: f32 = 0.05;
+    /// Mip levels of the normal images above a 64² grid (src/ocean/simulation/slope_mips.rs,
+    /// shaders/ocean/slope_mips.comp, water.frag): level 5 holds the mean of 32x32 texels,
+    /// past where any cascade but the first has waves left (its longest are L/6, 43 texels at
+    /// N = 256).
+    SLOPE_LEVELS: u32 = 6;
     /// The buoy (src/ocean/buoy.rs, shaders/terrain/objects.vert): waterline radius (m), depth
     /// of its bottom below the waterline (m) and height of its top above it (m).
     BUOY_RADIUS_M: f32 = 0.8;

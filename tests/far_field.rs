@@ -53,7 +53,8 @@ fn a_grazing_view_away_from_the_sun_holds_no_more_detail_than_a_supersampled_one
     // than across it; slopes filtered by one footprint for both directions (their geometric
     // mean, before) were too fine along the view for the pixels to hold, and the sea from
     // about 30 m out to the horizon broke into one-pixel filaments: 1.37x the reference's detail one pixel high
-    // there (measured on the build before). Filtered by the footprint in each direction: 1.03x.
+    // there (measured on the build before). Filtered by the footprint in each direction: 1.03x;
+    // by the normal images' mip levels at that footprint (SLOPE_MIPS): 0.99x.
     let (w, h) = (320usize, 180usize);
     let args = [
         "--quality",
@@ -102,6 +103,20 @@ fn a_grazing_view_away_from_the_sun_holds_no_more_detail_than_a_supersampled_one
     assert!(
         ratio >= 0.75,
         "the far sea is blurred: {ratio:.2}x the supersampled picture's one-pixel detail"
+    );
+    // Rows 17-48 below it: the water 10-30 m out, where a pixel is 3-10 times longer along the
+    // view than across it. Filtering a cascade by fading its slopes out as a whole once the
+    // footprint passed its shortest waves took its longer waves with them: 0.63x the
+    // reference's detail there (0.44x at 12-16 m), the build before the normal images' mip
+    // levels. Each cascade looked up at the level of the footprint along the view and across
+    // it (water.frag's SLOPE_MIPS): 0.93x.
+    let near = horizon + 17..horizon + 49;
+    let ratio = vertical_detail(&small, w, near.clone()) / vertical_detail(&reference, w, near);
+    println!("detail one pixel high, 10-30 m out: {ratio:.2}x the supersampled picture's");
+    assert!(
+        (0.8..=1.25).contains(&ratio),
+        "the sea 10-30 m out holds {ratio:.2}x the supersampled picture's one-pixel detail \
+         (0.8-1.25 asked)"
     );
 }
 

@@ -42,6 +42,7 @@ fn each_layer_averages_the_rows_of_the_one_before_in_pairs() {
             array_view: true,
             shared: false,
             cube: false,
+            levels: 1,
         },
     )
     .unwrap();

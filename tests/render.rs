@@ -612,9 +612,12 @@ fn both_geometries_draw_the_same_sea() {
     // the geometry does, the silhouettes of crests and the edges of foam their slightly
     // different triangles move. Measured at 320x180 on lavapipe: calm mean 0.41, 0.02 % of
     // pixels off by more than 48; default 1.48, 0.09 %; storm 1.82, 0.48 %; 3 m above the
-    // water 2.47, 0.80 %. Bounds: on a calm sea (no silhouettes) a mean of 0.6; else 3 and 1.5 %.
+    // water 2.47, 0.80 %. Bounds: on a calm sea (no silhouettes) a mean of 0.7; else 3 and 1.5 %.
+    // (Calm: 0.52 on 2026-12-05 under a bound of 0.6, and 0.64 once the normal images' mip
+    // levels kept the ripples 10-30 m out that the fade had taken: the two surfaces' slightly
+    // different points differ more where more of the slopes are drawn. The same on Mesa 25.)
     for (name, args, mean_bound) in [
-        ("calm", &["--preset", "calm"][..], 0.6),
+        ("calm", &["--preset", "calm"][..], 0.7),
         ("default", &[][..], 3.0),
         ("storm", &["--preset", "storm"][..], 3.0),
         ("low", &["--camera=0,3,0"][..], 3.0),

@@ -70,6 +70,8 @@ layout(set = 0, binding = 0, std140) uniform FrameUniforms {
     vec4 slick_space;    // x: their drift along the wind (noise cells); y: the amplitude left
                          // of the short waves in one; zw: the wind (unit)
     vec4 slick_cascades; // cascade c's slopes in a slick over its slopes out of one
+    vec4 slope_mips[SLOPE_LEVELS]; // what mip level l of the normal images leaves of cascade
+                         // c's slopes, [l][c] (src/ocean/moments.rs `slope_mip_gains`)
 } frame;
 
 // Which view a draw renders (ViewIndex in src/render/uniforms.rs).

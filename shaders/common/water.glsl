@@ -35,20 +35,37 @@ float cascade_shortest_m(int c, float texels) {
     return c == CASCADES - 1 ? 2.0 * patch_m / texels : max(patch_m / 26.0, 2.0 * patch_m / texels);
 }
 
-vec4 ocean_texture(sampler2DArray images, vec3 uv) {
-    if (!OCEAN_MANUAL_FILTER) {
-        return textureLod(images, uv, 0.0);
-    }
-    vec2 size = vec2(textureSize(images, 0).xy);
+// Bilinear by hand within mip level `level` (OCEAN_MANUAL_FILTER).
+vec4 bilinear_by_hand(sampler2DArray images, vec3 uv, int level) {
+    vec2 size = vec2(textureSize(images, level).xy);
     vec2 p = uv.xy * size - 0.5;
     vec2 f = fract(p);
     vec2 c = (floor(p) + 0.5) / size; // centre of the lower-left texel
     vec2 d = 1.0 / size;
-    vec4 a = textureLod(images, vec3(c, uv.z), 0.0);
-    vec4 b = textureLod(images, vec3(c + vec2(d.x, 0.0), uv.z), 0.0);
-    vec4 e = textureLod(images, vec3(c + vec2(0.0, d.y), uv.z), 0.0);
-    vec4 g = textureLod(images, vec3(c + d, uv.z), 0.0);
+    float l = float(level);
+    vec4 a = textureLod(images, vec3(c, uv.z), l);
+    vec4 b = textureLod(images, vec3(c + vec2(d.x, 0.0), uv.z), l);
+    vec4 e = textureLod(images, vec3(c + vec2(0.0, d.y), uv.z), l);
+    vec4 g = textureLod(images, vec3(c + d, uv.z), l);
     return mix(mix(a, b, f.x), mix(e, g, f.x), f.y);
+}
+
+vec4 ocean_texture(sampler2DArray images, vec3 uv) {
+    if (!OCEAN_MANUAL_FILTER) {
+        return textureLod(images, uv, 0.0);
+    }
+    return bilinear_by_hand(images, uv, 0);
+}
+
+// The same at mip level `lod` (≥ 0), trilinear: by hand, the two levels around it blended.
+vec4 ocean_texture_lod(sampler2DArray images, vec3 uv, float lod) {
+    if (!OCEAN_MANUAL_FILTER) {
+        return textureLod(images, uv, lod);
+    }
+    float l = min(lod, float(textureQueryLevels(images) - 1));
+    int i = int(l);
+    int j = min(i + 1, textureQueryLevels(images) - 1);
+    return mix(bilinear_by_hand(images, uv, i), bilinear_by_hand(images, uv, j), l - float(i));
 }
 
 // The wake's (h, ∂h/∂x, ∂h/∂z, foam) at a point `xz` metres from the water grid's centre

@@ -243,6 +243,7 @@ impl Offscreen {
                 array_view: false,
                 shared: false,
                 cube: false,
+                levels: 1,
             },
         )?;
         Ok(Offscreen {

@@ -92,8 +92,10 @@ pub enum Bind<'a> {
     Storage(&'a Buffer, Order),
     /// A combined image sampler over the image's default view.
     Sampled(&'a Image, &'a Sampler, Order),
-    /// A storage image (GENERAL) over its default view.
+    /// A storage image (GENERAL): its default view, or its first level's with mip levels.
     StorageImage(&'a Image, Order),
+    /// One mip level of a storage image (GENERAL).
+    StorageLevel(&'a Image, u32, Order),
     /// `samplerBuffer` / `textureBuffer`.
     UniformTexel(&'a BufferView, Order),
     /// `imageBuffer`.
@@ -151,7 +153,7 @@ impl BoundSet {
             Bind::Uniform(_) => vk::DescriptorType::UNIFORM_BUFFER,
             Bind::Storage(..) => vk::DescriptorType::STORAGE_BUFFER,
             Bind::Sampled(..) => vk::DescriptorType::COMBINED_IMAGE_SAMPLER,
-            Bind::StorageImage(..) => vk::DescriptorType::STORAGE_IMAGE,
+            Bind::StorageImage(..) | Bind::StorageLevel(..) => vk::DescriptorType::STORAGE_IMAGE,
             Bind::UniformTexel(..) => vk::DescriptorType::UNIFORM_TEXEL_BUFFER,
             Bind::StorageTexel(..) => vk::DescriptorType::STORAGE_TEXEL_BUFFER,
         };
@@ -210,7 +212,12 @@ impl BoundSet {
             },
             Bind::StorageImage(image, _) => vk::DescriptorImageInfo {
                 sampler: vk::Sampler::null(),
-                image_view: image.view,
+                image_view: image.storage_view(0),
+                image_layout: vk::ImageLayout::GENERAL,
+            },
+            Bind::StorageLevel(image, level, _) => vk::DescriptorImageInfo {
+                sampler: vk::Sampler::null(),
+                image_view: image.storage_view(*level),
                 image_layout: vk::ImageLayout::GENERAL,
             },
             _ => vk::DescriptorImageInfo::default(),
@@ -242,7 +249,9 @@ impl BoundSet {
                     .descriptor_type(ty_of(bind));
                 match bind {
                     Bind::Uniform(_) | Bind::Storage(..) => w.buffer_info(&buffers[i]),
-                    Bind::Sampled(..) | Bind::StorageImage(..) => w.image_info(&images[i]),
+                    Bind::Sampled(..) | Bind::StorageImage(..) | Bind::StorageLevel(..) => {
+                        w.image_info(&images[i])
+                    }
                     Bind::UniformTexel(..) | Bind::StorageTexel(..) => {
                         w.texel_buffer_view(&texels[i])
                     }
@@ -261,7 +270,9 @@ impl BoundSet {
                     set._samplers.push((*s).clone());
                     (*o, Resource::Image((*i).clone()))
                 }
-                Bind::StorageImage(i, o) => (*o, Resource::Image((*i).clone())),
+                Bind::StorageImage(i, o) | Bind::StorageLevel(i, _, o) => {
+                    (*o, Resource::Image((*i).clone()))
+                }
                 Bind::UniformTexel(v, o) | Bind::StorageTexel(v, o) => {
                     set._views.push((*v).clone());
                     (*o, Resource::Buffer(v.buffer().clone()))
@@ -294,7 +305,9 @@ fn expect_bind_usage(set: &str, binding: u32, bind: &Bind) {
     // Images are written by GPU work, which the host's order does not cover.
     let image_host = matches!(
         bind,
-        Bind::Sampled(_, _, Order::Host) | Bind::StorageImage(_, Order::Host)
+        Bind::Sampled(_, _, Order::Host)
+            | Bind::StorageImage(_, Order::Host)
+            | Bind::StorageLevel(_, _, Order::Host)
     );
     assert!(
         !image_host,
@@ -304,7 +317,7 @@ fn expect_bind_usage(set: &str, binding: u32, bind: &Bind) {
         Bind::Uniform(b) => b.expect_usage(B::UNIFORM_BUFFER, &what),
         Bind::Storage(b, _) => b.expect_usage(B::STORAGE_BUFFER, &what),
         Bind::Sampled(i, _, _) => i.expect_usage(I::SAMPLED, &what),
-        Bind::StorageImage(i, _) => i.expect_usage(I::STORAGE, &what),
+        Bind::StorageImage(i, _) | Bind::StorageLevel(i, _, _) => i.expect_usage(I::STORAGE, &what),
         Bind::UniformTexel(v, _) => v.expect_usage(B::UNIFORM_TEXEL_BUFFER, &what),
         Bind::StorageTexel(v, _) => v.expect_usage(B::STORAGE_TEXEL_BUFFER, &what),
     }

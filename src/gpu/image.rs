@@ -33,6 +33,10 @@ pub struct ImageDesc<'a> {
     /// per face for rendering into it (`Image::layer_views`). A colour attachment with more
     /// than one layer gets the 2D views of its layers too.
     pub cube: bool,
+    /// Mip levels (1: none). The default view holds them all, for sampling; a storage image
+    /// with more than one also gets a view of each level (`Bind::StorageImage` binds level 0,
+    /// `Bind::StorageLevel` another), since a storage descriptor addresses one level.
+    pub levels: u32,
 }
 
 /// A 2D (array) image in device memory with a view of all its layers (none for an image with
@@ -50,10 +54,13 @@ pub struct ImageCore {
     /// One 2D view per layer (cubemaps and layered colour attachments: render targets of the
     /// faces or layers).
     pub(super) layer_views: Vec<vk::ImageView>,
+    /// One array view per mip level (storage images with more than one level).
+    pub(super) level_views: Vec<vk::ImageView>,
     allocation: Option<Allocation>,
     pub(super) format: vk::Format,
     pub(super) extent: vk::Extent2D,
     pub(super) layers: u32,
+    pub(super) levels: u32,
     pub(super) aspect: vk::ImageAspectFlags,
     pub(super) usage: vk::ImageUsageFlags,
     name: String,
@@ -116,6 +123,7 @@ impl Image {
             )));
         }
         let layers = if desc.cube { 6 } else { desc.layers.max(1) };
+        let levels = desc.levels.max(1);
         let info = vk::ImageCreateInfo::default()
             .flags(if desc.cube {
                 vk::ImageCreateFlags::CUBE_COMPATIBLE
@@ -129,7 +137,7 @@ impl Image {
                 height: desc.extent.height,
                 depth: 1,
             })
-            .mip_levels(1)
+            .mip_levels(levels)
             .array_layers(layers)
             .samples(vk::SampleCountFlags::TYPE_1)
             .tiling(vk::ImageTiling::OPTIMAL)
@@ -172,10 +180,12 @@ impl Image {
             raw,
             view: vk::ImageView::null(),
             layer_views: Vec::new(),
+            level_views: Vec::new(),
             allocation: Some(allocation),
             format: desc.format,
             extent: desc.extent,
             layers,
+            levels,
             aspect,
             usage: desc.usage,
             name: desc.name.to_string(),
@@ -211,7 +221,10 @@ impl Image {
                 vk::ImageViewType::TYPE_2D
             })
             .format(desc.format)
-            .subresource_range(full_range(aspect, layers));
+            .subresource_range(vk::ImageSubresourceRange {
+                level_count: levels,
+                ..full_range(aspect, layers)
+            });
         // SAFETY: the image is live and bound; the range is within it.
         image.view =
             unsafe { ctx.device.create_image_view(&view_info, None) }.vk("vkCreateImageView")?;
@@ -237,6 +250,20 @@ impl Image {
                 image.layer_views.push(view);
             }
         }
+        if levels > 1 && desc.usage.contains(vk::ImageUsageFlags::STORAGE) {
+            for level in 0..levels {
+                let info = view_info.subresource_range(vk::ImageSubresourceRange {
+                    base_mip_level: level,
+                    ..full_range(aspect, layers)
+                });
+                // SAFETY: as above; the range is one level of the image.
+                let view =
+                    unsafe { ctx.device.create_image_view(&info, None) }.vk("vkCreateImageView")?;
+                ctx.count_created(1);
+                ctx.name(view, &format!("{} level {level}", desc.name));
+                image.level_views.push(view);
+            }
+        }
         Ok(Image(Rc::new(image)))
     }
 
@@ -247,9 +274,31 @@ impl Image {
 }
 
 impl ImageCore {
-    /// The whole subresource range (all layers, one mip).
+    /// The whole subresource range (all layers, all levels).
     pub fn range(&self) -> vk::ImageSubresourceRange {
-        full_range(self.aspect, self.layers)
+        vk::ImageSubresourceRange {
+            level_count: self.levels,
+            ..full_range(self.aspect, self.layers)
+        }
+    }
+
+    /// Mip levels (1: none).
+    pub fn levels(&self) -> u32 {
+        self.levels
+    }
+
+    /// The view a storage descriptor binds for mip level `level`: the default view when the
+    /// image has one level.
+    pub(super) fn storage_view(&self, level: u32) -> vk::ImageView {
+        assert!(
+            level < self.levels,
+            "image {} has no mip level {level}",
+            self.name
+        );
+        self.level_views
+            .get(level as usize)
+            .copied()
+            .unwrap_or(self.view)
     }
 
     pub fn extent(&self) -> vk::Extent2D {
@@ -290,7 +339,7 @@ pub(super) fn expect_usage(
     );
 }
 
-/// Every layer of the single mip level.
+/// Every layer of the first mip level.
 pub fn full_range(aspect: vk::ImageAspectFlags, layers: u32) -> vk::ImageSubresourceRange {
     vk::ImageSubresourceRange {
         aspect_mask: aspect,
@@ -305,6 +354,7 @@ impl Drop for ImageCore {
     fn drop(&mut self) {
         if let Some(allocation) = self.allocation.take() {
             let mut views = std::mem::take(&mut self.layer_views);
+            views.append(&mut self.level_views);
             if self.view != vk::ImageView::null() {
                 views.push(self.view);
             }

@@ -39,7 +39,13 @@ pub struct SeaMoments {
     /// The part of `slope_variance` in waves shorter than `SHORT_WAVE_M`: what a natural
     /// slick damps (`render::slicks`).
     pub short_slope_variance: [f64; 4],
+    /// What each mip level of the normal images leaves of each layer's slopes, [level][layer]
+    /// (`slope_mip_gains`; all 1 until `with_mip_gains`).
+    pub slope_mip_gain: [[f64; 4]; MIP_LEVELS],
 }
+
+/// The normal images' mip levels (`crate::shared::SLOPE_LEVELS`), as an array length.
+pub const MIP_LEVELS: usize = crate::shared::SLOPE_LEVELS as usize;
 
 /// The longest waves a film of surface-active matter damps (m): Lucassen (1982) found its
 /// effect can reach waves of up to about 1 m.
@@ -74,8 +80,62 @@ impl SeaMoments {
             slope_anisotropy: anisotropy,
             curvature_variance: curvatures,
             short_slope_variance: short,
+            slope_mip_gain: [[1.0; 4]; MIP_LEVELS],
         }
     }
+
+    /// The same with `slope_mip_gain` of `waves` (those it was made from), each layer's
+    /// images `texel_m` apart.
+    pub fn with_mip_gains(self, waves: impl Iterator<Item = Component>, texel_m: [f64; 4]) -> Self {
+        SeaMoments {
+            slope_mip_gain: slope_mip_gains(waves, texel_m),
+            ..self
+        }
+    }
+}
+
+/// The root-mean-square share of each layer's slopes that each mip level of its normal image
+/// keeps, [level][layer]: level l's texel is the mean of 2^l x 2^l texels t apart
+/// (shaders/ocean/slope_mips.comp), which passes a wave of wave vector k with the gain
+/// D(k_x t)·D(k_z t), D(θ) = sin(2^l θ/2) / (2^l sin(θ/2)) (a box of 2^l samples), so the slopes
+/// keep √(Σ k²E D² / Σ k²E). water.frag returns what a level took off to the slopes the pixel
+/// does not resolve, as LEAN mapping (Olano & Baker 2010) keeps the variance its filtered
+/// moments lose; here from the spectrum rather than from second moments in the images.
+pub fn slope_mip_gains(
+    waves: impl Iterator<Item = Component>,
+    texel_m: [f64; 4],
+) -> [[f64; 4]; MIP_LEVELS] {
+    let box_gain = |theta: f64, m: f64| {
+        let s = (theta / 2.0).sin();
+        if s.abs() < 1e-12 {
+            1.0
+        } else {
+            (m * theta / 2.0).sin() / (m * s)
+        }
+    };
+    let mut kept = [[0.0; 4]; MIP_LEVELS];
+    let mut total = [0.0; 4];
+    for w in waves {
+        let layer = w.layer.min(3);
+        let [kx, kz] = w.k;
+        let slope = w.energy * (kx * kx + kz * kz);
+        total[layer] += slope;
+        let t = texel_m[layer];
+        for (l, row) in kept.iter_mut().enumerate() {
+            let m = (1u32 << l) as f64;
+            let g = box_gain(kx * t, m) * box_gain(kz * t, m);
+            row[layer] += slope * g * g;
+        }
+    }
+    kept.map(|row| {
+        std::array::from_fn(|c| {
+            if total[c] > 0.0 {
+                (row[c] / total[c]).sqrt()
+            } else {
+                1.0
+            }
+        })
+    })
 }
 
 /// The mean-square slope along the unit vector `dir` of the water (x, z) of slopes whose mean
@@ -127,6 +187,49 @@ mod tests {
         assert!((s.short_slope_variance[1] - 1e-4 * k_half * k_half).abs() < 1e-12);
         assert!(s.slope_variance[1] > s.short_slope_variance[1]);
         assert_eq!(s.short_slope_variance[0], 0.0);
+    }
+
+    #[test]
+    fn a_mip_level_keeps_what_a_box_of_its_texels_passes() {
+        // One wave 8 texels long along x in layer 0, one 16 texels long diagonally in layer
+        // 1 (texels 0.5 m and 2 m apart). A box of 2^l samples passes a wave of phase step θ
+        // with sin(2^l θ/2) / (2^l sin(θ/2)): level 1 cos(θ/2), level 3 nothing of the first
+        // (8 samples span its wavelength).
+        let tau = std::f64::consts::TAU;
+        let k1 = tau / (8.0 * 0.5);
+        let k2 = tau / (16.0 * 2.0);
+        let d = k2 / 2f64.sqrt();
+        let waves = [
+            Component {
+                energy: 1.0,
+                omega: 1.0,
+                k: [k1, 0.0],
+                layer: 0,
+            },
+            Component {
+                energy: 1.0,
+                omega: 1.0,
+                k: [d, d],
+                layer: 1,
+            },
+        ];
+        let g = slope_mip_gains(waves.into_iter(), [0.5, 2.0, 1.0, 1.0]);
+        let theta = tau / 8.0;
+        assert_eq!(g[0][0], 1.0);
+        assert!((g[1][0] - (theta / 2.0).cos()).abs() < 1e-12, "{}", g[1][0]);
+        assert!(g[3][0].abs() < 1e-12, "{}", g[3][0]);
+        // Diagonal: the gain of each axis's phase step, multiplied.
+        let phi = d * 2.0;
+        let box_gain = |m: f64| (m * phi / 2.0).sin() / (m * (phi / 2.0).sin());
+        for (l, row) in g.iter().enumerate() {
+            let m = (1u32 << l) as f64;
+            assert!(
+                (row[1] - box_gain(m).powi(2).abs()).abs() < 1e-12,
+                "level {l}"
+            );
+        }
+        // A layer without waves keeps everything (nothing to take off).
+        assert_eq!(g[5][2], 1.0);
     }
 
     #[test]

@@ -186,6 +186,7 @@ mod tests {
             slope_anisotropy: [[0.0; 2]; 4],
             curvature_variance: [0.0; 4],
             short_slope_variance: [0.0; 4],
+            slope_mip_gain: [[1.0; 4]; crate::ocean::moments::MIP_LEVELS],
         }
     }
 
@@ -330,6 +331,7 @@ mod tests {
             slope_anisotropy: [[0.0; 2]; 4],
             curvature_variance: [0.0; 4],
             short_slope_variance: [0.0; 4],
+            slope_mip_gain: [[1.0; 4]; crate::ocean::moments::MIP_LEVELS],
         };
         assert!((shoaling(&sea, 12.0) - 1.0).abs() < 1e-12);
         assert!((shore_waves(&sea, 12.0).scale - 1.0).abs() < 1e-12);

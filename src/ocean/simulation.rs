@@ -19,16 +19,21 @@ use ash::vk;
 mod fft_model;
 mod foam_sim;
 mod gerstner_model;
+mod kernel;
 mod queries;
 mod readback;
+mod slope_mips;
 mod spray_sim;
 mod wake_sim;
 
 use fft_model::FftModel;
 pub use foam_sim::FOAM_FORMAT;
 use gerstner_model::GerstnerModel;
+use kernel::{Kernel, SlotImages};
 pub use queries::{Answers, SurfaceAnswer, MAX_QUERIES};
 use queries::{HeightQueries, SlotPlace};
+pub use slope_mips::slope_levels;
+use slope_mips::SlopeMips;
 pub use spray_sim::{SprayBuffers, COUNTS_BYTES, DRAW_ARGS_OFFSET, LIVE_INDEX, PARTICLE_BYTES};
 pub use wake_sim::Wake;
 
@@ -41,9 +46,8 @@ use super::params::{OceanSettings, Waves};
 use super::spectrum::{wind_vector, Cascade};
 use crate::gpu::compute::ComputeQueue;
 use crate::gpu::{
-    Bind, BoundSet, Buffer, Context, DescriptorSetLayout, DeviceInfo, FormatUse, Frame, GpuResult,
-    Image, ImageDesc, Order, Pipeline, PipelineLayout, Profiler, Recorder, SemaphoreOp,
-    FRAMES_IN_FLIGHT,
+    Buffer, Context, DeviceInfo, FormatUse, Frame, GpuResult, Image, ImageDesc, Profiler, Recorder,
+    SemaphoreOp, FRAMES_IN_FLIGHT,
 };
 use crate::pass_names as names;
 
@@ -133,101 +137,6 @@ pub fn graphics_wait_stages(device: &DeviceInfo) -> vk::PipelineStageFlags2 {
     stages
 }
 
-/// A compute pipeline with its set layout.
-struct Kernel {
-    set_layout: DescriptorSetLayout,
-    pipeline: Pipeline,
-}
-
-impl Kernel {
-    fn new(
-        ctx: &Arc<Context>,
-        name: &str,
-        spirv: &[u8],
-        bindings: &[vk::DescriptorType],
-        push_size: usize,
-    ) -> GpuResult<Kernel> {
-        let entries: Vec<_> = bindings
-            .iter()
-            .enumerate()
-            .map(|(i, &ty)| (i as u32, ty, vk::ShaderStageFlags::COMPUTE))
-            .collect();
-        let set_layout = DescriptorSetLayout::new(ctx, &format!("{name} set layout"), &entries)?;
-        let layout = PipelineLayout::new(
-            ctx,
-            &format!("{name} layout"),
-            &[&set_layout],
-            Some((vk::ShaderStageFlags::COMPUTE, push_size as u32)),
-        )?;
-        let pipeline = Pipeline::compute(ctx, &layout, name, spirv, &[])?;
-        Ok(Kernel {
-            set_layout,
-            pipeline,
-        })
-    }
-}
-
-impl Kernel {
-    /// A kernel that writes a slot's images: binding 0 is its input (a storage buffer), 1–3
-    /// the slot's displacement and normals and the previous slot's normals.
-    fn image_writer(
-        ctx: &Arc<Context>,
-        name: &str,
-        spirv: &[u8],
-        push_size: usize,
-    ) -> GpuResult<Kernel> {
-        let image = vk::DescriptorType::STORAGE_IMAGE;
-        let bindings = [vk::DescriptorType::STORAGE_BUFFER, image, image, image];
-        Kernel::new(ctx, name, spirv, &bindings, push_size)
-    }
-
-    /// One set per slot for an `image_writer` kernel: `input(slot)` at binding 0,
-    /// `images(slot)` at 1–3 and `more` (the same in every slot) after them.
-    fn slot_sets<'a>(
-        &self,
-        ctx: &Arc<Context>,
-        name: &str,
-        input: impl Fn(usize) -> Bind<'a>,
-        images: &SlotImages,
-        more: &[(u32, Bind<'a>)],
-    ) -> GpuResult<Vec<BoundSet>> {
-        (0..FRAMES_IN_FLIGHT)
-            .map(|slot| {
-                let mut binds = vec![(0, input(slot))];
-                binds.extend(images.binds(slot));
-                binds.extend(more.iter().cloned());
-                BoundSet::new(
-                    ctx,
-                    &self.set_layout,
-                    &format!("{name} set slot {slot}"),
-                    &binds,
-                )
-            })
-            .collect()
-    }
-}
-
-/// The images a slot's kernel writes and reads: that slot's displacement and normals, the
-/// other slot's normals (foam decays and is advected from there).
-pub(super) struct SlotImages<'a> {
-    displacement: &'a [Image],
-    normals: &'a [Image],
-}
-
-impl SlotImages<'_> {
-    /// Bindings 1–3 of a slot's set; the kernels' `writeonly` and `readonly` qualifiers make
-    /// the barriers (tracked on the compute queue).
-    fn binds(&self, slot: usize) -> [(u32, Bind<'_>); 3] {
-        let previous = (slot + FRAMES_IN_FLIGHT - 1) % FRAMES_IN_FLIGHT;
-        let t = Order::Tracked;
-        [
-            (1, Bind::StorageImage(&self.displacement[slot], t)),
-            (2, Bind::StorageImage(&self.normals[slot], t)),
-            (3, Bind::StorageImage(&self.normals[previous], t)),
-        ]
-    }
-}
-
 /// One frame as a wave model sees it.
 #[derive(Clone, Copy)]
 pub(super) struct ModelFrame {
@@ -296,8 +205,10 @@ pub struct Simulation {
     /// Per slot: (dx, h, dz, 0), one layer per cascade.
     pub displacement: Vec<Image>,
     /// Per slot: (−n_x/n_y, −n_z/n_y, J, foam) of the choppy surface's exact normal, one layer
-    /// per cascade; J is the cascade's own, the foam (layer 0 only) the whole surface's.
+    /// per cascade; J is the cascade's own, the foam (layer 0 only) the whole surface's. With
+    /// mip levels above a 64² grid (`slope_mips`, made after the model writes level 0).
     pub normals: Vec<Image>,
+    slope_mips: Option<SlopeMips>,
     /// Each cascade's (∂Dx/∂x, ∂Dz/∂z, ∂Dx/∂z, 0) before choppiness, one layer per cascade:
     /// written by assemble, read by the foam step after it (FFT only; 1×1 for Gerstner waves).
     derivatives: Image,
@@ -420,7 +331,7 @@ impl Simulation {
         let layers = cascades.len() as u32;
         require_image_formats(ctx)?;
         let foam_levels = foam_levels_for(settings);
-        let image = |name: String, format: vk::Format, side: usize, layers: u32| {
+        let mipped = |name: String, format: vk::Format, side: usize, layers: u32, levels: u32| {
             Image::new(
                 ctx,
                 &ImageDesc {
@@ -438,9 +349,11 @@ impl Simulation {
                     array_view: true,
                     shared: true,
                     cube: false,
+                    levels,
                 },
             )
         };
+        let image = |name, format, side, layers| mipped(name, format, side, layers, 1);
         // Each cascade's derivatives, written by assemble and read by the foam step in the same
         // submission (FFT waves only: 1×1 for Gerstner waves).
         let side = if settings.waves == Waves::Fft { n } else { 1 };
@@ -453,7 +366,7 @@ impl Simulation {
             let name = format!("ocean displacement slot {slot}");
             displacement.push(image(name, IMAGE_FORMAT, n, layers)?);
             let name = format!("ocean normals+foam slot {slot}");
-            normals.push(image(name, IMAGE_FORMAT, n, layers)?);
+            normals.push(mipped(name, IMAGE_FORMAT, n, layers, slope_levels(n))?);
             let name = format!("foam levels slot {slot}");
             foam.push(image(name, FOAM_FORMAT, foam_side, foam_layers)?);
         }
@@ -473,7 +386,12 @@ impl Simulation {
                 &derivatives,
                 &foam,
             )?),
-            Waves::Gerstner(w) => boxed(GerstnerModel::new(ctx, w, &images)?),
+            Waves::Gerstner(w) => boxed(GerstnerModel::new(
+                ctx,
+                w,
+                &images,
+                settings.patch_size_m / n as f64,
+            )?),
         };
         Ok(Simulation {
             foam_threshold: foam::threshold(settings),
@@ -485,6 +403,7 @@ impl Simulation {
             model,
             origin_m: [0.0, 0.0],
             displacement,
+            slope_mips: SlopeMips::new(ctx, &normals)?,
             normals,
             derivatives,
             foam,
@@ -610,7 +529,7 @@ impl Simulation {
         let wake_steps = self.wake.plan(first, slot, time_s);
         let queries = self.prepare_queries(&warmup, slot, value, time_s, scene)?;
         let wake = &self.wake;
-        let model = &*self.model;
+        let (model, mips) = (&*self.model, self.slope_mips.as_ref());
         let query_pass = self.queries.as_ref().zip(queries);
         self.queue.submit(slot, value, wait_graphics, |rec| {
             let mut timer = timing;
@@ -628,6 +547,9 @@ impl Simulation {
                 rec.end_label();
             }
             model.record(rec, &mut timer, &frame);
+            if let Some(mips) = mips {
+                mips.record(rec, &mut timer, slot, frame.n, frame.layers);
+            }
             wake.record(rec, &mut timer, &wake_steps);
             if let Some((pass, dispatch)) = &query_pass {
                 scope(&mut timer, rec, names::OCEAN_QUERIES, || {

@@ -257,6 +257,7 @@ impl Renderer {
             refraction_caustics: settings.refraction_caustics,
             // 1×1 without a boat (`Simulation::wake`).
             wake: ocean.wake.iter().any(|image| image.extent().width > 1),
+            slope_mips: ocean.normals.iter().all(|image| image.levels() > 1),
         };
         let sky_sampler = Sampler::linear(ctx, "sky cube sampler", clamp)?;
         let foam_sampler = Sampler::linear(ctx, "foam sampler (clamp)", clamp)?;
@@ -350,6 +351,7 @@ impl Renderer {
                 array_view: false,
                 shared: false,
                 cube: false,
+                levels: 1,
             },
         )?;
         let len = w as usize * h as usize * 4;

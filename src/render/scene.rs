@@ -138,6 +138,7 @@ mod tests {
             slope_anisotropy: [[0.0; 2]; 4],
             curvature_variance: [0.0; 4],
             short_slope_variance: [0.0; 4],
+            slope_mip_gain: [[1.0; 4]; crate::ocean::moments::MIP_LEVELS],
         };
         let scale = shore_scale(layout, sea);
         let [x, z] = layout.island_xz;

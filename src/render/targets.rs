@@ -81,6 +81,7 @@ fn plain_image(
             array_view: false,
             shared: false,
             cube: false,
+            levels: 1,
         },
     )
 }

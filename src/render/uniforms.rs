@@ -9,7 +9,7 @@ use super::camera::Camera;
 use super::{FresnelModel, ViewMode};
 use crate::ocean::buoy::BuoyPose;
 use crate::ocean::foam::{FoamLevels, MAX_LEVELS};
-use crate::ocean::moments::SeaMoments;
+use crate::ocean::moments::{SeaMoments, MIP_LEVELS};
 use crate::ocean::shore::{reference_group_speed, shoaling, surf_clock};
 use crate::shared::{BUOY_FREEBOARD_M, BUOY_RADIUS_M};
 
@@ -302,6 +302,9 @@ pub struct FrameUniforms {
     pub slick_space: [f32; 4],
     /// Each cascade's slopes in a slick over its slopes out of one (`Slicks::cascades`).
     pub slick_cascades: [f32; 4],
+    /// What mip level l of the normal images leaves of cascade c's slopes, [l][c]
+    /// (`SeaMoments::slope_mip_gain`).
+    pub slope_mips: [[f32; 4]; MIP_LEVELS],
 }
 
 /// Side of a DU/DV tile on the water (m).
@@ -564,6 +567,7 @@ impl FrameUniforms {
             slick_space: slicks[1],
             slick_cascades: slicks[2],
             slope_variance: p.ocean.sea_moments.slope_variance.map(|v| v as f32),
+            slope_mips: rows_f32(p.ocean.sea_moments.slope_mip_gain),
             curvature_variance: p.ocean.sea_moments.curvature_variance.map(|v| v as f32),
             slope_anisotropy: [0, 1]
                 .map(|i| p.ocean.sea_moments.slope_anisotropy.map(|c| c[i] as f32)),
@@ -630,6 +634,11 @@ fn wake_uniform(place: Option<([f64; 2], f64)>, water: &WaterFrame) -> [f32; 4] 
     let side = spacing * crate::ocean::wake::GRID_N as f64;
     let uv = |i: usize| ((water.centre[i] - origin[i] + 0.5 * spacing) / side) as f32;
     [uv(0), uv(1), (1.0 / side) as f32, 1.0]
+}
+
+/// Rows of four f64 as the shaders take them.
+fn rows_f32<const N: usize>(rows: [[f64; 4]; N]) -> [[f32; 4]; N] {
+    rows.map(|row| row.map(|v| v as f32))
 }
 
 /// `FrameUniforms::shore` for the sea `sea` at time `time_s`.

@@ -185,6 +185,7 @@ pub fn test_image(
             array_view: false,
             shared: false,
             cube: false,
+            levels: 1,
         },
     )
     .expect("a 16x16 test image")

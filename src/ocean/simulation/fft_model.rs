@@ -157,7 +157,7 @@ fn upload_spectrum(
     // frequency and each cascade's mean-square slope. Crests rarely pass 4σ, and choppiness
     // moves points sideways by about λ times the height's scale.
     let depth = settings.sea.depth_m;
-    let sea = SeaMoments::from_waves(
+    let components = || {
         cascades.iter().enumerate().flat_map(|(c, cascade)| {
             let h0 = &h0_values[c * n * n..(c + 1) * n * n];
             h0.iter().enumerate().map(move |(i, [re, im])| {
@@ -169,9 +169,11 @@ fn upload_spectrum(
                     layer: c,
                 }
             })
-        }),
-        depth,
-    );
+        })
+    };
+    // Each cascade's image is its patch over N texels.
+    let texel_m = std::array::from_fn(|c| cascades.get(c).map_or(1.0, |l| l.patch_m / n as f64));
+    let sea = SeaMoments::from_waves(components(), depth).with_mip_gains(components(), texel_m);
     let max_displacement_m = sea.hs_m * (1.0 + settings.choppiness) + 0.5;
     // Uploaded, read and (--dump) downloaded on the compute queue only: it never crosses
     // queue families.

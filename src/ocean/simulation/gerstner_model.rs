@@ -47,12 +47,13 @@ pub(super) struct GerstnerModel {
 }
 
 impl GerstnerModel {
-    /// The model's buffers, kernel and sets; `images` are bound at bindings 1–3. Also returns
-    /// a bound on the displacement (m) and the sea's height.
+    /// The model's buffers, kernel and sets; `images` are bound at bindings 1–3, their texels
+    /// `texel_m` apart. Also returns a bound on the displacement (m) and the sea's height.
     pub(super) fn new(
         ctx: &Arc<Context>,
         waves: &[Wave],
         images: &SlotImages,
+        texel_m: f64,
     ) -> anyhow::Result<(GerstnerModel, f64, SeaMoments)> {
         anyhow::ensure!(!waves.is_empty(), "Gerstner mode needs at least one wave");
         let kernel = Kernel::image_writer(
@@ -87,15 +88,16 @@ impl GerstnerModel {
             .sum::<f64>()
             + 0.5;
         // A wave of amplitude a holds a²/2 of the height variance (deep water, g of seed 000).
-        let sea = SeaMoments::from_waves(
+        let components = || {
             waves.iter().map(|w| Component {
                 energy: 0.5 * w.amplitude * w.amplitude,
                 omega: (G_SEED * w.kx.hypot(w.kz)).sqrt(),
                 k: [w.kx, w.kz],
                 layer: 0,
-            }),
-            None,
-        );
+            })
+        };
+        let sea =
+            SeaMoments::from_waves(components(), None).with_mip_gains(components(), [texel_m; 4]);
         let model = GerstnerModel {
             waves: waves.to_vec(),
             buffers,

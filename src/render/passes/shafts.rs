@@ -56,6 +56,7 @@ impl ShaftsPass {
                 array_view: false,
                 shared: false,
                 cube: false,
+                levels: 1,
             },
         )?;
         let layout = scene_layout(ctx, "light shafts layout", frame_layout, &[])?;

@@ -290,6 +290,7 @@ fn multiple_scattering_table(ctx: &Arc<Context>) -> GpuResult<(DescriptorSetLayo
             array_view: false,
             shared: false,
             cube: false,
+            levels: 1,
         },
     )?;
     upload_image(ctx, &table, &multiple_scattering::lut_rgba16f())?;
@@ -342,6 +343,7 @@ fn cube_image(
             array_view: false,
             shared: false,
             cube: true,
+            levels: 1,
         },
     )
 }

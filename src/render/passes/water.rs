@@ -274,6 +274,10 @@ pub struct WaterKind {
     /// The run has a boat and its wake (`--boat`): common/water.glsl's WAKE, constant 7 of the
     /// water's shaders (without it `wake_at` is zero, its lookups left out).
     pub wake: bool,
+    /// The normal images have mip levels: water.frag's SLOPE_MIPS (constant 6) looks each
+    /// cascade up at the pixel's footprint along the view and across it
+    /// (src/ocean/simulation/slope_mips.rs).
+    pub slope_mips: bool,
 }
 
 impl WaterPass {
@@ -293,6 +297,7 @@ impl WaterPass {
             manual_filter,
             shadows,
             wake,
+            slope_mips,
             ..
         } = kind;
         if geometry == Geometry::Tessellated && !ctx.info.tessellation_shader {
@@ -364,8 +369,8 @@ impl WaterPass {
                     patch_control_points,
                     polygon_mode,
                     // common/water.glsl's CASCADES and OCEAN_MANUAL_FILTER, water.frag's
-                    // UNDERWATER_VIEW and DEBUG_VIEWS, common/shadow.glsl's SHADOWS, (5 and 6
-                    // unused), common/water.glsl's WAKE.
+                    // UNDERWATER_VIEW and DEBUG_VIEWS, common/shadow.glsl's SHADOWS, (5
+                    // unused), water.frag's SLOPE_MIPS, common/water.glsl's WAKE.
                     constants: &[
                         cascades,
                         manual_filter as u32,
@@ -373,7 +378,7 @@ impl WaterPass {
                         debug as u32,
                         shadows as u32,
                         0,
-                        0,
+                        slope_mips as u32,
                         wake as u32,
                     ],
                     ..Default::default()
