@@ -125,23 +125,24 @@ vec4 ocean_normal_foam(vec2 xz, float dist, vec2 footprint, vec2 along, float sc
         float slick = mix(1.0, frame.slick_cascades[c], in_slick);
         // `w`: how much of the slopes looked up is drawn, along the view and across it;
         // `kept`: the root-mean-square share of the cascade's slopes that is.
+        // `s_along`, `s`: the slopes looked up for along the view and across it.
         vec2 w, kept;
-        vec4 s;
+        vec4 s_along, s;
         if (SLOPE_MIPS) {
             // The levels that blur as much as the pixel does, along the view and across it:
             // the slopes along the view from the one, those across it from the other.
             vec2 lod = max(log2(footprint * texels / frame.patch_m[c]) - SLOPE_LOD_BIAS, 0.0);
-            vec4 s_along = ocean_texture_lod(ocean_normals, uv, lod.x);
+            s_along = ocean_texture_lod(ocean_normals, uv, lod.x);
             s = ocean_texture_lod(ocean_normals, uv, lod.y);
             w = weight * slick * clamp(float(SLOPE_LEVELS) - lod, 0.0, 1.0);
             kept = w * vec2(slope_mip_gain(c, lod.x), slope_mip_gain(c, lod.y));
-            slope += w.x * dot(s_along.xy, along) * along + w.y * dot(s.xy, across) * across;
         } else {
             s = ocean_texture(ocean_normals, uv);
+            s_along = s;
             w = weight * clamp(2.0 - footprint / cascade_shortest_m(c, texels), 0.0, 1.0) * slick;
             kept = w;
-            slope += w.x * dot(s.xy, along) * along + w.y * dot(s.xy, across) * across;
         }
+        slope += w.x * dot(s_along.xy, along) * along + w.y * dot(s.xy, across) * across;
         foam += c == 0 ? weight * s.w : 0.0;
         vec2 a = vec2(frame.slope_anisotropy[0][c], frame.slope_anisotropy[1][c]);
         resolved += vec3(kept * kept, kept.x * kept.y)
