@@ -128,6 +128,21 @@ shared_constants! {
     SLICK_NONE: f32 = 2.0;
     SLICK_NOISE_OFFSET_X: f32 = 311.7;
     SLICK_NOISE_OFFSET_Y: f32 = -127.3;
+    /// Wind gusts' noise cell along the mean wind and across it (m; src/render/gusts.rs,
+    /// shaders/common/gusts.glsl): our choice, 900 m by 300 m, so its octaves span 56 m to
+    /// 900 m along the wind, from the surface layer's energetic eddies to the boundary
+    /// layer's, and the patches are longer along the wind than across it. The noise's offset
+    /// from the clouds' (cells) and its mean and standard deviation over the plane
+    /// (`gusts::tests` measures them).
+    GUST_ALONG_M: f32 = 900.0;
+    GUST_ACROSS_M: f32 = 300.0;
+    GUST_NOISE_OFFSET_X: f32 = -517.9;
+    GUST_NOISE_OFFSET_Y: f32 = 243.1;
+    GUST_NOISE_MEAN: f32 = 0.502;
+    GUST_NOISE_STD: f32 = 0.1269;
+    /// Monahan & O'Muircheartaigh's (1980) whitecap law W = 3.84·10⁻⁶·U10^3.41: its exponent
+    /// (src/ocean/foam.rs; the gusts' foam, shaders/surface/water.frag).
+    WHITECAP_WIND_EXPONENT: f32 = 3.41;
     /// The smallest Jacobian the exact normal divides by (shaders/ocean/assemble.comp and
     /// src/ocean/cpu.rs): where the choppy surface folds (J ≤ 0) its true normal points down,
     /// and the stored slopes stay those of a steep (J = 0.05) face.

@@ -48,7 +48,8 @@ layout(set = 0, binding = 0, std140) uniform FrameUniforms {
     vec4 slope_anisotropy[2]; // cascade c's slopes by direction: [0] Σ(k_x² − k_z²)E,
                          // [1] Σ k_x k_z E (`slope_along`)
     vec4 sea_slopes;     // xy: the same for the whole sea (FFT: Cox & Munk's upwind excess
-                         // along the wind; Gerstner: the waves' own)
+                         // along the wind; Gerstner: the waves' own); z: their growth per
+                         // unit of a gust's g over them (common/gusts.glsl)
     vec4 sun_light;      // rgb: the sun's irradiance at the sea through the clear air (before
                          // the clouds: `sun_through_at` takes what they let through); w: the
                          // cloud cover the sun's light passes (0 with --skybox: no layer)
@@ -70,6 +71,10 @@ layout(set = 0, binding = 0, std140) uniform FrameUniforms {
     vec4 slick_space;    // x: their drift along the wind (noise cells); y: the amplitude left
                          // of the short waves in one; zw: the wind (unit)
     vec4 slick_cascades; // cascade c's slopes in a slick over its slopes out of one
+    vec4 gusts;          // wind gusts (src/render/gusts.rs): x their drift along the wind
+                         // (noise cells); y their strength σ_u/U10 (0: none); z the sea's
+                         // mean-square slope's growth per unit of g; w 1 over the sea's mean
+                         // whitecap ratio
     vec4 slope_mips[SLOPE_LEVELS]; // what mip level l of the normal images leaves of cascade
                          // c's slopes, [l][c] (src/ocean/moments.rs `slope_mip_gains`)
 } frame;

@@ -4,9 +4,11 @@
 // sampler, textureLod 0), scaled by what the depth of the terrain under the point makes of the
 // waves (common/shore.glsl). Outputs: eye-relative position, undisplaced xz relative to the grid
 // centre (normal lookups), the displacement (debug view, surf), the depth and shoaling
-// coefficient (water.frag finishes the shore), how much of the point lies in a natural slick.
+// coefficient (water.frag finishes the shore), how much of the point lies in a natural slick
+// and how gusty the wind is there.
 // Needs common/frame.glsl, water.glsl, terrain.glsl and shore.glsl included before it.
 #include "slicks.glsl"
+#include "gusts.glsl"
 #include "glitter.glsl"
 
 layout(location = 0) out vec3 out_rel_pos;
@@ -21,9 +23,10 @@ layout(location = 5) flat out vec3 out_sky_zenith;
 // The surf's bores (common/shore.glsl): x their phase θ (waves), y their share of the sea
 // (0–1), zw θ's gradient over the water (waves per metre, toward deeper water).
 layout(location = 6) out vec4 out_surf;
-// How much of the point lies in a natural slick (common/slicks.glsl: bands hundreds of metres
-// wide, so the vertices resolve them).
-layout(location = 7) out float out_slick;
+// x: how much of the point lies in a natural slick (common/slicks.glsl); y: the local wind's
+// excess g over the mean (common/gusts.glsl). Both are patches hundreds of metres wide, so the
+// vertices resolve them.
+layout(location = 7) out vec2 out_patches;
 // The sky at the horizon behind the point, as the eye sees it (toward the point's azimuth, just
 // over the horizon): it hazes the far sea and lights the foam from behind. It changes slowly
 // with the azimuth, so the pixels take it between the vertices (a cube lookup a pixel had cost
@@ -38,13 +41,15 @@ layout(location = 8) out vec3 out_horizon;
 // had cost the water pass 0.5 ms a frame at `low` on lavapipe).
 layout(location = 9) out vec3 out_edge_sky;
 
-// `out_edge_sky` for the point at `rel` (eye-relative, m) in a slick of share `slick`.
-vec3 edge_sky(vec3 rel, float slick) {
+// `out_edge_sky` for the point at `rel` (eye-relative, m) in a slick of share `slick`, under
+// the local wind's excess `gust`.
+vec3 edge_sky(vec3 rel, float slick, float gust) {
     vec3 v = -rel / max(length(rel), 1e-6); // toward the eye
     float flat_len = length(v.xz);
     vec2 along = flat_len > 1e-5 ? -v.xz / flat_len : vec2(1.0, 0.0);
-    float along_ms = slope_covariance(mix(frame.light.y, frame.slicks.x, slick),
-                                      mix(frame.sea_slopes.xy, frame.slicks.yz, slick), along).x;
+    vec3 clean = gust_slopes(gust);
+    float along_ms = slope_covariance(mix(clean.x, frame.slicks.x, slick),
+                                      mix(clean.yz, frame.slicks.yz, slick), along).x;
     float rise = clamp(v.y, 1e-3, 0.9999);
     float lean = mean_visible_slope(rise / sqrt(1.0 - rise * rise), sqrt(max(along_ms, 1e-3)));
     float turn = min(2.0 * atan(lean), acos(clamp(v.y, 0.0, 1.0)));
@@ -86,10 +91,10 @@ void emit_water_vertex(vec2 xz) {
     out_shore = vec2(max(depth, -1.0), ks);
     out_surf = surf;
     out_sun_through = sun_through_at(frame.views[0].eye.xyz + rel);
-    out_slick = slick_at(world_xz);
+    out_patches = vec2(slick_at(world_xz), gust_at(world_xz));
     out_sky_zenith = sky_lookup(vec3(0.0, 1.0, 0.0));
     vec2 away = rel.xz / max(length(rel), 1e-6); // −v.xz, v toward the eye
     out_horizon = sky_lookup(normalize(vec3(away.x, 0.002, away.y)));
-    out_edge_sky = edge_sky(rel, out_slick);
+    out_edge_sky = edge_sky(rel, out_patches.x, out_patches.y);
     gl_Position = frame.views[0].view_proj * vec4(rel, 1.0);
 }

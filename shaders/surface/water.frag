@@ -22,6 +22,7 @@
 #include "common/shadow.glsl"
 #include "common/caustics.glsl"
 #include "common/glitter.glsl"
+#include "common/gusts.glsl"
 
 layout(location = 0) in vec3 in_rel_pos;
 layout(location = 1) in vec2 in_xz;
@@ -30,7 +31,7 @@ layout(location = 3) in vec2 in_shore; // water.tese: the water's depth (m) and 
 layout(location = 4) in float in_sun_through; // water_vertex.glsl: the clouds' share of the sun
 layout(location = 5) flat in vec3 in_sky_zenith; // and the frame's sky radiance at the zenith
 layout(location = 6) in vec4 in_surf; // water_vertex.glsl: the bores' phase, share, gradient
-layout(location = 7) in float in_slick; // water_vertex.glsl: the share of a natural slick here
+layout(location = 7) in vec2 in_patches; // water_vertex.glsl: a slick's share, a gust's g here
 layout(location = 8) in vec3 in_horizon; // water_vertex.glsl: the sky at the horizon behind P
 layout(location = 9) in vec3 in_edge_sky; // and the sky past the reflection's edge
 layout(location = 0) out vec4 out_colour;
@@ -122,7 +123,7 @@ vec4 ocean_normal_foam(vec2 xz, float dist, vec2 footprint, vec2 along, float sc
         float weight;
         vec3 uv = ocean_uv(xz, c, dist, weight);
         // In a natural slick (common/slicks.glsl) the film damps the cascade's short waves.
-        float slick = mix(1.0, frame.slick_cascades[c], in_slick);
+        float slick = mix(1.0, frame.slick_cascades[c], in_patches.x);
         // `w`: how much of the slopes looked up is drawn, along the view and across it;
         // `kept`: the root-mean-square share of the cascade's slopes that is.
         // `s_along`, `s`: the slopes looked up for along the view and across it.
@@ -212,8 +213,8 @@ float periodic_noise(vec2 q, float cells) {
                mix(hash12(vec2(a.x, b.y)), hash12(b), u.x), u.y);
 }
 
-// The foam field F at the rest position xz (m from the water grid's centre): the lattice's
-// whitecap field `lattice` (layer 0 of the normal images), or the residual foam near the camera
+// The whitecaps' foam field F at the rest position xz (m from the water grid's centre): the
+// lattice's `lattice` (layer 0 of the normal images), or the residual foam near the camera
 // where it is denser (src/ocean/simulation/foam_sim.rs: left by the whitecaps, drifting
 // downwind, gathered into windrows), from its finest level, each level fading into the next
 // over its outer tenth. (The simulation's own whitecap field, at 0.25 m, feeds the residual
@@ -230,8 +231,7 @@ float foam_at(vec2 xz, float lattice) {
         float inside = 1.0 - smoothstep(0.4, 0.49, max(q.x, q.y));
         residual = mix(residual, textureLod(foam_field, vec3(uv, float(l)), 0.0).y, inside);
     }
-    // The boat's white water (src/ocean/wake.rs).
-    return max(max(lattice, residual), wake_at(xz).w);
+    return max(lattice, residual);
 }
 
 // One octave of foam texture at about `per_m` cells per metre over the largest cascade's patch
@@ -316,6 +316,14 @@ float foam_layer(float field, float lace, float detail) {
     float kept = sqrt(field);
     float average = 0.6 * field * kept * (0.4 + 0.6 * (1.0 - 0.5 * kept));
     return max(breaking, mix(average, residual, detail));
+}
+
+// The foam layer's reflectance: the whitecaps' (field `foam.x`) under the gusts here
+// (common/gusts.glsl), the surf's and the boat's white water (`foam.y`) as the waves make it.
+// foam_layer rises with F: without gusts, foam_layer of the greater field, as it was.
+float foam_opacity(vec2 foam, float lace, float detail) {
+    return max(gust_foam(foam_layer(foam.x, lace, detail), in_patches.y),
+               foam_layer(foam.y, lace, detail));
 }
 
 // Henyey–Greenstein phase function (per steradian) at the cosine `mu` of the scattering angle.
@@ -519,7 +527,8 @@ void main() {
     vec3 resolved;
     float compression;
     vec4 nf = ocean_normal_foam(in_xz, dist, footprint, along, shore.x, resolved, compression);
-    nf.w = foam_at(in_xz, nf.w);
+    // Foam fields: x the whitecaps' (the gusts change them), y the boat's and the surf's.
+    vec2 foam = vec2(foam_at(in_xz, nf.w), wake_at(in_xz).w);
     vec3 n = nf.xyz;
     // The surf (common/shore.glsl). Where the waves have broken, a share in_surf.y of the sea
     // is bores: their slope (the sawtooth's, as high as the vertex drew it) replaces that share
@@ -538,7 +547,7 @@ void main() {
         float roller = shore_roller(in_surf.x, front) * shore_strength(world_xz, wave);
         float crest = smoothstep(0.0, 0.6, in_displacement.y / max(0.5 * shore.z, 0.01));
         float bores = in_surf.y / SURF_SHARE;
-        nf.w = max(nf.w, max(bores * roller, shore.y * (1.0 - bores) * crest));
+        foam.y = max(foam.y, max(bores * roller, shore.y * (1.0 - bores) * crest));
     }
     uint view = DEBUG_VIEWS ? debug_view() : VIEW_FINAL;
     if (view == VIEW_DISPLACEMENT) {
@@ -555,7 +564,7 @@ void main() {
         vec2 uv = ocean_uv(in_xz, 0, dist, unused_weight).xy;
         float detail;
         float lace = foam_lace(uv, pixel_m, detail);
-        out_colour = target_value(vec3(foam_layer(nf.w, lace, detail)));
+        out_colour = target_value(vec3(foam_opacity(foam, lace, detail)));
         return;
     }
     if (view == VIEW_WIREFRAME) {
@@ -593,19 +602,20 @@ void main() {
     dudv += textureLod(dudv_map, frame.dudv_origin.zw + tile * frame.dudv.y + vec2(-t, t), 0.0).rg * 2.0 - 1.0;
     float fade = clamp(1.0 - dist / 3000.0, 0.0, 1.0) / max(1.0, dist / 40.0);
     // The map stands for the ripples; a natural slick damps them as it damps the short waves.
-    dudv *= mix(1.0, frame.slick_space.y, in_slick);
+    dudv *= mix(1.0, frame.slick_space.y, in_patches.x);
     vec2 offset = (dudv * DUDV_STRENGTH + n.xz * SLOPE_STRENGTH) * fade;
     vec2 screen = gl_FragCoord.xy * frame.viewport.zw;
 
     // The slopes the pixel does not resolve: Cox & Munk's mean square along and across the
-    // view (upwind σ_u², crosswind σ_c²: frame.sea_slopes; in a natural slick their
-    // slick-surface fits, frame.slicks, common/slicks.glsl), less what the cascades drawn here
-    // carry in each direction; their covariance (`slope_covariance`'s order), kept a
-    // covariance: the mean squares at least 1e-3, the correlation at most 0.95. They blur and
-    // lean what the water reflects (common/reflection.glsl), widen the glitter and lower the
-    // Fresnel reflectance.
-    vec3 unresolved = slope_covariance(mix(frame.light.y, frame.slicks.x, in_slick),
-                                       mix(frame.sea_slopes.xy, frame.slicks.yz, in_slick), along)
+    // view (upwind σ_u², crosswind σ_c²: frame.sea_slopes, at the local wind in a gust,
+    // common/gusts.glsl; in a natural slick their slick-surface fits, frame.slicks,
+    // common/slicks.glsl), less what the cascades drawn here carry in each direction; their
+    // covariance (`slope_covariance`'s order), kept a covariance: the mean squares at least
+    // 1e-3, the correlation at most 0.95. They blur and lean what the water reflects
+    // (common/reflection.glsl), widen the glitter and lower the Fresnel reflectance.
+    vec3 clean = gust_slopes(in_patches.y);
+    vec3 unresolved = slope_covariance(mix(clean.x, frame.slicks.x, in_patches.x),
+                                       mix(clean.yz, frame.slicks.yz, in_patches.x), along)
                       - resolved;
     unresolved.xy = max(unresolved.xy, 1e-3);
     float correlated = 0.95 * sqrt(unresolved.x * unresolved.y);
@@ -667,7 +677,7 @@ void main() {
     vec2 uv = ocean_uv(in_xz, 0, dist, unused_weight).xy;
     float detail;
     float lace = foam_lace(uv, pixel_m, detail);
-    float opacity = foam_layer(nf.w, lace, detail);
+    float opacity = foam_opacity(foam, lace, detail);
     // The foam's own relief: the lace as a height field FOAM_RELIEF_M high (thick foam stands
     // higher), its normal from the screen-space derivatives (Mikkelsen 2010's surface gradient).
     vec3 dpx = dFdx(in_rel_pos);

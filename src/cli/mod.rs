@@ -23,6 +23,7 @@ pub use presets::{
     quality_level, sea_preset, PresetArg, Quality, QualityArg, SeaPreset, DEFAULT_SEA,
 };
 pub use values::parse_fft_size;
+pub use values::Switch;
 use values::*;
 
 use crate::frontend::RunSettings;
@@ -37,13 +38,6 @@ use crate::render::{
 };
 use crate::shared::MAX_BODIES;
 use glam::Vec3;
-
-/// A feature turned on or off (`--spray`, `--foam-sim`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-pub enum Switch {
-    On,
-    Off,
-}
 
 /// Largest accepted `--size` side; the device limit is checked again at run time.
 pub const MAX_SIDE: u32 = 16384;
@@ -361,6 +355,17 @@ pub struct Cli {
           value_parser = |s: &str| parse_in(s, 0.0, 1.0), help_heading = "Ocean")]
     pub slicks: Option<f64>,
 
+    /// Wind gusts: patches of sea under a stronger or weaker wind racing downwind, rougher and
+    /// with more whitecaps in a gust (FFT waves; README, Rendering, Wind gusts). [default: on]
+    #[arg(
+        long,
+        global = true,
+        value_enum,
+        value_name = "ON|OFF",
+        help_heading = "Ocean"
+    )]
+    pub gusts: Option<Switch>,
+
     /// The sun's shadows: the island, the pillars and the buoy shade the ground, each other and
     /// the water's sun terms (a ray cast toward the sun per pixel; README, Rendering).
     /// [default: off at --quality low, on at medium and high]
@@ -550,6 +555,7 @@ impl Cli {
                 .unwrap_or(self.preset.map_or(DEFAULT_SEA, sea_preset).cloud_cover)
                 as f32,
             slicks: self.slicks,
+            gusts: self.gusts != Some(Switch::Off),
             shadows: self.shadows.map_or(quality.shadows, |s| s == Switch::On),
             caustics: self.caustics != Some(Switch::Off),
             refraction_caustics: self

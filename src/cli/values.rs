@@ -1,7 +1,16 @@
 //! Parsers of command-line values (clap `value_parser`s): each returns a short reason that clap
 //! puts after the flag's name, e.g. `invalid value '0' for '--cascades <K>': must be ...`.
 
+use clap::ValueEnum;
+
 use super::{UsageError, MAX_SIDE};
+
+/// A feature turned on or off (`--spray`, `--foam-sim`, `--gusts`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum Switch {
+    On,
+    Off,
+}
 
 pub fn parse_whole(s: &str, lo: u64, hi: u64) -> Result<u64, String> {
     match s.trim().parse::<i128>() {

@@ -529,6 +529,7 @@ fn ocean_bindings(simulation: &Simulation) -> OceanBindings {
             &simulation.sea_moments,
             simulation.mean_square_slope(),
         ),
+        gusts: crate::render::gusts::Gusts::of_sea(&simulation.settings),
     }
 }
 

@@ -24,11 +24,12 @@
 
 use super::cpu::{surface_jacobian, CpuOcean};
 use super::params::{OceanSettings, Waves};
+use crate::shared::WHITECAP_WIND_EXPONENT;
 
 /// Whitecap fraction observed at sea at wind speed `u10` (m/s): Monahan & O'Muircheartaigh
 /// (1980), W = 3.84·10⁻⁶·U10^3.41 (breeze 6.7 m/s: 0.25 %; 12.3 m/s: 2.0 %; 26.5 m/s: 27 %).
 pub fn monahan_fraction(u10: f64) -> f64 {
-    (3.84e-6 * u10.max(0.0).powf(3.41)).min(1.0)
+    (3.84e-6 * u10.max(0.0).powf(f64::from(WHITECAP_WIND_EXPONENT))).min(1.0)
 }
 
 /// e-folding time of the foam after its crest has passed (s): a few seconds, like the decaying

@@ -100,6 +100,20 @@ pub fn clear_sky_zenith(sun: glam::DVec3) -> [f64; 3] {
     zenith(sun, true)
 }
 
+/// The exposure's factor for an eye `depth` m under the water (≤ 0: above it): the eye, and a
+/// camera's automatic exposure, adapt to the daylight at their depth, fully, as a diver's eyes
+/// do over the minutes of a dive: 1 over the luminance (Rec. 709 weights) that is left of a
+/// grey daylight after `depth` m of each channel's absorption (`ABSORPTION_PER_M`; capped at
+/// 30 m). At 8 m the red is gone and the green halved: 2.6.
+pub fn underwater_adaptation(depth: f64) -> f32 {
+    let d = depth.clamp(0.0, 30.0);
+    let weights = [0.2126, 0.7152, 0.0722];
+    let left: f64 = (0..3)
+        .map(|c| weights[c] * (-f64::from(crate::shared::ABSORPTION_PER_M[c]) * d).exp())
+        .sum();
+    (1.0 / left) as f32
+}
+
 /// `clear_sky_zenith` scattered once only (tests weigh the higher orders against it).
 #[cfg(test)]
 pub fn clear_sky_zenith_once(sun: glam::DVec3) -> [f64; 3] {

@@ -6,6 +6,7 @@ pub mod camera;
 pub mod clipmap;
 pub mod clouds;
 pub mod frame;
+pub mod gusts;
 pub mod multiple_scattering;
 pub mod passes;
 pub mod renderer;
@@ -159,6 +160,8 @@ pub struct SceneSettings {
     /// `--slicks`: the share of the sea in natural slicks, 0–1 (`None`: by the wind,
     /// `slicks::slick_share`).
     pub slicks: Option<f64>,
+    /// `--gusts`: wind gusts (shaders/common/gusts.glsl).
+    pub gusts: bool,
     /// `--shadows`: the sun's shadows (shaders/common/shadow.glsl).
     pub shadows: bool,
     /// `--caustics`: the sun focused on the sea floor, and the light shafts
@@ -224,6 +227,7 @@ impl Default for SceneSettings {
             sun_dir: default_sun_dir(),
             cloud_cover: 0.0,
             slicks: None,
+            gusts: true,
             shadows: true,
             caustics: true,
             refraction_caustics: true,

@@ -635,6 +635,7 @@ impl Renderer {
                 scene: &s.layout,
                 background: s.background,
                 slicks: s.slicks,
+                gusts: s.gusts,
             },
         );
         self.frame_uniforms[slot]

@@ -118,6 +118,8 @@ pub struct OceanBindings {
     pub slope_anisotropy: [f32; 2],
     /// The sea's natural slicks (`Slicks::of_sea`).
     pub slicks: super::slicks::Slicks,
+    /// The sea's wind gusts (`Gusts::of_sea`).
+    pub gusts: super::gusts::Gusts,
 }
 
 /// The views a frame renders: the camera, its mirror image below the water plane (reflection)
@@ -268,7 +270,8 @@ pub struct FrameUniforms {
     /// Σ(k_x² − k_z²)E, [1] its Σk_x k_z E.
     pub slope_anisotropy: [[f32; 4]; 2],
     /// xy: the same for the whole sea surface (`OceanBindings::slope_anisotropy`: Cox & Munk's
-    /// upwind excess along the wind for the FFT sea, the waves' own for Gerstner's); zw: unused.
+    /// upwind excess along the wind for the FFT sea, the waves' own for Gerstner's); z: their
+    /// growth per unit of a gust's g over them (`Gusts::uniforms`).
     pub sea_slopes: [f32; 4],
     /// rgb: the sun's irradiance at the sea on a surface facing it, through the clear air
     /// (`Sky::sun_light`; the shaders take what the clouds above a point let through,
@@ -277,7 +280,7 @@ pub struct FrameUniforms {
     pub sun_light: [f32; 4],
     /// rgb: the sun's and sky's irradiance on the sea over the default day's
     /// (`Sky::global_irradiance`, `reference_light`): deep water's light; w: the display's
-    /// exposure (`Sky::exposure`, times `underwater_adaptation` under the water).
+    /// exposure (`Sky::exposure`, times `atmosphere::underwater_adaptation` under the water).
     pub sky_light: [f32; 4],
     /// x: 1 when the camera's near plane is all under the water (`WaterSide::Below`), else
     /// 0; y: the camera's depth below the surface (m, ≥ 0); z: 1 with the caustics
@@ -302,6 +305,9 @@ pub struct FrameUniforms {
     pub slick_space: [f32; 4],
     /// Each cascade's slopes in a slick over its slopes out of one (`Slicks::cascades`).
     pub slick_cascades: [f32; 4],
+    /// Wind gusts (`gusts::Gusts::uniforms`): x their drift, y σ_u/U10 (0: none), z the
+    /// mean-square slope's growth per unit of g, w 1 over the mean whitecap ratio.
+    pub gusts: [f32; 4],
     /// What mip level l of the normal images leaves of cascade c's slopes, [l][c]
     /// (`SeaMoments::slope_mip_gain`).
     pub slope_mips: [[f32; 4]; MIP_LEVELS],
@@ -428,6 +434,8 @@ pub struct FrameParams<'a> {
     pub background: Option<[f32; 3]>,
     /// `--slicks`: the share of the sea in slicks (`None`: by the wind, `Slicks::share`).
     pub slicks: Option<f64>,
+    /// `--gusts`: wind gusts (`gusts.y`).
+    pub gusts: bool,
 }
 
 /// `FrameUniforms::sun_light` and `sky_light` of a sky, and the clouds' mean share of the sun
@@ -449,20 +457,6 @@ pub fn sky_uniforms(sky: &Sky, layer: bool) -> SkyLight {
         [light[0], light[1], light[2], sky.exposure()],
         super::clouds::mean_through(sky.sun_dir.normalize(), cover),
     )
-}
-
-/// The exposure's factor for an eye `depth` m under the water (≤ 0: above it): the eye, and a
-/// camera's automatic exposure, adapt to the daylight at their depth, fully, as a diver's eyes
-/// do over the minutes of a dive: 1 over the luminance (Rec. 709 weights) that is left of a
-/// grey daylight after `depth` m of each channel's absorption (`ABSORPTION_PER_M`; capped at
-/// 30 m). At 8 m the red is gone and the green halved: 2.6.
-pub fn underwater_adaptation(depth: f64) -> f32 {
-    let d = depth.clamp(0.0, 30.0);
-    let weights = [0.2126, 0.7152, 0.0722];
-    let left: f64 = (0..3)
-        .map(|c| weights[c] * (-f64::from(crate::shared::ABSORPTION_PER_M[c]) * d).exp())
-        .sum();
-    (1.0 / left) as f32
 }
 
 /// `FrameUniforms::underwater` and `waterline`: where the camera's near plane lies against the
@@ -496,11 +490,12 @@ impl FrameUniforms {
         let water = WaterFrame::around([camera.position.x as f64, camera.position.z as f64]);
         let slick_share = p.slicks.unwrap_or(p.ocean.slicks.share);
         let slicks = p.ocean.slicks.uniforms(slick_share, p.time_s);
+        let (gusts, gust_slopes) = p.ocean.gusts.uniforms(p.time_s, p.gusts);
         let focal_px = camera.focal_px(p.aspect, h);
         let (sun_light, sky_light, mean_through) = p.sky_light;
         let depth = p.inputs.camera_depth_m(camera.position.y);
         let (underwater, waterline) = water_side_uniforms(camera, p);
-        let exposure = sky_light[3] * underwater_adaptation(depth);
+        let exposure = sky_light[3] * super::atmosphere::underwater_adaptation(depth);
         FrameUniforms {
             views: frame_views(
                 camera,
@@ -566,6 +561,7 @@ impl FrameUniforms {
             slicks: slicks[0],
             slick_space: slicks[1],
             slick_cascades: slicks[2],
+            gusts,
             slope_variance: p.ocean.sea_moments.slope_variance.map(|v| v as f32),
             slope_mips: rows_f32(p.ocean.sea_moments.slope_mip_gain),
             curvature_variance: p.ocean.sea_moments.curvature_variance.map(|v| v as f32),
@@ -574,7 +570,7 @@ impl FrameUniforms {
             sea_slopes: [
                 p.ocean.slope_anisotropy[0],
                 p.ocean.slope_anisotropy[1],
-                0.0,
+                gust_slopes,
                 0.0,
             ],
             open_sea: {
