@@ -154,18 +154,13 @@ fn the_clouds_shadows_take_the_sun_off_the_sea_where_the_sky_casts_them() {
     let clouded = shot("far-clouds", "0.6");
     let clear = shot("far-clear", "0");
     let view = Camera::looking_at(eye, target).expect("a camera");
-    let aspect = w as f32 / h as f32;
     // The sun's path: the middle 60 columns. Pixels whose water the twin puts in the sun
     // (> 0.9 of it through) and in shadow (< 0.2).
     let (mut lit, mut shaded) = ([0.0f64; 2], [0.0f64; 2]);
     let (mut n_lit, mut n_shaded) = (0, 0);
     for y in 0..h {
         for x in w / 2 - 30..w / 2 + 30 {
-            let ndc = [
-                (x as f32 + 0.5) / w as f32 * 2.0 - 1.0,
-                (y as f32 + 0.5) / h as f32 * 2.0 - 1.0,
-            ];
-            let Some([px, pz]) = view.water_point(ndc, aspect, 0.0, 20e3) else {
+            let Some([px, pz]) = view.pixel_water_point((x, y), (w, h), 20e3) else {
                 continue;
             };
             let t = clouds::through(Vec3::new(px, 0.0, pz), sun, 0.6);

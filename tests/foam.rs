@@ -644,12 +644,8 @@ fn whitecaps_follow_monahan_s_law_at_the_gusts_local_wind() {
             let (Some(a), Some(b)) = (with[y * FW + x], without[y * FW + x]) else {
                 continue;
             };
-            let ndc = [
-                (x as f32 + 0.5) / FW as f32 * 2.0 - 1.0,
-                (y as f32 + 0.5) / FH as f32 * 2.0 - 1.0,
-            ];
             let [px, pz] = camera
-                .water_point(ndc, FW as f32 / FH as f32, 0.0, 10e3)
+                .pixel_water_point((x, y), (FW, FH), 10e3)
                 .expect("the water below");
             let g = f64::from(gust_at(px, pz, &u, wind));
             let r = whitecap_ratio(g) / gusts.mean_whitecap_ratio;

@@ -42,11 +42,7 @@ fn slick_over_clean(pixels: &[u8], camera: &Camera, share: f64) -> (f64, usize) 
     for y in 0..H {
         let (mut slick, mut clean) = (Vec::new(), Vec::new());
         for x in 0..W {
-            let ndc = [
-                (x as f32 + 0.5) / W as f32 * 2.0 - 1.0,
-                (y as f32 + 0.5) / H as f32 * 2.0 - 1.0,
-            ];
-            let Some([px, pz]) = camera.water_point(ndc, W as f32 / H as f32, 0.0, 3000.0) else {
+            let Some([px, pz]) = camera.pixel_water_point((x, y), (W, H), 3000.0) else {
                 continue;
             };
             if (px - EYE[0]).hypot(pz - EYE[2]) < 200.0 {

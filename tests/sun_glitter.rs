@@ -158,12 +158,8 @@ fn glitter_gaussian(
             if excess < 0.2 * peak {
                 continue;
             }
-            let ndc = [
-                (x as f32 + 0.5) / W as f32 * 2.0 - 1.0,
-                (y as f32 + 0.5) / H as f32 * 2.0 - 1.0,
-            ];
             let [px, pz] = view
-                .water_point(ndc, W as f32 / H as f32, 0.0, 10e3)
+                .pixel_water_point((x, y), (W, H), 10e3)
                 .expect("the water below");
             let to_eye = (eye - Vec3::new(px, 0.0, pz)).normalize();
             let h = (to_eye + Vec3::Y).normalize();

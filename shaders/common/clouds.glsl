@@ -34,6 +34,15 @@ float cloud_shape(vec2 q) {
     return sum / 0.96875;
 }
 
+// The noise in a space stretched along the wind (its unit vector `wind`, xz): cells `cells_m`
+// (m) along it and across it, carried `drift` cells downwind, at `offset` (cells) from the
+// clouds' place in it, at the world point xz (m): the natural slicks' and the gusts' patterns
+// (common/slicks.glsl, gusts.glsl; `clouds::wind_shape` on the CPU).
+float wind_shape(vec2 xz, vec2 wind, vec2 cells_m, float drift, vec2 offset) {
+    vec2 q = vec2(dot(xz, wind) / cells_m.x - drift, dot(xz, vec2(-wind.y, wind.x)) / cells_m.y);
+    return cloud_shape(q + offset);
+}
+
 // The share of the light the broken clouds stop at the layer's point `xz_m` (world, m), for
 // `cover` (0–1) of the sky clouded, on a ray that travelled `dist` m from the sea to it: past
 // ~20 km the cube cannot resolve their texture and only the mean cover is left (the sky's

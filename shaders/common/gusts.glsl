@@ -14,10 +14,8 @@
 
 float gust_at(vec2 xz) {
     // No branch for "no gusts" (strength 0): see slick_at (common/slicks.glsl) for why.
-    vec2 wind = frame.slick_space.zw;
-    vec2 q = vec2(dot(xz, wind) / GUST_ALONG_M - frame.gusts.x,
-                  dot(xz, vec2(-wind.y, wind.x)) / GUST_ACROSS_M);
-    float n = cloud_shape(q + vec2(GUST_NOISE_OFFSET_X, GUST_NOISE_OFFSET_Y));
+    float n = wind_shape(xz, frame.slick_space.zw, vec2(GUST_ALONG_M, GUST_ACROSS_M),
+                         frame.gusts.x, vec2(GUST_NOISE_OFFSET_X, GUST_NOISE_OFFSET_Y));
     return frame.gusts.y * (n - GUST_NOISE_MEAN) / GUST_NOISE_STD;
 }
 

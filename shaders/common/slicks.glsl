@@ -14,10 +14,8 @@ float slick_at(vec2 xz) {
     // No branch for "no slicks" (threshold SLICK_NONE, above the noise's range: the smoothstep
     // gives 0): on lavapipe (Mesa 22.3) the noise's loop inside a uniform branch of the water's
     // vertex stage leaked about 0.7 MB of host memory a frame (tests/soak.rs).
-    vec2 wind = frame.slick_space.zw;
-    vec2 q = vec2(dot(xz, wind) / SLICK_ALONG_M - frame.slick_space.x,
-                  dot(xz, vec2(-wind.y, wind.x)) / SLICK_ACROSS_M);
-    return smoothstep(frame.slicks.w, frame.slicks.w + SLICK_EDGE,
-                      cloud_shape(q + vec2(SLICK_NOISE_OFFSET_X, SLICK_NOISE_OFFSET_Y)));
+    float n = wind_shape(xz, frame.slick_space.zw, vec2(SLICK_ALONG_M, SLICK_ACROSS_M),
+                         frame.slick_space.x, vec2(SLICK_NOISE_OFFSET_X, SLICK_NOISE_OFFSET_Y));
+    return smoothstep(frame.slicks.w, frame.slicks.w + SLICK_EDGE, n);
 }
 #endif

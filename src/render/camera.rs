@@ -87,6 +87,21 @@ impl Camera {
             .then_some([self.position.x + t * dir.x, self.position.z + t * dir.z])
     }
 
+    /// `water_point` of the centre of pixel (`x`, `y`) (from the top left) of a picture `w` by
+    /// `h` pixels, on the mean water level (y = 0): where the tests' pictures look.
+    pub fn pixel_water_point(
+        &self,
+        (x, y): (usize, usize),
+        (w, h): (usize, usize),
+        max_m: f32,
+    ) -> Option<[f32; 2]> {
+        let ndc = [
+            (x as f32 + 0.5) / w as f32 * 2.0 - 1.0,
+            (y as f32 + 0.5) / h as f32 * 2.0 - 1.0,
+        ];
+        self.water_point(ndc, w as f32 / h as f32, 0.0, max_m)
+    }
+
     /// Camera-relative position -> clip space.
     pub fn view_proj(&self, aspect: f32) -> Mat4 {
         self.projection(aspect) * self.view_rotation()

@@ -48,6 +48,21 @@ pub fn shape(mut x: f32, mut y: f32) -> f32 {
     sum / 0.96875
 }
 
+/// `wind_shape`: the noise in a space stretched along the wind (its unit vector `wind`, x and
+/// z): cells `cells_m` (m) along it and across it, carried `drift` cells downwind, at `offset`
+/// (cells) from the clouds' place in it, at the world point (`x`, `z`) (m).
+pub fn wind_shape(
+    (x, z): (f32, f32),
+    [wx, wz]: [f32; 2],
+    cells_m: [f32; 2],
+    drift: f32,
+    offset: [f32; 2],
+) -> f32 {
+    let along = (x * wx + z * wz) / cells_m[0] - drift;
+    let across = (-x * wz + z * wx) / cells_m[1];
+    shape(along + offset[0], across + offset[1])
+}
+
 /// `cloud_alpha`: the share of the light the layer stops at its point (`x`, `z`) (world, m),
 /// on a ray that travelled `dist` m to it, `cover` of the sky clouded.
 pub fn alpha(x: f32, z: f32, dist: f32, cover: f32) -> f32 {

@@ -154,10 +154,14 @@ impl Gusts {
 /// point (`x`, `z`) (m), the local wind being U10·(1 + g), for `FrameUniforms::gusts` `u` and the
 /// wind's unit vector `wind` (`slick_space.zw`).
 pub fn gust_at(x: f32, z: f32, u: &[f32; 4], wind: [f32; 2]) -> f32 {
-    let [wx, wz] = wind;
-    let along = (x * wx + z * wz) / GUST_ALONG_M - u[0];
-    let across = (-x * wz + z * wx) / GUST_ACROSS_M;
-    u[1] * (shape_at(along, across) - GUST_NOISE_MEAN) / GUST_NOISE_STD
+    let n = super::clouds::wind_shape(
+        (x, z),
+        wind,
+        [GUST_ALONG_M, GUST_ACROSS_M],
+        u[0],
+        [GUST_NOISE_OFFSET_X, GUST_NOISE_OFFSET_Y],
+    );
+    u[1] * (n - GUST_NOISE_MEAN) / GUST_NOISE_STD
 }
 
 #[cfg(test)]

@@ -199,9 +199,14 @@ impl Slicks {
 /// a slick (0–1), for `FrameUniforms::slicks` and `slick_space` `u`.
 pub fn slick_at(x: f32, z: f32, u: &[[f32; 4]; 3]) -> f32 {
     let [_, [drift, _, wx, wz], _] = *u;
-    let along = (x * wx + z * wz) / SLICK_ALONG_M - drift;
-    let across = (-x * wz + z * wx) / SLICK_ACROSS_M;
-    let t = ((shape_at(along, across) - u[0][3]) / SLICK_EDGE).clamp(0.0, 1.0);
+    let n = super::clouds::wind_shape(
+        (x, z),
+        [wx, wz],
+        [SLICK_ALONG_M, SLICK_ACROSS_M],
+        drift,
+        [SLICK_NOISE_OFFSET_X, SLICK_NOISE_OFFSET_Y],
+    );
+    let t = ((n - u[0][3]) / SLICK_EDGE).clamp(0.0, 1.0);
     t * t * (3.0 - 2.0 * t)
 }
 
