@@ -150,8 +150,16 @@ pub fn slope_along(total: f64, anisotropy: [f64; 2], dir: [f64; 2]) -> f64 {
 /// σ² = 0.003 + 5.12·10⁻³·U (±0.004), U measured 12.5 m above the sea (we pass U10: the
 /// difference is about 2 %, within their scatter).
 pub fn cox_munk_mean_square_slope(u: f64) -> f64 {
-    0.003 + 5.12e-3 * u
+    0.003 + COX_MUNK_TOTAL_PER_M_S * u
 }
+
+/// Cox & Munk's (1954) clean-surface fits' growth with the wind (per m/s): the total
+/// mean-square slope's, and the upwind's (3.16·10⁻³) and crosswind's (1.92·10⁻³) slopes'.
+pub const COX_MUNK_TOTAL_PER_M_S: f64 = 5.12e-3;
+pub const COX_MUNK_UPWIND_PER_M_S: f64 = 3.16e-3;
+pub const COX_MUNK_CROSSWIND_PER_M_S: f64 = 1.92e-3;
+/// The upwind excess' growth with the wind (per m/s): 1.24·10⁻³.
+pub const COX_MUNK_EXCESS_PER_M_S: f64 = COX_MUNK_UPWIND_PER_M_S - COX_MUNK_CROSSWIND_PER_M_S;
 
 /// Cox & Munk's (1954) clean surface by direction: upwind σ_u² = 3.16·10⁻³·U (±0.004) and
 /// crosswind σ_c² = 0.003 + 1.92·10⁻³·U (±0.004). Their difference, σ_u² − σ_c² =
@@ -159,7 +167,7 @@ pub fn cox_munk_mean_square_slope(u: f64) -> f64 {
 /// 2.4 m/s, where their fit would make the crosswind slopes the larger); their sum,
 /// 0.003 + 5.08·10⁻³·U, is within 1 % of the total fit above.
 pub fn cox_munk_upwind_excess(u: f64) -> f64 {
-    (3.16e-3 * u - (0.003 + 1.92e-3 * u)).max(0.0)
+    (COX_MUNK_UPWIND_PER_M_S * u - (0.003 + COX_MUNK_CROSSWIND_PER_M_S * u)).max(0.0)
 }
 
 /// `SeaMoments::slope_anisotropy` of slopes whose mean square is `excess` more along the unit

@@ -27,7 +27,9 @@
 
 use std::sync::OnceLock;
 
-use crate::ocean::moments::cox_munk_upwind_excess;
+use crate::ocean::moments::{
+    cox_munk_upwind_excess, COX_MUNK_EXCESS_PER_M_S, COX_MUNK_TOTAL_PER_M_S,
+};
 use crate::ocean::spectrum::wind_vector;
 use crate::ocean::{OceanSettings, Waves};
 use crate::shared::{
@@ -37,11 +39,6 @@ use crate::shared::{
 
 /// σ_u over the friction velocity u* in the neutral surface layer (Panofsky & Dutton 1984).
 pub const SIGMA_U_PER_U_STAR: f64 = 2.39;
-/// Cox & Munk's (1954) clean-surface mean-square slope's growth with the wind (per m/s): the
-/// total (`moments::cox_munk_mean_square_slope`) and the upwind excess
-/// (`moments::cox_munk_upwind_excess`).
-pub const COX_MUNK_TOTAL_PER_M_S: f64 = 5.12e-3;
-pub const COX_MUNK_EXCESS_PER_M_S: f64 = 3.16e-3 - 1.92e-3;
 
 /// Large & Pond's (1981) neutral drag coefficient at 10 m over the sea at the wind `u10`
 /// (m/s): 1.2·10⁻³ from 4 to 11 m/s, (0.49 + 0.065·U10)·10⁻³ from 11 to 25 m/s; held at the
