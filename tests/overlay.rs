@@ -165,27 +165,33 @@ fn a_live_change_of_the_look_matches_the_flag_in_the_picture() {
         "--slicks=0.6",
         "--render-scale=0.75",
         "--geometry=tessellated",
+        "--gusts=off",
     ];
     let live = [
         "--frames",
         "3",
         "--live-set",
-        "sun-azimuth=40;sun-elevation=25;clouds=0.7;slicks=0.6;render-scale=0.75;geometry=tessellated",
+        "sun-azimuth=40;sun-elevation=25;clouds=0.7;slicks=0.6;render-scale=0.75;geometry=tessellated;gusts=off",
     ];
     let a = shot("look-flag", size, &flags, &[]);
     let b = shot("look-live", size, &live, &[]);
     let c = shot("look-none", size, &["--frames", "3"], &[]);
     assert!(a == b, "mean difference {}", mean_abs_diff(&a, &b));
     assert!(mean_abs_diff(&a, &c) > 2.0, "the change shows");
+    // The gusts alone show too, so the live picture's match proves the switch was carried.
+    let with_gusts = shot("look-flag-gusts", size, &flags[..flags.len() - 1], &[]);
+    assert!(a != with_gusts, "--gusts off changes the picture");
 }
 
 #[test]
 fn a_bad_live_change_is_one_line_and_exit_2() {
-    let out = run(&["--headless", "--live-set", "wind-speed=500"]);
-    assert_eq!(out.status.code(), Some(2));
-    let err = stderr(&out);
-    assert_eq!(err.lines().count(), 1, "{err}");
-    assert!(err.contains("wind-speed"), "{err}");
+    for (pair, key) in [("wind-speed=500", "wind-speed"), ("gusts=maybe", "gusts")] {
+        let out = run(&["--headless", "--live-set", pair]);
+        assert_eq!(out.status.code(), Some(2));
+        let err = stderr(&out);
+        assert_eq!(err.lines().count(), 1, "{err}");
+        assert!(err.contains(key), "{err}");
+    }
 }
 
 #[test]
@@ -218,6 +224,8 @@ fn saved_settings_read_back_to_the_same_tunables() {
         "gerstner",
         "--geometry",
         "tessellated",
+        "--gusts",
+        "off",
     ])
     .unwrap();
     let mut tunables = cli.tunables();

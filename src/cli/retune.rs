@@ -6,7 +6,7 @@ use std::sync::Arc;
 
 use super::presets::{quality_level, sea_preset, DEFAULT_SEA};
 use super::tuning::Tunables;
-use super::{Cli, UsageError, WavesArg};
+use super::{Cli, Switch, UsageError, WavesArg};
 use crate::frontend::Retune;
 use crate::render::{default_sun_dir, AntiAliasing};
 
@@ -40,6 +40,7 @@ impl Cli {
             sun,
             clouds: self.clouds.unwrap_or(sea.cloud_cover),
             slicks: self.slicks,
+            gusts: self.gusts != Some(Switch::Off),
             time_scale: self.time_scale,
             render_scale: self.render_scale.unwrap_or(quality.render_scale),
             rtt_scale: self.rtt_scale.unwrap_or(quality.rtt_scale),
@@ -84,6 +85,7 @@ impl Cli {
         cli.sun = Some(t.sun);
         cli.clouds = Some(t.clouds);
         cli.slicks = t.slicks;
+        cli.gusts = Some(if t.gusts { Switch::On } else { Switch::Off });
         cli.time_scale = t.time_scale;
         cli.render_scale = Some(t.render_scale);
         cli.rtt_scale = Some(t.rtt_scale);

@@ -308,7 +308,10 @@ impl Overlay {
                 choose(ui, "anti-aliasing", &mut t.aa);
                 ui.add(Slider::new(&mut t.sun[0], -180.0..=180.0).text("sun azimuth"));
                 ui.add(Slider::new(&mut t.sun[1], -10.0..=90.0).text("sun elevation"));
-                ui.add(Slider::new(&mut t.clouds, 0.0..=1.0).text("clouds"));
+                ui.horizontal(|ui| {
+                    ui.add(Slider::new(&mut t.clouds, 0.0..=1.0).text("clouds"));
+                    ui.checkbox(&mut t.gusts, "gusts");
+                });
                 // Natural slicks: by the wind (Romano 1996's share) or a share of one's own.
                 let mut own = t.slicks.is_some();
                 ui.horizontal(|ui| {

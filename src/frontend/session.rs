@@ -247,7 +247,7 @@ impl Session {
     /// Applies changed settings between two frames (the overlay, `--live-set`): a changed sea
     /// or grid makes a new simulation (h0 computed and uploaded anew); a changed sea, grid,
     /// scale, terrain grid or anti-aliasing a new renderer (targets, pipelines, frame sets);
-    /// anything else (sun, clouds, slicks, Fresnel, view, tessellation edge) is a uniform.
+    /// anything else (sun, clouds, slicks, gusts, Fresnel, view, tessellation edge) is a uniform.
     /// Nothing waits for the GPU: the replaced objects go to the deferred-deletion queue, and the
     /// frames in flight finish with them. On an error the session keeps its old state.
     pub fn retune(&mut self, s: &RunSettings) -> anyhow::Result<()> {

@@ -45,6 +45,8 @@ pub struct Tunables {
     pub clouds: f64,
     /// The share of the sea in natural slicks (`None`: by the wind, `render::slicks`).
     pub slicks: Option<f64>,
+    /// `--gusts`: wind gusts (`render::gusts`).
+    pub gusts: bool,
     /// Simulation seconds per second (or per `--dt` step).
     pub time_scale: f64,
     pub render_scale: f64,
@@ -131,6 +133,8 @@ impl Tunables {
         if let Some(share) = self.slicks {
             lines.push(format!("slicks = {}", number(share)));
         }
+        let gusts = if self.gusts { "on" } else { "off" };
+        lines.push(format!("gusts = \"{gusts}\""));
         lines.push(format!("time-scale = {}", number(self.time_scale)));
         lines.push(format!("render-scale = {}", number(self.render_scale)));
         lines.push(format!("rtt-scale = {}", number(self.rtt_scale)));
@@ -198,6 +202,13 @@ impl Tunables {
             "sun-elevation" => self.sun[1] = num(-10.0, 90.0)? as f32,
             "clouds" => self.clouds = num(0.0, 1.0)?,
             "slicks" => self.slicks = Some(num(0.0, 1.0)?),
+            "gusts" => {
+                self.gusts = match value {
+                    "on" => true,
+                    "off" => false,
+                    _ => return Err(bad("expected on or off")),
+                }
+            }
             "time-scale" => self.time_scale = num(0.0, MAX_TIME_SCALE)?,
             "render-scale" => self.render_scale = num(0.25, 1.0)?,
             "rtt-scale" => self.rtt_scale = num(0.1, 1.0)?,
