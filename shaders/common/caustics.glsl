@@ -70,17 +70,39 @@ void caustic_surface(vec2 x, float depth, float dist, float pixel_m, out vec2 s,
         float resolved = weight * clamp(2.0 - pixel_m / cascade_shortest_m(c, texels), 0.0, 1.0)
                          * min(1.0, CAUSTIC_FOCI / max(foci, 1e-6));
         vec2 step_uv = vec2(widen / texels, 0.0);
-        vec2 sx0 = ocean_texture(ocean_normals, uv - step_uv.xyy).xy;
-        vec2 sx1 = ocean_texture(ocean_normals, uv + step_uv.xyy).xy;
-        vec2 sz0 = ocean_texture(ocean_normals, uv - step_uv.yxy).xy;
-        vec2 sz1 = ocean_texture(ocean_normals, uv + step_uv.yxy).xy;
+        vec2 sx0, sx1, sz0, sz1;
+        if (SLOPE_MIPS) {
+            // The level that box-filters the cascade to the waves focusing at most
+            // CAUSTIC_FOCI deep, or to the pixel's footprint where that is coarser (water.frag's
+            // level for it): a low-pass, where level 0's stencil only spread its samples and
+            // the waves past its cutoff came through aliased (their RMS focus number then had to
+            // scale the cascade down as well). Past the last level the cascade fades as
+            // water.frag's slopes do.
+            float lod = max(log2(widen),
+                            log2(pixel_m * texels / patch_m) - SLOPE_LOD_BIAS);
+            widen = exp2(lod);
+            step_uv.x = widen / texels;
+            resolved = weight * clamp(float(SLOPE_LEVELS) - lod, 0.0, 1.0);
+            sx0 = ocean_texture_lod(ocean_normals, uv - step_uv.xyy, lod).xy;
+            sx1 = ocean_texture_lod(ocean_normals, uv + step_uv.xyy, lod).xy;
+            sz0 = ocean_texture_lod(ocean_normals, uv - step_uv.yxy, lod).xy;
+            sz1 = ocean_texture_lod(ocean_normals, uv + step_uv.yxy, lod).xy;
+        } else {
+            sx0 = ocean_texture(ocean_normals, uv - step_uv.xyy).xy;
+            sx1 = ocean_texture(ocean_normals, uv + step_uv.xyy).xy;
+            sz0 = ocean_texture(ocean_normals, uv - step_uv.yxy).xy;
+            sz1 = ocean_texture(ocean_normals, uv + step_uv.yxy).xy;
+        }
         float step_m = widen * patch_m / texels;
         s += resolved * 0.25 * (sx0 + sx1 + sz0 + sz1);
         hess += resolved / (2.0 * step_m) * mat2(sx1 - sx0, sz1 - sz0);
         bundle_m = resolved > 0.01 ? min(bundle_m, 2.0 * step_m) : bundle_m;
-        // The cascade's RMS focus number as it enters: its band below the stencil's cutoff
-        // holds about 1/widen of its curvature (Σk⁴E grows as k² for a k⁻⁴ spectrum).
-        float f = resolved * foci / widen;
+        // The cascade's RMS focus number as it enters: with the mip levels what the level's
+        // Hessian keeps of its curvature (src/ocean/moments.rs `curvature_mip_gains`); at
+        // level 0 its band below the stencil's cutoff holds about 1/widen of its curvature
+        // (Σk⁴E grows as k² for a k⁻⁴ spectrum).
+        float f = resolved * foci
+                  * (SLOPE_MIPS ? mip_gain(frame.curvature_mips, c, log2(widen)) : 1.0 / widen);
         focus += f * f;
     }
     focus = sqrt(focus);

@@ -77,6 +77,8 @@ layout(set = 0, binding = 0, std140) uniform FrameUniforms {
                          // whitecap ratio
     vec4 slope_mips[SLOPE_LEVELS]; // what mip level l of the normal images leaves of cascade
                          // c's slopes, [l][c] (src/ocean/moments.rs `slope_mip_gains`)
+    vec4 curvature_mips[SLOPE_LEVELS]; // what the caustics' Hessian at mip level l leaves of
+                         // cascade c's curvature, [l][c] (`curvature_mip_gains`)
 } frame;
 
 // Which view a draw renders (ViewIndex in src/render/uniforms.rs).

@@ -68,28 +68,6 @@ const float FOAM_ALBEDO = 0.85;
 // Height of the foam's relief (m): bubbles and lace a few centimetres thick.
 const float FOAM_RELIEF_M = 0.15;
 
-// SLOPE_MIPS: the normal images have mip levels (src/ocean/simulation/slope_mips.rs, above a
-// 64² grid) and each cascade is looked up at the level of the pixel's footprint, along the view
-// and across it; without them (`--quality low`) a cascade's slopes fade out as a whole once
-// the footprint passes its shortest waves, which took its longer waves with them: at 10–20 m
-// from a camera 3 m up (320x180) the sea held 0.4 times the detail of a supersampled picture.
-layout(constant_id = 6) const bool SLOPE_MIPS = false;
-// A level's texel of side a is a box of side a, and its bilinear lookup a tent of half-width a
-// on top: variance a²/12 + a²/6 = a²/4 along each axis. A pixel's footprint f (the spacing of
-// pixel centres) is a box of variance f²/12, the same when a = f/√3: the level's LOD is
-// log2(f / texel) − log2 √3. (Measured against 4x4 supersampling, tests/far_field.rs: 0.7 times
-// its detail at 10–30 m with no bias, 0.93 with this one.)
-const float SLOPE_LOD_BIAS = 0.79;
-
-// What the normal image's mip level `lod` (fractional) leaves of cascade c's slopes
-// (`SeaMoments::slope_mip_gain`, trilinear between levels like the lookup).
-float slope_mip_gain(int c, float lod) {
-    float l = clamp(lod, 0.0, float(SLOPE_LEVELS - 1u));
-    int i = int(l);
-    int j = min(i + 1, int(SLOPE_LEVELS) - 1);
-    return mix(frame.slope_mips[i][c], frame.slope_mips[j][c], l - float(i));
-}
-
 // The summed normal, its slopes scaled as the shallows scale the waves (`scale`), and the
 // whitecap field (layer 0's foam: the whole surface's, see src/ocean/foam.rs), faded with the
 // largest cascade. `resolved`: the covariance of the slopes those faded, scaled cascades carry
@@ -136,7 +114,8 @@ vec4 ocean_normal_foam(vec2 xz, float dist, vec2 footprint, vec2 along, float sc
             s_along = ocean_texture_lod(ocean_normals, uv, lod.x);
             s = ocean_texture_lod(ocean_normals, uv, lod.y);
             w = weight * slick * clamp(float(SLOPE_LEVELS) - lod, 0.0, 1.0);
-            kept = w * vec2(slope_mip_gain(c, lod.x), slope_mip_gain(c, lod.y));
+            kept = w * vec2(mip_gain(frame.slope_mips, c, lod.x),
+                             mip_gain(frame.slope_mips, c, lod.y));
         } else {
             s = ocean_texture(ocean_normals, uv);
             s_along = s;

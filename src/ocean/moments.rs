@@ -42,6 +42,9 @@ pub struct SeaMoments {
     /// What each mip level of the normal images leaves of each layer's slopes, [level][layer]
     /// (`slope_mip_gains`; all 1 until `with_mip_gains`).
     pub slope_mip_gain: [[f64; 4]; MIP_LEVELS],
+    /// What the caustics' Hessian at each mip level leaves of each layer's curvature,
+    /// [level][layer] (`curvature_mip_gains`; all 1 until `with_mip_gains`).
+    pub curvature_mip_gain: [[f64; 4]; MIP_LEVELS],
 }
 
 /// The normal images' mip levels (`crate::shared::SLOPE_LEVELS`), as an array length.
@@ -81,14 +84,17 @@ impl SeaMoments {
             curvature_variance: curvatures,
             short_slope_variance: short,
             slope_mip_gain: [[1.0; 4]; MIP_LEVELS],
+            curvature_mip_gain: [[1.0; 4]; MIP_LEVELS],
         }
     }
 
-    /// The same with `slope_mip_gain` of `waves` (those it was made from), each layer's
-    /// images `texel_m` apart.
+    /// The same with `slope_mip_gain` and `curvature_mip_gain` of `waves` (those it was made
+    /// from), each layer's images `texel_m` apart.
     pub fn with_mip_gains(self, waves: impl Iterator<Item = Component>, texel_m: [f64; 4]) -> Self {
+        let waves: Vec<Component> = waves.collect();
         SeaMoments {
-            slope_mip_gain: slope_mip_gains(waves, texel_m),
+            slope_mip_gain: slope_mip_gains(waves.iter().copied(), texel_m),
+            curvature_mip_gain: curvature_mip_gains(waves.iter().copied(), texel_m),
             ..self
         }
     }
@@ -105,26 +111,68 @@ pub fn slope_mip_gains(
     waves: impl Iterator<Item = Component>,
     texel_m: [f64; 4],
 ) -> [[f64; 4]; MIP_LEVELS] {
-    let box_gain = |theta: f64, m: f64| {
-        let s = (theta / 2.0).sin();
-        if s.abs() < 1e-12 {
-            1.0
+    rms_gains(waves, texel_m, |[kx, kz], t, m| {
+        (kx * kx + kz * kz, box_gain(kx * t, m) * box_gain(kz * t, m))
+    })
+}
+
+/// The root-mean-square share of each layer's curvature (its height's Laplacian, whose mean
+/// square is Σ k⁴E) that the caustics' Hessian keeps at each mip level, [level][layer]
+/// (common/caustics.glsl): central differences 2^l texels t wide of level l's slopes, which
+/// pass ∂s_x/∂x of a wave of wave vector k with the box's gain (`slope_mip_gains`) times
+/// sin(k_x w)/(k_x w), w = 2^l·t; the Laplacian keeps (k_x² sinc(k_x w) + k_z² sinc(k_z w))/k²
+/// of that. (The bilinear lookup's own blur, a tent a texel wide, is left out, as the slopes'
+/// gains leave it out.) The caustics scale each layer's RMS focus number by it, which picks
+/// the mean of their area ratio (`caustic_mean`).
+pub fn curvature_mip_gains(
+    waves: impl Iterator<Item = Component>,
+    texel_m: [f64; 4],
+) -> [[f64; 4]; MIP_LEVELS] {
+    let sinc = |x: f64| if x.abs() < 1e-12 { 1.0 } else { x.sin() / x };
+    rms_gains(waves, texel_m, |[kx, kz], t, m| {
+        let k2 = kx * kx + kz * kz;
+        let w = m * t;
+        let laplacian = if k2 > 0.0 {
+            (kx * kx * sinc(kx * w) + kz * kz * sinc(kz * w)) / k2
         } else {
-            (m * theta / 2.0).sin() / (m * s)
-        }
-    };
+            1.0
+        };
+        (
+            k2 * k2,
+            box_gain(kx * t, m) * box_gain(kz * t, m) * laplacian,
+        )
+    })
+}
+
+/// A box of `m` samples' gain on a wave whose phase steps by `theta` from one to the next:
+/// sin(mθ/2) / (m sin(θ/2)).
+fn box_gain(theta: f64, m: f64) -> f64 {
+    let s = (theta / 2.0).sin();
+    if s.abs() < 1e-12 {
+        1.0
+    } else {
+        (m * theta / 2.0).sin() / (m * s)
+    }
+}
+
+/// √(Σ E·weight·gain² / Σ E·weight) per level and layer, `weigh` giving a wave's (weight,
+/// gain) from its wave vector, its layer's texel spacing and the level's 2^l.
+fn rms_gains(
+    waves: impl Iterator<Item = Component>,
+    texel_m: [f64; 4],
+    weigh: impl Fn([f64; 2], f64, f64) -> (f64, f64),
+) -> [[f64; 4]; MIP_LEVELS] {
     let mut kept = [[0.0; 4]; MIP_LEVELS];
     let mut total = [0.0; 4];
     for w in waves {
         let layer = w.layer.min(3);
-        let [kx, kz] = w.k;
-        let slope = w.energy * (kx * kx + kz * kz);
-        total[layer] += slope;
         let t = texel_m[layer];
         for (l, row) in kept.iter_mut().enumerate() {
-            let m = (1u32 << l) as f64;
-            let g = box_gain(kx * t, m) * box_gain(kz * t, m);
-            row[layer] += slope * g * g;
+            let (weight, g) = weigh(w.k, t, (1u32 << l) as f64);
+            if l == 0 {
+                total[layer] += w.energy * weight;
+            }
+            row[layer] += w.energy * weight * g * g;
         }
     }
     kept.map(|row| {
@@ -195,6 +243,46 @@ mod tests {
         assert!((s.short_slope_variance[1] - 1e-4 * k_half * k_half).abs() < 1e-12);
         assert!(s.slope_variance[1] > s.short_slope_variance[1]);
         assert_eq!(s.short_slope_variance[0], 0.0);
+    }
+
+    #[test]
+    fn the_caustics_hessian_keeps_the_box_s_gain_times_its_differences() {
+        // Layer 0 (texels 0.5 m apart): a wave 16 texels long along x, and one half as long
+        // with a sixteenth of its energy (the same k⁴E, so they weigh alike). Level l's
+        // Hessian is central differences 2^l texels wide of level l's box of 2^l texels: the
+        // wave of phase step θ keeps D(θ)·sin(2^l θ)/(2^l θ), D the box's gain.
+        let tau = std::f64::consts::TAU;
+        let theta = tau / 16.0;
+        let wave = |k: f64, energy: f64| Component {
+            energy,
+            omega: 1.0,
+            k: [k / 0.5, 0.0],
+            layer: 0,
+        };
+        let gain = |theta: f64, l: u32| {
+            let m = (1u32 << l) as f64;
+            let box_gain = (m * theta / 2.0).sin() / (m * (theta / 2.0).sin());
+            box_gain * (m * theta).sin() / (m * theta)
+        };
+        let one = curvature_mip_gains([wave(theta, 1.0)].into_iter(), [0.5; 4]);
+        let two = curvature_mip_gains(
+            [wave(theta, 1.0), wave(2.0 * theta, 1.0 / 16.0)].into_iter(),
+            [0.5; 4],
+        );
+        for l in 0..MIP_LEVELS as u32 {
+            let (g1, g2) = (gain(theta, l), gain(2.0 * theta, l));
+            assert!((one[l as usize][0] - g1.abs()).abs() < 1e-12, "level {l}");
+            let both = ((g1 * g1 + g2 * g2) / 2.0).sqrt();
+            assert!((two[l as usize][0] - both).abs() < 1e-12, "level {l}");
+        }
+        // Level 0's differences see nothing of a wave two texels long (sin π = 0), and level
+        // 2's keep 2/π of the box's (a difference a quarter wave wide).
+        let nyquist = curvature_mip_gains([wave(std::f64::consts::PI, 1.0)].into_iter(), [0.5; 4]);
+        assert!(nyquist[0][0] < 1e-12);
+        let box4 = (4.0 * theta / 2.0).sin() / (4.0 * (theta / 2.0).sin());
+        assert!((one[2][0] - box4 * 2.0 / std::f64::consts::PI).abs() < 1e-12);
+        // A layer without waves keeps everything.
+        assert_eq!(one[3][1], 1.0);
     }
 
     #[test]

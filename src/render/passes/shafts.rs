@@ -76,13 +76,16 @@ impl ShaftsPass {
                     ),
                 ],
                 // common/water.glsl's CASCADES and OCEAN_MANUAL_FILTER; ids 2 and 3 are not
-                // this shader's; common/shadow.glsl's SHADOWS (id 4).
+                // this shader's; common/shadow.glsl's SHADOWS (id 4); (5 unused);
+                // common/water.glsl's SLOPE_MIPS (id 6: the caustics' low-pass).
                 constants: &[
                     ocean.cascades,
                     ocean.manual_filter as u32,
                     0,
                     0,
                     ocean.shadows as u32,
+                    0,
+                    ocean.slope_mips as u32,
                 ],
                 ..Default::default()
             },

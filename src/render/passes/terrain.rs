@@ -80,7 +80,8 @@ impl TerrainPass {
                     // common/water.glsl's CASCADES and OCEAN_MANUAL_FILTER,
                     // common/terrain_lit.glsl's TERRAIN_MATERIALS, terrain.vert's
                     // TERRAIN_QUADS, common/shadow.glsl's SHADOWS,
-                    // common/terrain_lit.glsl's TERRAIN_UNDERWATER.
+                    // common/terrain_lit.glsl's TERRAIN_UNDERWATER, common/water.glsl's
+                    // SLOPE_MIPS (the caustics' low-pass).
                     constants: &[
                         ocean.cascades,
                         ocean.manual_filter as u32,
@@ -88,6 +89,7 @@ impl TerrainPass {
                         quads,
                         ocean.shadows as u32,
                         underwater as u32,
+                        ocean.slope_mips as u32,
                     ],
                     ..Default::default()
                 },

@@ -274,9 +274,10 @@ pub struct WaterKind {
     /// The run has a boat and its wake (`--boat`): common/water.glsl's WAKE, constant 7 of the
     /// water's shaders (without it `wake_at` is zero, its lookups left out).
     pub wake: bool,
-    /// The normal images have mip levels: water.frag's SLOPE_MIPS (constant 6) looks each
-    /// cascade up at the pixel's footprint along the view and across it
-    /// (src/ocean/simulation/slope_mips.rs).
+    /// The normal images have mip levels: common/water.glsl's SLOPE_MIPS (constant 6 of the
+    /// water's, the terrain's and the light shafts' shaders). water.frag looks each cascade up
+    /// at the pixel's footprint along the view and across it, and the caustics low-pass each
+    /// cascade with them (src/ocean/simulation/slope_mips.rs).
     pub slope_mips: bool,
 }
 
