@@ -7,12 +7,12 @@
 //! the surface mirrors the floor; a camera half in the water splits the picture at the
 //! waterline.
 //!
-//! Measured on lavapipe (640x360, --quality low): over the 18 m shelf (the floor 10 m from the
-//! eye) luma high-pass std (the picture less its 15 px box mean) 10.1 in the sun, 0.12 under
-//! the overcast; mean luma change over 0.1 s 13.8; the floor's mean luma 59.6; over a 12 m
-//! shelf (the floor 4 m away) 76.0. The mean light with the caustics over the same build
-//! without them (`--caustics off`; linear luma): 0.93 at low, 1.12 at high (README,
-//! "Caustics"). The shafts: see `the_water_scatters_the_sun_in_shafts_that_radiate_from_it`.
+//! Measured on lavapipe (640x360, --quality low unless said): over the 18 m shelf (the floor
+//! 10 m from the eye) luma high-pass std (the picture less its 15 px box mean) 10.1 in the
+//! sun, 0.12 under the overcast; mean luma change over 0.1 s 13.8; the floor's mean luma 59.6;
+//! over a 12 m shelf (the floor 4 m away) 76.0. The mean light with the caustics over the
+//! same build without them (`--caustics off`; linear luma): 0.93 at low, 1.21 at medium, 1.12
+//! at high (README, "Caustics"). The shafts: see `the_water_scatters_the_sun_in_shafts_that_radiate_from_it`.
 
 mod common;
 
@@ -118,13 +118,15 @@ fn the_floor_4_m_below_is_seen() {
 /// The caustics move the sun's light on the floor; they do not add to it: the mean linear
 /// luminance with them is within 10 % of the same picture's with `--caustics off` (measured
 /// 0.93). Without the division by the area ratio's mean (common/caustics.glsl) it was 1.97.
-/// At `--quality high`, where the mip levels' low-pass sets the focus number that mean is
-/// taken at (`curvature_mip_gains`), within 15 % (measured 1.12; 0.71 with each cascade's
-/// focus number taken as one, what the low-pass was meant to leave, and 1.13 before the mip
-/// levels): the fixed-point step's sampling keeps a bias there that README's Caustics gives.
+/// At `--quality medium` and `high`, where the mip levels' low-pass sets the focus number that
+/// mean is taken at (`curvature_mip_gains`), within 25 % and 15 % (measured 1.21 and 1.12;
+/// with each cascade's focus number taken as one, what the low-pass was meant to leave, 0.77
+/// and 0.71; before the mip levels' low-pass 1.24 and 1.13): one fixed-point step leaves a
+/// bias there that the Gaussian table does not hold (README's Caustics). The wider bounds say
+/// what is measured, not what is wanted.
 #[test]
 fn the_caustics_move_the_light_and_do_not_make_it() {
-    for (quality, bound) in [("low", 0.1), ("high", 0.15)] {
+    for (quality, bound) in [("low", 0.1), ("medium", 0.25), ("high", 0.15)] {
         let on = linear_luma(&floor_rgba("light", "5", &["--quality", quality]));
         let off = linear_luma(&floor_rgba(
             "light",
@@ -152,8 +154,8 @@ fn the_caustics_move_the_light_and_do_not_make_it() {
 /// std over the 7 px one is 0.22 (0.37 then; 0.16 at low, whose waves are longer).
 #[test]
 fn at_medium_and_high_the_caustics_draw_one_clean_network() {
-    let shot = |quality: &str| luma(&floor_rgba("mips", "5", &["--quality", quality]));
-    let (medium, high) = (shot("medium"), shot("high"));
+    let at = |quality: &str| luma(&floor_rgba("mips", "5", &["--quality", quality]));
+    let (medium, high) = (at("medium"), at("high"));
     let centred = |v: &[f64]| {
         let mean = v.iter().sum::<f64>() / v.len() as f64;
         v.iter().map(|x| x - mean).collect::<Vec<_>>()

@@ -30,10 +30,13 @@ const float CAUSTIC_MAX = 12.0;
 // water). Some focal lengths deeper the rays from many surface points cross at every point of
 // the floor and the sun's disc blurs their images together: that wave's own pattern washes
 // out, and the longer waves, which focus deeper, draw the network. So each cascade's
-// curvature enters at most CAUSTIC_FOCI times its RMS focal depth: its Hessian is scaled by
-// min(1, CAUSTIC_FOCI / F), F = d·(1 − 1/n)·κ_rms, κ_rms = √(Σk⁴E) (frame.curvature_variance),
-// and taken by central differences F / CAUSTIC_FOCI texels wide (at least one): a low-pass that
-// keeps the cascade's longer waves, which focus deeper. Our choice (1.0): the network's lines
+// curvature enters at most CAUSTIC_FOCI times its RMS focal depth, F = d·(1 − 1/n)·κ_rms,
+// κ_rms = √(Σk⁴E) (frame.curvature_variance): a low-pass that keeps the cascade's longer
+// waves, which focus deeper. With the normal images' mip levels (SLOPE_MIPS: medium, high)
+// the slopes come from the level whose box is F / CAUSTIC_FOCI texels wide (at least one) and
+// the Hessian from central differences ±1 texel of it; without them (low) the Hessian is
+// taken by central differences ±F / CAUSTIC_FOCI texels of level 0 and, since those let the
+// shorter waves through aliased, scaled by min(1, CAUSTIC_FOCI / F). Our choice (1.0): the network's lines
 // are the first foci of the waves that focus near the floor. Without it the shortest waves,
 // far past their foci, broke the floor into a speckle of dark rims around bright blobs (one
 // branch of many crossing rays, taken at random).
@@ -51,9 +54,10 @@ vec2 caustic_run(vec2 s, vec3 l) {
 
 // The surface's slope at `x` (relative to the water grid's centre) and its Hessian ∂s/∂x, each
 // cascade low-passed as CAUSTIC_FOCI says (the slope: the mean of the four samples its
-// central differences take) and faded as water.frag fades its slopes where a pixel (`pixel_m`
-// across, `dist` from the eye) cannot resolve its shortest waves: there its caustics would
-// alias, so they average to the level sea's 1. `bundle_m`: the narrowest difference taken.
+// central differences take) and, where a pixel (`pixel_m` across, `dist` from the eye) cannot
+// resolve its shortest waves, low-passed to the pixel (mip levels) or faded (level 0) as
+// water.frag does its slopes: there its caustics would alias, so they average to the level
+// sea's 1. `bundle_m`: the narrowest difference taken.
 void caustic_surface(vec2 x, float depth, float dist, float pixel_m, out vec2 s, out mat2 hess,
                      out float bundle_m, out float focus) {
     float texels = float(textureSize(ocean_normals, 0).x);
@@ -67,27 +71,36 @@ void caustic_surface(vec2 x, float depth, float dist, float pixel_m, out vec2 s,
         float patch_m = frame.patch_m[c];
         float foci = depth * (1.0 - 1.0 / N_WATER) * sqrt(frame.curvature_variance[c]);
         float widen = max(1.0, foci / CAUSTIC_FOCI);
-        float resolved = weight * clamp(2.0 - pixel_m / cascade_shortest_m(c, texels), 0.0, 1.0)
-                         * min(1.0, CAUSTIC_FOCI / max(foci, 1e-6));
-        vec2 step_uv = vec2(widen / texels, 0.0);
+        // `resolved`: how much of the cascade enters; `gain`: what its Hessian keeps of its
+        // curvature (the RMS focus number it enters with is resolved·foci·gain).
+        float resolved, gain;
         vec2 sx0, sx1, sz0, sz1;
         if (SLOPE_MIPS) {
             // The level that box-filters the cascade to the waves focusing at most
             // CAUSTIC_FOCI deep, or to the pixel's footprint where that is coarser (water.frag's
             // level for it): a low-pass, where level 0's stencil only spread its samples and
-            // the waves past its cutoff came through aliased (their RMS focus number then had to
-            // scale the cascade down as well). Past the last level the cascade fades as
-            // water.frag's slopes do.
+            // the waves past its cutoff came through aliased. Past the last level the cascade
+            // fades as water.frag's slopes do. The gain is src/ocean/moments.rs
+            // `curvature_mip_gains`, blended between the two levels as the lookup is (it is
+            // computed for differences 2^l texels wide at each level, the lookup takes 2^lod
+            // at both: close, and exact at whole levels).
             float lod = max(log2(widen),
-                            log2(pixel_m * texels / patch_m) - SLOPE_LOD_BIAS);
+                            log2(max(pixel_m, 1e-6) * texels / patch_m) - SLOPE_LOD_BIAS);
             widen = exp2(lod);
-            step_uv.x = widen / texels;
             resolved = weight * clamp(float(SLOPE_LEVELS) - lod, 0.0, 1.0);
+            gain = mip_gain(frame.curvature_mips, c, lod);
+            vec2 step_uv = vec2(widen / texels, 0.0);
             sx0 = ocean_texture_lod(ocean_normals, uv - step_uv.xyy, lod).xy;
             sx1 = ocean_texture_lod(ocean_normals, uv + step_uv.xyy, lod).xy;
             sz0 = ocean_texture_lod(ocean_normals, uv - step_uv.yxy, lod).xy;
             sz1 = ocean_texture_lod(ocean_normals, uv + step_uv.yxy, lod).xy;
         } else {
+            resolved = weight * clamp(2.0 - pixel_m / cascade_shortest_m(c, texels), 0.0, 1.0)
+                       * min(1.0, CAUSTIC_FOCI / max(foci, 1e-6));
+            // The band below the stencil's cutoff holds about 1/widen of the cascade's
+            // curvature (Σk⁴E grows as k² for a k⁻⁴ spectrum).
+            gain = 1.0 / widen;
+            vec2 step_uv = vec2(widen / texels, 0.0);
             sx0 = ocean_texture(ocean_normals, uv - step_uv.xyy).xy;
             sx1 = ocean_texture(ocean_normals, uv + step_uv.xyy).xy;
             sz0 = ocean_texture(ocean_normals, uv - step_uv.yxy).xy;
@@ -97,12 +110,7 @@ void caustic_surface(vec2 x, float depth, float dist, float pixel_m, out vec2 s,
         s += resolved * 0.25 * (sx0 + sx1 + sz0 + sz1);
         hess += resolved / (2.0 * step_m) * mat2(sx1 - sx0, sz1 - sz0);
         bundle_m = resolved > 0.01 ? min(bundle_m, 2.0 * step_m) : bundle_m;
-        // The cascade's RMS focus number as it enters: with the mip levels what the level's
-        // Hessian keeps of its curvature (src/ocean/moments.rs `curvature_mip_gains`); at
-        // level 0 its band below the stencil's cutoff holds about 1/widen of its curvature
-        // (Σk⁴E grows as k² for a k⁻⁴ spectrum).
-        float f = resolved * foci
-                  * (SLOPE_MIPS ? mip_gain(frame.curvature_mips, c, log2(widen)) : 1.0 / widen);
+        float f = resolved * foci * gain;
         focus += f * f;
     }
     focus = sqrt(focus);

@@ -371,7 +371,7 @@ impl WaterPass {
                     polygon_mode,
                     // common/water.glsl's CASCADES and OCEAN_MANUAL_FILTER, water.frag's
                     // UNDERWATER_VIEW and DEBUG_VIEWS, common/shadow.glsl's SHADOWS, (5
-                    // unused), water.frag's SLOPE_MIPS, common/water.glsl's WAKE.
+                    // unused), common/water.glsl's SLOPE_MIPS and WAKE.
                     constants: &[
                         cascades,
                         manual_filter as u32,
