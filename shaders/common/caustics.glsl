@@ -36,10 +36,10 @@ const float CAUSTIC_MAX = 12.0;
 // the slopes come from the level whose box is F / CAUSTIC_FOCI texels wide (at least one) and
 // the Hessian from central differences ±1 texel of it; without them (low) the Hessian is
 // taken by central differences ±F / CAUSTIC_FOCI texels of level 0 and, since those let the
-// shorter waves through aliased, scaled by min(1, CAUSTIC_FOCI / F). Our choice (1.0): the network's lines
-// are the first foci of the waves that focus near the floor. Without it the shortest waves,
-// far past their foci, broke the floor into a speckle of dark rims around bright blobs (one
-// branch of many crossing rays, taken at random).
+// shorter waves through aliased, scaled by min(1, CAUSTIC_FOCI / F). Our choice (1.0): the
+// network's lines are the first foci of the waves that focus near the floor. Without it the
+// shortest waves, far past their foci, broke the floor into a speckle of dark rims around
+// bright blobs (one branch of many crossing rays, taken at random).
 const float CAUSTIC_FOCI = 1.0;
 // Slope step of Q's central differences.
 const float CAUSTIC_DS = 0.02;
@@ -50,6 +50,13 @@ vec2 caustic_run(vec2 s, vec3 l) {
     vec3 n = normalize(vec3(-s.x, 1.0, -s.y));
     vec3 t = refract(-l, n, 1.0 / N_WATER);
     return t.xz / max(-t.y, 1e-3);
+}
+
+// The slopes at `uv` from mip level `lod` (trilinear) where the normal images have levels, from
+// level 0 (bilinear) where they do not.
+vec2 caustic_slope(vec3 uv, float lod) {
+    return (SLOPE_MIPS ? ocean_texture_lod(ocean_normals, uv, lod)
+                       : ocean_texture(ocean_normals, uv)).xy;
 }
 
 // The surface's slope at `x` (relative to the water grid's centre) and its Hessian ∂s/∂x, each
@@ -74,7 +81,7 @@ void caustic_surface(vec2 x, float depth, float dist, float pixel_m, out vec2 s,
         // `resolved`: how much of the cascade enters; `gain`: what its Hessian keeps of its
         // curvature (the RMS focus number it enters with is resolved·foci·gain).
         float resolved, gain;
-        vec2 sx0, sx1, sz0, sz1;
+        float lod = 0.0;
         if (SLOPE_MIPS) {
             // The level that box-filters the cascade to the waves focusing at most
             // CAUSTIC_FOCI deep, or to the pixel's footprint where that is coarser (water.frag's
@@ -82,30 +89,25 @@ void caustic_surface(vec2 x, float depth, float dist, float pixel_m, out vec2 s,
             // the waves past its cutoff came through aliased. Past the last level the cascade
             // fades as water.frag's slopes do. The gain is src/ocean/moments.rs
             // `curvature_mip_gains`, blended between the two levels as the lookup is (it is
-            // computed for differences 2^l texels wide at each level, the lookup takes 2^lod
-            // at both: close, and exact at whole levels).
-            float lod = max(log2(widen),
-                            log2(max(pixel_m, 1e-6) * texels / patch_m) - SLOPE_LOD_BIAS);
+            // computed for differences ±2^l texels at each level, the lookup takes ±2^lod at
+            // both: close, and exact at whole levels).
+            lod = max(log2(widen),
+                      log2(max(pixel_m, 1e-6) * texels / patch_m) - SLOPE_LOD_BIAS);
             widen = exp2(lod);
             resolved = weight * clamp(float(SLOPE_LEVELS) - lod, 0.0, 1.0);
             gain = mip_gain(frame.curvature_mips, c, lod);
-            vec2 step_uv = vec2(widen / texels, 0.0);
-            sx0 = ocean_texture_lod(ocean_normals, uv - step_uv.xyy, lod).xy;
-            sx1 = ocean_texture_lod(ocean_normals, uv + step_uv.xyy, lod).xy;
-            sz0 = ocean_texture_lod(ocean_normals, uv - step_uv.yxy, lod).xy;
-            sz1 = ocean_texture_lod(ocean_normals, uv + step_uv.yxy, lod).xy;
         } else {
             resolved = weight * clamp(2.0 - pixel_m / cascade_shortest_m(c, texels), 0.0, 1.0)
                        * min(1.0, CAUSTIC_FOCI / max(foci, 1e-6));
             // The band below the stencil's cutoff holds about 1/widen of the cascade's
             // curvature (Σk⁴E grows as k² for a k⁻⁴ spectrum).
             gain = 1.0 / widen;
-            vec2 step_uv = vec2(widen / texels, 0.0);
-            sx0 = ocean_texture(ocean_normals, uv - step_uv.xyy).xy;
-            sx1 = ocean_texture(ocean_normals, uv + step_uv.xyy).xy;
-            sz0 = ocean_texture(ocean_normals, uv - step_uv.yxy).xy;
-            sz1 = ocean_texture(ocean_normals, uv + step_uv.yxy).xy;
         }
+        vec2 step_uv = vec2(widen / texels, 0.0);
+        vec2 sx0 = caustic_slope(uv - step_uv.xyy, lod);
+        vec2 sx1 = caustic_slope(uv + step_uv.xyy, lod);
+        vec2 sz0 = caustic_slope(uv - step_uv.yxy, lod);
+        vec2 sz1 = caustic_slope(uv + step_uv.yxy, lod);
         float step_m = widen * patch_m / texels;
         s += resolved * 0.25 * (sx0 + sx1 + sz0 + sz1);
         hess += resolved / (2.0 * step_m) * mat2(sx1 - sx0, sz1 - sz0);

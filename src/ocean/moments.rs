@@ -118,7 +118,7 @@ pub fn slope_mip_gains(
 
 /// The root-mean-square share of each layer's curvature (its height's Laplacian, whose mean
 /// square is Σ k⁴E) that the caustics' Hessian keeps at each mip level, [level][layer]
-/// (common/caustics.glsl): central differences 2^l texels t wide of level l's slopes, which
+/// (common/caustics.glsl): central differences ±2^l texels (t apart) of level l's slopes, which
 /// pass ∂s_x/∂x of a wave of wave vector k with the box's gain (`slope_mip_gains`) times
 /// sin(k_x w)/(k_x w), w = 2^l·t; the Laplacian keeps (k_x² sinc(k_x w) + k_z² sinc(k_z w))/k²
 /// of that. (The bilinear lookup's own blur, a tent a texel wide, is left out, as the slopes'
