@@ -3,7 +3,8 @@
 //! are functions in both languages (Rust places cameras and floats the buoy with them), so they
 //! are compared here on the GPU, at points over the island, its shore, its shelf, the slope and
 //! the open sea's floor, for the default layout and a moved, smaller one, under a deep and a
-//! finite-depth sea.
+//! finite-depth sea. The tests undo the display's tone map (`common::untone`) to measure light
+//! in the radiance it conserves; that inverse is checked against the shader's tone map here.
 
 mod common;
 
@@ -219,4 +220,52 @@ fn the_terrain_and_the_shore_are_the_same_in_rust_and_glsl() {
         );
     }
     assert_validation_clean(ctx);
+}
+
+#[repr(C)]
+#[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
+struct TonePush {
+    sky_light: [f32; 4],
+    top: f32,
+    count: u32,
+    _pad: [u32; 2],
+}
+
+/// `common::untone` undoes shaders/common/display.glsl's `tone_map` (tone_map.comp runs it):
+/// 4096 colours with peaks up to 2.9 (just short of the white blend) come back to within 10⁻⁴
+/// of their radiance (relative, or absolute under 10⁻²; measured 2.4·10⁻⁶: f32 against f64).
+/// A changed constant of the curve or the blend moves them by 10⁻³ or more. (A picture's
+/// byte holds the display colour to 1/255: near the curve's shoulder that is a few per cent
+/// of the radiance, in its toe a fraction of one.)
+#[test]
+fn the_tests_undo_the_display_s_tone_map() {
+    let count = 4096u32;
+    let push = TonePush {
+        sky_light: [0.0, 0.0, 0.0, 1.0],
+        top: 2.9,
+        count,
+        _pad: [0; 2],
+    };
+    let out = common::run_test_kernel(
+        "tone map test",
+        vkocean::shaders::TEST_TONE_MAP_COMP,
+        &[push],
+        count as usize * 32,
+        [count.div_ceil(64), 1, 1],
+    );
+    let (mut worst, mut undone) = (0.0f64, 0);
+    for pair in out[0].chunks(8) {
+        let x = [pair[0], pair[1], pair[2]].map(f64::from);
+        let shown = [pair[4], pair[5], pair[6]].map(f64::from);
+        let Some(back) = common::untone(shown) else {
+            continue;
+        };
+        undone += 1;
+        for (a, b) in x.iter().zip(back) {
+            worst = worst.max((a - b).abs() / a.max(1e-2));
+        }
+    }
+    eprintln!("tone map undone: {undone} of {count}, worst {worst:.2e}");
+    assert!(undone > 4000, "only {undone} of {count} colours undone");
+    assert!(worst < 1e-4, "untone(tone_map(x)) is off x by {worst:.2e}");
 }

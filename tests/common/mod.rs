@@ -277,6 +277,66 @@ pub fn linear_luminance(p: &[u8]) -> Vec<f64> {
         .collect()
 }
 
+/// The exposed radiance (linear, per channel) a display colour (its sRGB bytes decoded, 0..1)
+/// was tone mapped from: the inverse of `tone_map` in shaders/common/display.glsl (the ACES
+/// fit per channel, blended toward the brightest channel's curve as that rises), or `None`
+/// where the curve cannot be undone: a channel at 255 (clipped) or an exposed peak past 3
+/// (TONE_WHITE_FROM there: the colour turns white). The brightest channel p maps on its own
+/// curve in both halves of the blend, so p comes from the fit's quadratic; the others solve
+/// the blend, which rises with them, by bisection. tests/shared.rs checks it against the
+/// shader's own tone map. Ratios of radiance are what energy is conserved in: the curve's toe
+/// is convex, so light moved around (the caustics) raises the display colour's mean.
+pub fn untone(display: [f64; 3]) -> Option<[f64; 3]> {
+    // display.glsl's constants: the fit (Narkowicz 2015), TONE_HUE_MID4, TONE_WHITE_FROM.
+    const A: f64 = 2.51;
+    const B: f64 = 0.03;
+    const C: f64 = 2.43;
+    const D: f64 = 0.59;
+    const E: f64 = 0.14;
+    const HUE_MID4: f64 = 0.0625;
+    const WHITE_FROM: f64 = 3.0;
+    let aces = |x: f64| (x * (A * x + B) / (x * (C * x + D) + E)).min(1.0);
+    let top = display.iter().cloned().fold(0.0, f64::max);
+    if top >= 254.5 / 255.0 {
+        return None;
+    }
+    // (A − C·y)x² + (B − D·y)x − E·y = 0, its positive root.
+    let (qa, qb, qc) = (A - C * top, B - D * top, -E * top);
+    let peak = (-qb + (qb * qb - 4.0 * qa * qc).sqrt()) / (2.0 * qa);
+    if peak >= WHITE_FROM {
+        return None;
+    }
+    if peak <= 0.0 {
+        return Some([0.0; 3]);
+    }
+    let p4 = peak.powi(4);
+    let w = p4 / (p4 + HUE_MID4);
+    let shown = |x: f64| (1.0 - w) * aces(x) + w * x * top / peak;
+    Some(display.map(|y| {
+        let (mut lo, mut hi) = (0.0, peak);
+        for _ in 0..60 {
+            let mid = 0.5 * (lo + hi);
+            if shown(mid) < y {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        0.5 * (lo + hi)
+    }))
+}
+
+/// Rec. 709 luminance of each RGBA pixel's exposed radiance (`untone`), `None` where the tone
+/// map cannot be undone.
+pub fn radiance_luminance(p: &[u8]) -> Vec<Option<f64>> {
+    p.chunks(4)
+        .map(|c| {
+            untone([linear(c[0]), linear(c[1]), linear(c[2])])
+                .map(|[r, g, b]| 0.2126 * r + 0.7152 * g + 0.0722 * b)
+        })
+        .collect()
+}
+
 /// Mean of `values` (a `w`-wide picture's, row by row) over `rows` and `columns`.
 pub fn mean_over(
     values: &[f64],
