@@ -327,8 +327,9 @@ fn the_noon_sea_is_dark_blue_and_darker_than_the_sky_above_the_horizon() {
 /// Crests against troughs at equal normal: the pixels below row `row0` in the columns `keep`
 /// grouped by 8-row band and normal (`--view normals`, each channel in steps of 4), and in
 /// each group of at least 10 the highest fifth (`--view displacement`'s blue is the height)
-/// against the lowest fifth. Returns (crest over trough linear luminance, crest green/blue
-/// less trough green/blue, pixels per side), summed over the groups.
+/// against the lowest fifth. Returns (crest over trough luminance, crest green/blue less trough
+/// green/blue, pixels per side), summed over the groups, in the exposed radiance the picture
+/// was tone mapped from (`common::untone`; every pixel compared must have one).
 fn crest_over_trough(
     (w, h): (usize, usize),
     [final_, normals, heights]: [&[u8]; 3],
@@ -362,8 +363,10 @@ fn crest_over_trough(
             (&mut crest, &group[group.len() - fifth..]),
         ] {
             for &i in picked {
+                let shown = [0, 1, 2].map(|c| common::linear(final_[i + c]));
+                let radiance = common::untone(shown).expect("a pixel the tone map cannot undo");
                 for c in 0..3 {
-                    sum[c] += common::linear(final_[i + c]);
+                    sum[c] += radiance[c];
                 }
             }
         }
@@ -384,10 +387,14 @@ fn backlit_crests_glow_turquoise_and_not_with_the_sun_behind() {
     // lowest fifth, in the picture's outer quarters: the middle half holds the sun's glitter
     // path, brighter on the troughs there (seen at equal normal nearer the horizon than the
     // crests, their facets turn less of the low sun toward the eye: 0.38 of the troughs'
-    // glitter on the crests over the whole width, measured). Issue 34's bounds: crests at least 1.2 times as
-    // bright as the troughs and greener (green/blue +0.05 or more) with the sun ahead; at
-    // most 1.1 times with it behind. Measured on lavapipe: ahead 1.24 and +0.150 (0.77 and
-    // −0.097 without the crests' light), behind 0.85 and −0.034.
+    // glitter on the crests over the whole width, measured). In the radiance the picture was
+    // tone mapped from, issue 34's bounds: crests at least 1.2 times as bright as the troughs
+    // and greener (green/blue +0.05 or more) with the sun ahead; at most 1.1 times with it
+    // behind. And ours, at most 1.35 times ahead: the glow's strength is our choice, set near
+    // the issue's bound (water.frag, CREST_GLOW), and a stronger one paints the crests in
+    // turquoise patches; when the reflection's changes had dimmed the troughs it stood at 1.43
+    // unnoticed (1.53 in the display colour, whose toe is convex). Measured on lavapipe: ahead
+    // 1.23 and +0.178 (0.86 and +0.006 without the crests' light), behind 0.86 and +0.020.
     const W: usize = 640;
     const H: usize = 360;
     let view = |sun: &str, view: &str| {
@@ -423,9 +430,9 @@ fn backlit_crests_glow_turquoise_and_not_with_the_sun_behind() {
         assert!(pixels >= 2000, "sun {what}: {pixels} px compared");
         if what == "ahead" {
             assert!(
-                ratio >= 1.2 && greener >= 0.05,
+                (1.2..=1.35).contains(&ratio) && greener >= 0.05,
                 "sun ahead: crests {ratio:.3} of the troughs, green/blue {greener:+.3} \
-                 (expected ≥ 1.2 and ≥ +0.05)"
+                 (expected 1.2–1.35 and ≥ +0.05)"
             );
         } else {
             assert!(ratio <= 1.1, "sun behind: crests {ratio:.3} of the troughs");

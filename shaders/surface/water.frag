@@ -322,15 +322,16 @@ float henyey_greenstein(float mu, float g) {
 // half of it). The lobe about the sun's direction is Henyey–Greenstein with g = 0.7, broader
 // than the water's own single scattering (g ≈ 0.92 is usually fitted to Petzold's measured
 // ocean phase function): the term stands in for the light a crest's surface, bubbles and
-// repeated scattering spread out, so its strength CREST_GLOW (35 times the water's 0.04/m
-// scattering) is our choice, set so a backlit moderate sea's crests are 1.2 times as bright as
-// its troughs at equal normal (tests/sky.rs) without a swell's broad crests turning
-// turquoise. With g = 0.9 and the strength the test asks for at its 25–50° from the sun, the
+// repeated scattering spread out, so its strength CREST_GLOW (22 times the water's 0.04/m
+// scattering) is our choice, set so a backlit moderate sea's crests are 1.23 times as bright
+// as its troughs at equal normal, in radiance (tests/sky.rs, which also bounds it from above),
+// without a swell's broad crests turning turquoise. (It was 1.4, set when the troughs were
+// brighter: the reflection's later changes dimmed them, and the crests stood at 1.43 times.) With g = 0.9 and the strength the test asks for at its 25–50° from the sun, the
 // crests toward a sun on the horizon outshone its glitter (27 px a row far out over the row's
 // median + 60, where the glitter path is 7–8 px wide; tests/render.rs).
 const float CREST_PATH_M = 4.0;
 const float CREST_PHASE_G = 0.7;
-const float CREST_GLOW = 1.4;        // per metre of path
+const float CREST_GLOW = 0.9;        // per metre of path
 const float CREST_HEIGHT = 0.3;      // of the local Hs: fully high from there up
 const float CREST_COMPRESSION = 0.3; // Σ (1 − J): fully sharp from there up
 const float CREST_FACE_SLOPE = 0.577; // tan 30°: the faces of Stokes' sharpest crest (120°)
