@@ -178,8 +178,8 @@ fn foam_is_a_dense_core_over_thinning_lace() {
     // core, compressed by the tone map, varies least). The whitecaps ride the sharp crests, so
     // how much opaque foam one picture holds swings with the wave groups (the storm from 60 m:
     // 7,900–33,000 px at t = 10–40 s; the moderate sea from 40 m: 8–1,050 px at t = 5–95 s).
-    // Measured on lavapipe: storm 33,240 px opaque, 80,177 thin, core 13,087 px, CoV 0.20;
-    // moderate opaque 603, 1,047, 648 px, cores 310, 617, 262 px, CoV 0.19, 0.21, 0.22.
+    // Measured on lavapipe: storm 30,717 px opaque, 80,292 thin, core 11,717 px, CoV 0.19;
+    // moderate opaque 578, 826, 634 px, cores 300, 393, 256 px, CoV 0.15, 0.15, 0.19.
     let mut moderate = Vec::new();
     for (preset, height, time, shrink) in [
         ("storm", 60, "30", 3),
@@ -244,8 +244,8 @@ fn foam_fades_rather_than_pops() {
     // move), the summed R keeps ≥ 70 % (the issue's bound; the field itself keeps
     // e^(−0.4/2.5) = 85 %) and falls by no more than 15 % in a step (an even fade to 70 % loses
     // 8.5 % a step); and no more than 5 % of
-    // those pixels lose over 0.3 of R in a step (a pop). Measured on lavapipe: 77 %, steps of
-    // 4–8 %, 0.1 % of the pixels popping.
+    // those pixels lose over 0.3 of R in a step (a pop). Measured on lavapipe: 92 %, steps of
+    // 0–5 %, 0.1 % of the pixels popping.
     let args = [
         "--quality",
         "high",
@@ -308,8 +308,8 @@ fn foam_is_brighter_than_the_water_around_it() {
     // medium (white under white light, the low sky around it at sunset), not as a Lambert wall
     // that a sunset turns darker than the sea (the issue measured 135,102,95 against
     // 160,150,120). Measured on lavapipe (without the simulation near the camera, below): the
-    // calm shore at noon 1.25 times brighter, the others 1.95–26 (41 px of foam in the
-    // breeze over its four moments, 186 in the moderate sea, 2,360 in the storm).
+    // calm shore at noon 1.27 times brighter, the others 1.72–16 (187 px of foam in the
+    // breeze over its four moments, 186 in the moderate sea, 2,084 in the storm).
     let open_sea = ["--camera=0,30,0", "--look-at=0,0,-40"];
     let shore = ["--camera=-180,20,-900", "--look-at=-160,0,-900"];
     // The breeze's whitecaps cover 0.25 % and ride thin crests: seen from above, 100 m up, at
@@ -464,8 +464,8 @@ fn foam_lies_in_streaks_along_the_wind() {
     // The foam mask is the foam one sees: R ≥ 0.02, a whitening that makes the dark water seen
     // from above much brighter (checked below on the final picture). The storm's denser
     // foam (R ≥ 0.2) too, as before the thin foam was drawn. Measured on lavapipe: storm
-    // R ≥ 0.02 3.86 (12.1 px along, 3.1 across, cover 0.93), R ≥ 0.2 4.14 (cover 0.39);
-    // moderate R ≥ 0.02 1.60 (7.2 px along, 4.5 across, cover 0.26; 0.92 with the residual
+    // R ≥ 0.02 3.88 (12.3 px along, 3.2 across, cover 0.92), R ≥ 0.2 4.13 (cover 0.40);
+    // moderate R ≥ 0.02 1.67 (7.7 px along, 4.6 across, cover 0.34; 0.92 with the residual
     // foam's earlier 12 s life, no downwind jet and spreading across the wind only).
     let thin = 0.02;
     let (storm, _, _) = streaks("storm", &[thin, 0.2]);
@@ -491,8 +491,8 @@ fn foam_lies_in_streaks_along_the_wind() {
         );
     }
     // That thin foam is seen: in the moderate sea's final picture the pixels with R ≥ 0.02 (and
-    // below 0.2: no whitecap) are brighter than those with none (R < 0.005). Measured: 0.0526
-    // against 0.0344 (1.53 times).
+    // below 0.2: no whitecap) are brighter than those with none (R < 0.005). Measured: 0.0502
+    // against 0.0259 (1.94 times).
     let thin_px: Vec<bool> = r.iter().map(|&v| (thin..0.2).contains(&v)).collect();
     let clear_px: Vec<bool> = r.iter().map(|&v| v < 0.005).collect();
     let (t, nt) = mean_of(&luminance, &thin_px);
@@ -512,8 +512,8 @@ fn foam_rings_the_buoy_and_trails_downwind() {
     // 25 m straight above the buoy (picture centre), --view foam, less the same picture with
     // the buoy moved 550 m away, which takes out the whitecaps (the same in both; they ride
     // the crests, so how many cross the picture's edge changes from moment to moment: R 0.004
-    // to 0.036 at 80–130 px for t = 10–40 s). Measured on lavapipe: R 0.18 more within 10–15
-    // px of the centre against 0.0013 at 80–130 px; 0.091 in a strip 30–90 px downwind against
+    // to 0.036 at 80–130 px for t = 10–40 s). Measured on lavapipe: R 0.27 more within 10–15
+    // px of the centre against 0.0022 at 80–130 px; 0.148 in a strip 30–90 px downwind against
     // 0.0000 as far upwind.
     let view = |buoy: &str| {
         let args = [

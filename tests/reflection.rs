@@ -360,10 +360,10 @@ fn the_sea_beyond_a_near_object_does_not_mirror_it() {
     // rows beside it, within 7 % of 1:
     // - README's wake picture (960x540): the sea 7–67 px above the boat (rows 195–255, x
     //   470–505) against 15–50 px left and 55–90 px right. 0.821 before any of this; 0.970
-    //   with three taps of the reflection's depth; 1.018 now.
+    //   with three taps of the reflection's depth; 1.016 now.
     // - The calm preset from 10 m (640x360): the sea 3–33 px above the buoy up to the horizon
     //   (rows 175–205, x 216–230), against 6–20 px left and right of it. The taps missed the
-    //   buoy, a few texels wide, in the far sea's tall kernels: 0.848; 1.008 now.
+    //   buoy, a few texels wide, in the far sea's tall kernels: 0.848; 0.994 now.
     // - README's bodies picture (960x540): the sea above the big raft at the bottom left (rows
     //   240–290, x 150–190) against x 100–130 and 200–230. A bright column: 1.75 with the
     //   taps; 1.02 now.

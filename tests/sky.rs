@@ -266,8 +266,8 @@ fn the_noon_sea_is_dark_blue_and_darker_than_the_sky_above_the_horizon() {
     // grows with the sun, and so does everything it is seen beside. That is the water's own
     // light, compared under a clear sky: the facets the eye sees lean toward it and reflect
     // the sky 15–25° up (reflection.glsl, `mean_visible_slope`), where the preset's clouds, white
-    // under the noon sun, are brighter than the low sun's (there noon's water measured 1.04
-    // times the day's, and under a clear sky 0.59 times). And it is blue under either sky:
+    // under the noon sun, are brighter than the low sun's (there noon's water measured 1.01
+    // times the day's, and under a clear sky 0.60 times). And it is blue under either sky:
     // hue 200–250° (cyan is 180°) with blue at least 1.5 times green in linear light.
     let water = H * 3 / 4..H;
     let (day_clear, noon_clear) = (

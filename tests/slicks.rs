@@ -69,7 +69,7 @@ fn slick_over_clean(pixels: &[u8], camera: &Camera, share: f64) -> (f64, usize) 
 #[test]
 fn slicks_are_brighter_bands_of_the_far_sea_where_their_noise_puts_them() {
     // Measured (480x270, 30 m up, the sun behind): rows of the sea 200 m–3 km off, slick over
-    // clean 1.057 with the slicks, 1.004 in the same bands without them (30 rows). With the
+    // clean 1.045 with the slicks, 0.999 in the same bands without them (30 rows). With the
     // bands placed without their drift 1.027, with it the wrong way 0.997.
     let camera = Camera::looking_at(Vec3::from(EYE), Vec3::from(TARGET)).expect("a camera");
     let (eye, target, time) = (

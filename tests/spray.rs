@@ -134,7 +134,7 @@ fn puffs_fly_with_the_wind_and_fall_at_their_drops_terminal_speed() {
 fn spray_is_drawn_over_a_storm_and_nothing_over_a_calm_sea() {
     // Low over the storm, looking downwind: with spray, white puffs over the crests. The
     // pictures differ (the puffs; `--quality low` has no foam levels, so no landing foam), and
-    // where they differ the spray's is brighter. Measured on lavapipe: 16 % of the pixels, +35 grey
+    // where they differ the spray's is brighter. Measured on lavapipe: 14 % of the pixels, +29 grey
     // (the spray blown off the next crest; 42 % while the choppiness had its sign inverted and
     // the waves broke in the troughs, around the camera).
     let view = [

@@ -192,8 +192,8 @@ fn glitter_gaussian(
 #[test]
 fn the_glitter_from_above_has_cox_and_munk_s_slopes_upwind_and_crosswind() {
     // Measured (6 frames, 480x270): σ along / across the wind 0.176 / 0.143 (wind along x),
-    // 0.180 / 0.146 (along z, the camera turned with it), 0.179 / 0.148 (30°), 0.183 / 0.149
-    // (45°): ratios 1.23, 1.23, 1.21 and 1.23, long axes at 177.6°, 87.7°, 31.2° and 47.6°. With each cascade's and the
+    // 0.180 / 0.145 (along z, the camera turned with it), 0.179 / 0.148 (30°), 0.183 / 0.149
+    // (45°): ratios 1.23, 1.24, 1.21 and 1.23, long axes at 177.5°, 87.9°, 30.8° and 47.2°. With each cascade's and the
     // unresolved slopes split evenly between the directions (the build before): 0.166 / 0.160,
     // ratio 1.04 (the drawn waves' own anisotropy only), against Cox & Munk's 1.193.
     let eye = Vec3::new(0.0, 300.0, 0.0);
@@ -376,10 +376,10 @@ fn a_gust_s_glitter_has_cox_and_munk_s_slopes_at_the_local_wind() {
     // a 200 m grid within 6 km of the origin, away from the island, 8 m/s along x; at each, the
     // glitter's width (geometric mean of its axes, σ ∝ (σ_u² σ_c²)^¼) with the gusts over
     // without, against Cox & Munk's clean-surface fits at the local wind U·(1 + ḡ) over theirs
-    // at U (ḡ the mean g under the view). Measured: 1.107 in the gust (ḡ +0.183; 1.081 wanted),
+    // at U (ḡ the mean g under the view). Measured: 1.089 in the gust (ḡ +0.183; 1.081 wanted),
     // 0.897 in the lull (ḡ −0.173; 0.917). The fit's widths answer a change of the unresolved
     // slopes about 1.3 times (in log) what the total's mean square does: a slick's (the test
-    // above, 0.724 against 0.753) does the same. At 10 m/s the whitecaps, 1.7 times as many in
+    // above, 0.723 against 0.753) does the same. At 10 m/s the whitecaps, 1.7 times as many in
     // the gust, brighten the glitter's tails too: 1.130 against 1.085 there.
     const U: f64 = 8.0;
     let settings = OceanSettings {
