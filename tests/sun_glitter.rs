@@ -378,9 +378,10 @@ fn a_gust_s_glitter_has_cox_and_munk_s_slopes_at_the_local_wind() {
     // without, against Cox & Munk's clean-surface fits at the local wind U·(1 + ḡ) over theirs
     // at U (ḡ the mean g under the view). Measured: 1.089 in the gust (ḡ +0.183; 1.081 wanted),
     // 0.897 in the lull (ḡ −0.173; 0.917). The fit's widths answer a change of the unresolved
-    // slopes about 1.3 times (in log) what the total's mean square does: a slick's (the test
-    // above, 0.723 against 0.753) does the same. At 10 m/s the whitecaps, 1.7 times as many in
-    // the gust, brighten the glitter's tails too: 1.130 against 1.085 there.
+    // slopes 1.1–1.3 times (in log: 1.10 in the gust, 1.26 in the lull) what the total's mean
+    // square does: a slick's (the test above, 0.723 against 0.753: 1.14) does the same. At
+    // 10 m/s the whitecaps, 1.7 times as many in the gust, brighten the glitter's tails too:
+    // 1.130 against 1.085 there.
     const U: f64 = 8.0;
     let settings = OceanSettings {
         sea: SeaState {
