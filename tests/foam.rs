@@ -178,13 +178,15 @@ fn foam_is_a_dense_core_over_thinning_lace() {
     // core, compressed by the tone map, varies least). The whitecaps ride the sharp crests, so
     // how much opaque foam one picture holds swings with the wave groups (the storm from 60 m:
     // 7,900–33,000 px at t = 10–40 s; the moderate sea from 40 m: 8–1,050 px at t = 5–95 s).
-    // Measured on lavapipe: storm 30,717 px opaque, 80,292 thin, core 11,717 px, CoV 0.19;
-    // moderate opaque 578, 826, 634 px, cores 300, 393, 256 px, CoV 0.15, 0.15, 0.19. The
-    // moderate median sits on its bound: it was 0.21 until the sky scattered light more than
-    // once (b5b8f43: 0.17, the brighter foam further up the tone curve's shoulder), then the
-    // far field's slope filtering (9c9bdca) 0.16. In radiance (the tone map undone) it is
-    // 0.28, but the storm's, dark under its overcast, falls to 0.16; photographs, which the
-    // rafts' 0.2–0.4 come from, are tone mapped too.
+    // Measured on lavapipe: storm 30,713 px opaque, 80,283 thin, core 11,713 px, CoV 0.19;
+    // moderate opaque 577, 826, 633 px, cores 300, 393, 256 px, CoV 0.17, 0.17, 0.25. The
+    // moderate median was 0.21 until the sky scattered light more than once (b5b8f43: 0.17,
+    // the brighter foam further up the tone curve's shoulder), then the far field's slope
+    // filtering (9c9bdca) 0.16, and 0.15, on its bound, until the breaking layer's froth
+    // stood higher than the lace (water.frag's FROTH_RELIEF_M: its faces turned to and from
+    // a low sun). In radiance (the tone map undone) it is 0.28, but the storm's, dark under
+    // its overcast, falls to 0.16; photographs, which the rafts' 0.2–0.4 come from, are tone
+    // mapped too.
     let mut moderate = Vec::new();
     for (preset, height, time, shrink) in [
         ("storm", 60, "30", 3),
