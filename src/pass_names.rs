@@ -10,6 +10,9 @@ pub const REFLECTION: &str = "reflection";
 /// The reflection's distances (from its depth) and the sky its objects hide (a debug label
 /// only: timed within `REFLECTION`, with the blurs of its layers).
 pub const REFLECTION_DISTANCE: &str = "reflection distance";
+/// The caustics' area ratio's means over the floor, by depth and pixel footprint (the first
+/// frame that draws caustics, and again when the sun, the waves or the focal length change).
+pub const CAUSTIC_MEANS: &str = "caustic means";
 /// From under the water: the caustics' means along the camera's rays, for the light shafts.
 pub const SHAFTS: &str = "light shafts";
 /// The scene below the water, into the refraction texture.

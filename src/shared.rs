@@ -187,6 +187,14 @@ shared_constants! {
     VIEW_NORMALS: u32 = 5;
     VIEW_FOAM: u32 = 6;
     VIEW_WIREFRAME: u32 = 7;
+    /// The caustics' measured means (src/render/passes/caustic_means.rs, `caustic_mean` in
+    /// shaders/common/caustics.glsl): texel (i, j) holds the mean area ratio over a floor
+    /// CAUSTIC_MEAN_DEPTH0_M · 2^(i/2) under the mean level, seen in pixels
+    /// CAUSTIC_MEAN_PIXEL0_M · 2^j across.
+    CAUSTIC_MEAN_DEPTHS: u32 = 17;
+    CAUSTIC_MEAN_PIXELS: u32 = 10;
+    CAUSTIC_MEAN_DEPTH0_M: f32 = 0.25;
+    CAUSTIC_MEAN_PIXEL0_M: f32 = 0.01;
     /// `--fresnel` models (`FresnelModel` in src/render/mod.rs).
     FRESNEL_SCHLICK: u32 = 0;
     FRESNEL_EXACT: u32 = 1;

@@ -144,7 +144,6 @@ fn the_terrain_and_the_shore_are_the_same_in_rust_and_glsl() {
             curvature_variance: [0.0; 4],
             short_slope_variance: [0.0; 4],
             slope_mip_gain: [[1.0; 4]; vkocean::ocean::moments::MIP_LEVELS],
-            curvature_mip_gain: [[1.0; 4]; vkocean::ocean::moments::MIP_LEVELS],
         },
         SeaMoments {
             hs_m: 1.2,
@@ -155,7 +154,6 @@ fn the_terrain_and_the_shore_are_the_same_in_rust_and_glsl() {
             curvature_variance: [0.0; 4],
             short_slope_variance: [0.0; 4],
             slope_mip_gain: [[1.0; 4]; vkocean::ocean::moments::MIP_LEVELS],
-            curvature_mip_gain: [[1.0; 4]; vkocean::ocean::moments::MIP_LEVELS],
         },
     ];
     for (layout, sea) in [SceneLayout::default(), moved].iter().zip(&seas) {

@@ -8,11 +8,12 @@
 //! waterline.
 //!
 //! Measured on lavapipe (640x360, --quality low unless said): over the 18 m shelf (the floor
-//! 10 m from the eye) luma high-pass std (the picture less its 15 px box mean) 10.6 in the
-//! sun, 0.20 under the overcast; mean luma change over 0.1 s 14.1; the floor's mean luma 61.0;
-//! over a 12 m shelf (the floor 4 m away) 79.2. The mean light with the caustics over the
-//! same build without them (`--caustics off`; the radiance under the tone map): 0.93 at low,
-//! 1.14 at medium, 1.07 at high (README, "Caustics"). The shafts: see `the_water_scatters_the_sun_in_shafts_that_radiate_from_it`.
+//! 10 m from the eye) luma high-pass std (the picture less its 15 px box mean) 11.3 in the
+//! sun, 0.20 under the overcast; mean luma change over 0.1 s 15.2; the floor's mean luma 63.0;
+//! over a 12 m shelf (the floor 4 m away) 94.7. The mean light with the caustics over the
+//! same build without them (`--caustics off`; the radiance under the tone map), over three
+//! moments: 0.98 at low, 1.00 at medium, 1.01 at high (README, "Caustics"). The shafts: see
+//! `the_water_scatters_the_sun_in_shafts_that_radiate_from_it`.
 
 mod common;
 
@@ -111,15 +112,19 @@ fn the_sun_draws_moving_caustics_on_the_shelf_floor_and_an_overcast_none() {
     );
     // The pattern is the sun's: without it the sand is even (no texture of its own).
     assert!(grey < 1.0, "an overcast floor's high-pass std {grey:.2}");
-    // The floor is seen, not lost in the water between (61.0 measured).
-    assert!(mean >= 50.0, "the floor's mean luma {mean:.1}");
+    // The floor is seen, not lost in the water between: the issue's bound (63.0 measured; 59.6
+    // while the caustics' mean came from a table, which took 7 % of the sun's light away).
+    assert!(mean >= 60.0, "the floor's mean luma {mean:.1} < 60");
 }
 
 /// The issue's scene: 8 m down in 12 m of water ("horizontal or downward views in 9–12 m of
 /// water over the shelf: the sand 4 m away"), the floor's mean luma is at least 60 (measured
-/// 79.2). It was 28 when the issue was written; the water's scattering, which goes mostly
-/// forward (shaders/common/underwater.glsl, Petzold 1972), dims the floor's mean light by
-/// a + 0.3·b, not a + b: 63.8 without that.
+/// 94.7; 79.2 while the caustics' mean came from a table). It was 28 when the issue was
+/// written; the water's scattering, which goes mostly forward (shaders/common/underwater.glsl,
+/// Petzold 1972), dims the floor's mean light by a + 0.3·b, not a + b (with a + b it was 63.8,
+/// measured with the table). Its caustics' own mean over six moments 10 s apart, the exposure
+/// lowered eightfold so their lines do not clip: 1.00 (single moments 0.86–1.12: the view
+/// holds a dozen of the network's cells).
 #[test]
 fn the_floor_4_m_below_is_seen() {
     let floor = luma(&floor_rgba("near", "5", &["--sea-floor", "12"]));
@@ -130,31 +135,41 @@ fn the_floor_4_m_below_is_seen() {
 
 /// The caustics move the sun's light on the floor; they do not add to it: the picture's mean
 /// radiance (the display's tone map undone: its toe is convex, so the caustics' bright lines
-/// raise the mean display colour more than their dark cells lower it) is within 10 % of the
-/// same picture's with `--caustics off` at `--quality low` and `high`, 15 % at `medium`.
-/// Measured 0.93, 1.14 and 1.07 (in the display's linear luminance 0.93, 1.21 and 1.12: the
-/// bias the toe adds). Without the division by the area ratio's mean (common/caustics.glsl) it
-/// was 1.97 at low. At `medium` and `high`, where the mip levels' low-pass sets the focus
-/// number that mean is taken at (`curvature_mip_gains`), one fixed-point step leaves a bias
-/// the Gaussian table does not hold (README's Caustics). The water between the eye and the
-/// floor adds the same scattered light to both pictures, so the floor's own bias is larger.
+/// raise the mean display colour more than their dark cells lower it) over the same picture's
+/// with `--caustics off`, averaged over three moments 10 s apart, is within 3 % of 1 at each
+/// quality. One moment's floor holds a few dozen of the network's cells, so its own ratio
+/// strays further (up to 8 %). The area ratio is divided by its mean over the floor, measured
+/// on the GPU from the sea as simulated (shaders/underwater/caustic_means.frag). Measured:
+/// 0.98 at low, 1.00 at medium, 1.01 at high (single moments 0.97–1.03). Before that the mean
+/// came from a table for Gaussian, isotropic waves: 0.93, 1.14 and 1.07 at t = 5 s (README,
+/// "Caustics"); without any division 1.97 at low.
 #[test]
 fn the_caustics_move_the_light_and_do_not_make_it() {
-    for (quality, bound) in [("low", 0.1), ("medium", 0.15), ("high", 0.1)] {
-        let on = mean_radiance(&floor_rgba("light", "5", &["--quality", quality]));
-        let off = mean_radiance(&floor_rgba(
-            "light",
-            "5",
-            &["--quality", quality, "--caustics", "off"],
-        ));
-        eprintln!(
-            "{quality}: mean radiance with the caustics {on:.4}, without {off:.4}: {:.3}",
-            on / off
-        );
+    for quality in ["low", "medium", "high"] {
+        let mut ratios = Vec::new();
+        for time in ["5", "15", "25"] {
+            let on = mean_radiance(&floor_rgba("light", time, &["--quality", quality]));
+            let off = mean_radiance(&floor_rgba(
+                "light",
+                time,
+                &["--quality", quality, "--caustics", "off"],
+            ));
+            eprintln!(
+                "{quality} at {time} s: mean radiance with the caustics {on:.4}, without {off:.4}: {:.3}",
+                on / off
+            );
+            assert!(
+                (on / off - 1.0).abs() <= 0.08,
+                "{quality} at {time} s: with/without {:.3}",
+                on / off
+            );
+            ratios.push(on / off);
+        }
+        let mean = ratios.iter().sum::<f64>() / ratios.len() as f64;
+        eprintln!("{quality}: mean {mean:.3}");
         assert!(
-            (on / off - 1.0).abs() <= bound,
-            "{quality}: with/without {:.3}",
-            on / off
+            (mean - 1.0).abs() <= 0.03,
+            "{quality}: with/without {mean:.3}"
         );
     }
 }
@@ -163,9 +178,9 @@ fn the_caustics_move_the_light_and_do_not_make_it() {
 /// each cascade from the level that low-passes it to the waves focusing near the floor
 /// (common/caustics.glsl). Both then draw the same network from the same waves (the finer
 /// simulation adds waves too short to focus this deep) and neither breaks it into speckle.
-/// Measured: the two pictures' luma correlates by 0.85 (0.69 when level 0's stencil only
+/// Measured: the two pictures' luma correlates by 0.84 (0.69 when level 0's stencil only
 /// spread its samples, the shorter waves coming through aliased); at high the 1 px high-pass
-/// std over the 7 px one is 0.22 (0.37 then; 0.16 at low, whose waves are longer).
+/// std over the 7 px one is 0.23 (0.37 then; 0.16 at low, whose waves are longer).
 #[test]
 fn at_medium_and_high_the_caustics_draw_one_clean_network() {
     let at = |quality: &str| luma(&floor_rgba("mips", "5", &["--quality", quality]));
@@ -288,10 +303,10 @@ fn correlation(a: &[f64], b: &[f64]) -> f64 {
 /// caustics drawn out along the refracted sun (common/caustics.glsl's shaft_means,
 /// src/render/passes/shafts.rs). Taken as the picture less the same with `--caustics off`
 /// (the glow of a level sea, the same surface): on circles about the sun it varies (angular
-/// std ≥ 3 grey levels, measured 6.3), in streaks along the radius (the correlation of two
+/// std ≥ 3 grey levels, measured 7.1), in streaks along the radius (the correlation of two
 /// circles 20 px apart ≥ 0.8, measured 0.88, while two points 20 px apart along a circle
-/// correlate ≤ 0.6, measured 0.36), and they move (mean change over 0.5 s ≥ 2 levels, measured
-/// 6.5). Under an overcast there is no sun and no shaft (the difference is nothing).
+/// correlate ≤ 0.6, measured 0.39), and they move (mean change over 0.5 s ≥ 2 levels, measured
+/// 7.0). Under an overcast there is no sun and no shaft (the difference is nothing).
 #[test]
 fn the_water_scatters_the_sun_in_shafts_that_radiate_from_it() {
     let shafts = |time: &str, extra: &[&str]| -> Vec<f64> {
@@ -457,9 +472,9 @@ fn band(v: &[f64], rows: std::ops::Range<usize>) -> (f64, f64) {
 /// Outside Snell's window the surface mirrors what lies below it (total internal reflection;
 /// shaders/surface/water.frag, mirrored_floor): looking level from 1.5 m down over the sandy
 /// shallows, the picture's top third (the underside, 10–30° up) shows the floor with its
-/// caustics, as textured as the floor itself (15 px high-pass std ≥ 4, measured 14.9 against
-/// the floor's 13.0; the water's own colour alone gave 0.22) and about as bright (its mean
-/// luma within 15 % of the bottom third's, the floor: 83.6 against 81.1; 51.6 before); over the
+/// caustics, as textured as the floor itself (15 px high-pass std ≥ 4, measured 12.1 against
+/// the floor's 12.0; the water's own colour alone gave 0.22) and about as bright (its mean
+/// luma within 15 % of the bottom third's, the floor: 74.0 against 77.1; 51.6 before); over the
 /// open sea, where no floor lies within the mirror's 40 m, it stays the water's even colour
 /// (std ≤ 1.5, measured 0.45).
 #[test]
@@ -527,7 +542,7 @@ fn a_pillar_s_shadow_cuts_the_light_shafts() {
     // sun; both looking toward the refracted sun.
     // The light the water scatters toward the eye comes from the sunlit water along the
     // view: in the pillar's shadow the first metres of it are dark. Each with its own
-    // picture with `--shadows off` as the reference. Measured: 0.67 in the shadow, 1.00
+    // picture with `--shadows off` as the reference. Measured: 0.71 in the shadow, 1.00
     // beside it; before the shafts took the shadows (the build before), 1.00 and 1.00.
     let shaded = glow_toward_sun("shaded-on", -225.0, -575.0, &[])
         / glow_toward_sun("shaded-off", -225.0, -575.0, &["--shadows", "off"]);

@@ -10,7 +10,10 @@
 // d·q(s(x)), approximated by one fixed-point step from the level sea's answer (the steps
 // contract only until the rays first cross, |d·Q·H| < 1; past that focus p gathers light from
 // several x and this takes one). So the ratio is sampled nearly uniformly over the surface,
-// and it is divided by its mean there (caustic_mean) to keep the floor's mean light.
+// where the focusing patches weigh more than on the floor, and its mean over the floor is not
+// 1: 1.97 on the calm shelf 16 m down. It is divided by that mean (caustic_mean), measured on
+// the GPU over the sea as it is (shaders/underwater/caustic_means.frag) for the floor's depth
+// and the pixel's footprint, so the caustics move the sun's light and do not make it.
 //
 // Left out: the surface's height and horizontal displacement (the ray starts at the rest
 // position, at the mean level: centimetres on a calm sea) and the change of the surface's
@@ -66,42 +69,33 @@ vec2 caustic_slope(vec3 uv, float lod) {
 // water.frag does its slopes: there its caustics would alias, so they average to the level
 // sea's 1. `bundle_m`: the narrowest difference taken.
 void caustic_surface(vec2 x, float depth, float dist, float pixel_m, out vec2 s, out mat2 hess,
-                     out float bundle_m, out float focus) {
+                     out float bundle_m) {
     float texels = float(textureSize(ocean_normals, 0).x);
     s = vec2(0.0);
     hess = mat2(0.0);
     bundle_m = 1e9;
-    focus = 0.0;
     for (int c = 0; c < CASCADES; ++c) {
         float weight;
         vec3 uv = ocean_uv(x, c, dist, weight);
         float patch_m = frame.patch_m[c];
         float foci = depth * (1.0 - 1.0 / N_WATER) * sqrt(frame.curvature_variance[c]);
         float widen = max(1.0, foci / CAUSTIC_FOCI);
-        // `resolved`: how much of the cascade enters; `gain`: what its Hessian keeps of its
-        // curvature (the RMS focus number it enters with is resolved·foci·gain).
-        float resolved, gain;
+        // `resolved`: how much of the cascade enters.
+        float resolved;
         float lod = 0.0;
         if (SLOPE_MIPS) {
             // The level that box-filters the cascade to the waves focusing at most
             // CAUSTIC_FOCI deep, or to the pixel's footprint where that is coarser (water.frag's
             // level for it): a low-pass, where level 0's stencil only spread its samples and
             // the waves past its cutoff came through aliased. Past the last level the cascade
-            // fades as water.frag's slopes do. The gain is src/ocean/moments.rs
-            // `curvature_mip_gains`, blended between the two levels as the lookup is (it is
-            // computed for differences ±2^l texels at each level, the lookup takes ±2^lod at
-            // both: close, and exact at whole levels).
+            // fades as water.frag's slopes do.
             lod = max(log2(widen),
                       log2(max(pixel_m, 1e-6) * texels / patch_m) - SLOPE_LOD_BIAS);
             widen = exp2(lod);
             resolved = weight * clamp(float(SLOPE_LEVELS) - lod, 0.0, 1.0);
-            gain = mip_gain(frame.curvature_mips, c, lod);
         } else {
             resolved = weight * clamp(2.0 - pixel_m / cascade_shortest_m(c, texels), 0.0, 1.0)
                        * min(1.0, CAUSTIC_FOCI / max(foci, 1e-6));
-            // The band below the stencil's cutoff holds about 1/widen of the cascade's
-            // curvature (Σk⁴E grows as k² for a k⁻⁴ spectrum).
-            gain = 1.0 / widen;
         }
         vec2 step_uv = vec2(widen / texels, 0.0);
         vec2 sx0 = caustic_slope(uv - step_uv.xyy, lod);
@@ -112,47 +106,60 @@ void caustic_surface(vec2 x, float depth, float dist, float pixel_m, out vec2 s,
         s += resolved * 0.25 * (sx0 + sx1 + sz0 + sz1);
         hess += resolved / (2.0 * step_m) * mat2(sx1 - sx0, sz1 - sz0);
         bundle_m = resolved > 0.01 ? min(bundle_m, 2.0 * step_m) : bundle_m;
-        float f = resolved * foci * gain;
-        focus += f * f;
     }
-    focus = sqrt(focus);
 }
 
-// The mean of 1/max(|det(I + M)|, 0.1) over the surface, M = −(1 − 1/n)·d·H with H an
-// isotropic Gaussian Hessian of RMS Laplacian κ, at f = (1 − 1/n)·d·κ = 0, 0.25, …, 2 (Monte
-// Carlo, 10⁶ samples; h_xx, h_zz of variance 3κ²/8 and covariance κ²/8, h_xz of variance κ²/8).
-// The fixed-point step does not reach the exact preimage past the first foci, so the ratio is
-// taken nearly uniformly over the surface, where the focusing patches weigh more than on the
-// floor: the raw ratio's mean was 1.97 on the calm shelf 16 m down. Divided by this, the
-// caustics move the light and do not make it.
-const float CAUSTIC_MEAN[9] = float[](1.000, 1.071, 1.460, 2.250, 2.712, 2.770, 2.619, 2.394, 2.161);
-float caustic_mean(float f) {
-    float i = clamp(f / 0.25, 0.0, 7.999);
-    int k = int(i);
-    return mix(CAUSTIC_MEAN[k], CAUSTIC_MEAN[k + 1], i - float(k));
+// The area ratio 1 / |det(I + d·Q·H)| at depth `depth` under a surface point of slope `s` and
+// Hessian `hess` (caustic_surface), the sun's disc and CAUSTIC_MAX bounding it.
+float caustic_area_ratio(vec2 s, mat2 hess, float bundle_m, float depth) {
+    vec3 l = frame.sun_dir.xyz;
+    vec2 dx = vec2(CAUSTIC_DS, 0.0);
+    vec2 dz = vec2(0.0, CAUSTIC_DS);
+    mat2 dq = mat2(caustic_run(s + dx, l) - caustic_run(s - dx, l),
+                   caustic_run(s + dz, l) - caustic_run(s - dz, l))
+              / (2.0 * CAUSTIC_DS);
+    float det = abs(determinant(mat2(1.0) + depth * dq * hess));
+    float spread = depth * CAUSTIC_SUN_SPREAD / bundle_m;
+    return 1.0 / max(det, max(spread, 1.0 / CAUSTIC_MAX));
 }
 
-// The sun's irradiance on the floor at `xz` (relative to the water grid's centre), `depth` m
-// under the mean level, over the level sea's: the area ratio above at the surface point whose
-// refracted ray lands there, found from the level sea's answer by `steps` − 1 fixed-point steps
-// (with the same low-passed slopes, so a step does not scatter neighbouring pixels). `dist`:
-// its distance from the eye; `pixel_m`: the floor's footprint in a pixel there.
-float caustic_ratio(vec2 xz, float depth, float dist, float pixel_m, int steps) {
+// The area ratio at the surface point whose refracted ray lands on the floor at `xz`
+// (relative to the water grid's centre), `depth` m under the mean level, found from the level
+// sea's answer by `steps` − 1 fixed-point steps (with the same low-passed slopes, so a step
+// does not scatter neighbouring pixels). `dist`: its distance from the eye; `pixel_m`: the
+// floor's footprint in a pixel there. Its mean over the floor is not 1 (see the top).
+float caustic_raw(vec2 xz, float depth, float dist, float pixel_m, int steps) {
     vec3 l = frame.sun_dir.xyz;
     vec2 s = vec2(0.0);
     mat2 hess;
     float bundle_m;
-    float focus;
     for (int i = 0; i < steps; ++i) {
-        caustic_surface(xz - depth * caustic_run(s, l), depth, dist, pixel_m, s, hess, bundle_m,
-                        focus);
+        caustic_surface(xz - depth * caustic_run(s, l), depth, dist, pixel_m, s, hess, bundle_m);
     }
-    mat2 dq = mat2(caustic_run(s + vec2(CAUSTIC_DS, 0.0), l) - caustic_run(s - vec2(CAUSTIC_DS, 0.0), l),
-                   caustic_run(s + vec2(0.0, CAUSTIC_DS), l) - caustic_run(s - vec2(0.0, CAUSTIC_DS), l))
-              / (2.0 * CAUSTIC_DS);
-    float det = abs(determinant(mat2(1.0) + depth * dq * hess));
-    float spread = depth * CAUSTIC_SUN_SPREAD / bundle_m;
-    return 1.0 / (max(det, max(spread, 1.0 / CAUSTIC_MAX)) * caustic_mean(focus));
+    return caustic_area_ratio(s, hess, bundle_m, depth);
+}
+
+// The texel of the measured means (caustic_means, frame set binding 8) for a floor `depth` m
+// under the mean level seen in pixels `pixel_m` across: two texels an octave of depth, one an
+// octave of footprint (src/shared.rs).
+vec2 caustic_mean_texel(float depth, float pixel_m) {
+    return vec2(2.0 * log2(max(depth, 1e-6) / CAUSTIC_MEAN_DEPTH0_M),
+                log2(max(pixel_m, 1e-6) / CAUSTIC_MEAN_PIXEL0_M));
+}
+
+#ifndef CAUSTIC_MEANS_PASS
+// The mean of caustic_raw over the floor at this depth and footprint (r: one fixed-point step;
+// g: none), interpolated between the measured texels (and clamped to the table's edges).
+float caustic_mean(float depth, float pixel_m, int steps) {
+    vec2 size = vec2(CAUSTIC_MEAN_DEPTHS, CAUSTIC_MEAN_PIXELS);
+    vec2 uv = (caustic_mean_texel(depth, pixel_m) + 0.5) / size;
+    vec2 means = textureLod(caustic_means, uv, 0.0).rg;
+    return max(steps > 1 ? means.r : means.g, 1e-3);
+}
+
+// The sun's irradiance on the floor at `xz`, over the level sea's: caustic_raw over its mean.
+float caustic_ratio(vec2 xz, float depth, float dist, float pixel_m, int steps) {
+    return caustic_raw(xz, depth, dist, pixel_m, steps) / caustic_mean(depth, pixel_m, steps);
 }
 
 // The floor's: one fixed-point step.
@@ -213,3 +220,4 @@ vec4 shaft_means(vec3 dir, float jitter) {
     }
     return means;
 }
+#endif

@@ -77,8 +77,6 @@ layout(set = 0, binding = 0, std140) uniform FrameUniforms {
                          // whitecap ratio
     vec4 slope_mips[SLOPE_LEVELS]; // what mip level l of the normal images leaves of cascade
                          // c's slopes, [l][c] (src/ocean/moments.rs `slope_mip_gains`)
-    vec4 curvature_mips[SLOPE_LEVELS]; // what the caustics' Hessian at mip level l leaves of
-                         // cascade c's curvature, [l][c] (`curvature_mip_gains`)
 } frame;
 
 // Which view a draw renders (ViewIndex in src/render/uniforms.rs).
@@ -104,6 +102,10 @@ layout(set = 0, binding = 4) uniform sampler2DArray foam_field;
 // The boat's wake on its grid near the camera (src/ocean/simulation/wake_sim.rs): (h, ∂h/∂x,
 // ∂h/∂z, foam) (clamp sampler; 1×1 without a boat), read by `wake_at` (common/water.glsl).
 layout(set = 0, binding = 7) uniform sampler2DArray wake_field;
+// The caustics' area ratio's measured means over the floor, by depth and pixel footprint
+// (src/render/passes/caustic_means.rs; common/caustics.glsl `caustic_mean`): r with one
+// fixed-point step, g with none (linear, clamp sampler).
+layout(set = 0, binding = 8) uniform sampler2D caustic_means;
 
 // The ocean image coordinates of cascade c at a point `xz` metres from the water grid's
 // centre (repeating for the FFT cascades). `weight` fades a cascade out with distance before its

@@ -43,7 +43,7 @@ layout(constant_id = 6) const bool SLOPE_MIPS = false;
 const float SLOPE_LOD_BIAS = 0.79;
 
 // Cascade c's entry at mip level `lod` (fractional) of a [level][cascade] table of what the
-// levels leave of it (frame.slope_mips, frame.curvature_mips: src/ocean/moments.rs),
+// levels leave of it (frame.slope_mips: src/ocean/moments.rs),
 // trilinear between levels like the lookup.
 float mip_gain(vec4 table[SLOPE_LEVELS], int c, float lod) {
     float l = clamp(lod, 0.0, float(SLOPE_LEVELS - 1u));

@@ -257,7 +257,6 @@ fn shoaling_sea() -> (SeaMoments, f64) {
         curvature_variance: [0.0; 4],
         short_slope_variance: [0.0; 4],
         slope_mip_gain: [[1.0; 4]; super::moments::MIP_LEVELS],
-        curvature_mip_gain: [[1.0; 4]; super::moments::MIP_LEVELS],
     };
     (sea, 2.0 * PI * G / (omega * omega)) // and its deep-water wavelength L₀
 }

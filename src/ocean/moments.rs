@@ -42,9 +42,6 @@ pub struct SeaMoments {
     /// What each mip level of the normal images leaves of each layer's slopes, [level][layer]
     /// (`slope_mip_gains`; all 1 until `with_mip_gains`).
     pub slope_mip_gain: [[f64; 4]; MIP_LEVELS],
-    /// What the caustics' Hessian at each mip level leaves of each layer's curvature,
-    /// [level][layer] (`curvature_mip_gains`; all 1 until `with_mip_gains`).
-    pub curvature_mip_gain: [[f64; 4]; MIP_LEVELS],
 }
 
 /// The normal images' mip levels (`crate::shared::SLOPE_LEVELS`), as an array length.
@@ -84,17 +81,14 @@ impl SeaMoments {
             curvature_variance: curvatures,
             short_slope_variance: short,
             slope_mip_gain: [[1.0; 4]; MIP_LEVELS],
-            curvature_mip_gain: [[1.0; 4]; MIP_LEVELS],
         }
     }
 
-    /// The same with `slope_mip_gain` and `curvature_mip_gain` of `waves` (those it was made
-    /// from), each layer's images `texel_m` apart.
+    /// The same with `slope_mip_gain` of `waves` (those it was made from), each layer's images
+    /// `texel_m` apart.
     pub fn with_mip_gains(self, waves: impl Iterator<Item = Component>, texel_m: [f64; 4]) -> Self {
-        let waves: Vec<Component> = waves.collect();
         SeaMoments {
-            slope_mip_gain: slope_mip_gains(waves.iter().copied(), texel_m),
-            curvature_mip_gain: curvature_mip_gains(waves.iter().copied(), texel_m),
+            slope_mip_gain: slope_mip_gains(waves, texel_m),
             ..self
         }
     }
@@ -113,34 +107,6 @@ pub fn slope_mip_gains(
 ) -> [[f64; 4]; MIP_LEVELS] {
     rms_gains(waves, texel_m, |[kx, kz], t, m| {
         (kx * kx + kz * kz, box_gain(kx * t, m) * box_gain(kz * t, m))
-    })
-}
-
-/// The root-mean-square share of each layer's curvature (its height's Laplacian, whose mean
-/// square is Σ k⁴E) that the caustics' Hessian keeps at each mip level, [level][layer]
-/// (common/caustics.glsl): central differences ±2^l texels (t apart) of level l's slopes, which
-/// pass ∂s_x/∂x of a wave of wave vector k with the box's gain (`slope_mip_gains`) times
-/// sin(k_x w)/(k_x w), w = 2^l·t; the Laplacian keeps (k_x² sinc(k_x w) + k_z² sinc(k_z w))/k²
-/// of that. (The bilinear lookup's own blur, a tent a texel wide, is left out, as the slopes'
-/// gains leave it out.) The caustics scale each layer's RMS focus number by it, which picks
-/// the mean of their area ratio (`caustic_mean`).
-pub fn curvature_mip_gains(
-    waves: impl Iterator<Item = Component>,
-    texel_m: [f64; 4],
-) -> [[f64; 4]; MIP_LEVELS] {
-    let sinc = |x: f64| if x.abs() < 1e-12 { 1.0 } else { x.sin() / x };
-    rms_gains(waves, texel_m, |[kx, kz], t, m| {
-        let k2 = kx * kx + kz * kz;
-        let w = m * t;
-        let laplacian = if k2 > 0.0 {
-            (kx * kx * sinc(kx * w) + kz * kz * sinc(kz * w)) / k2
-        } else {
-            1.0
-        };
-        (
-            k2 * k2,
-            box_gain(kx * t, m) * box_gain(kz * t, m) * laplacian,
-        )
     })
 }
 
@@ -243,81 +209,6 @@ mod tests {
         assert!((s.short_slope_variance[1] - 1e-4 * k_half * k_half).abs() < 1e-12);
         assert!(s.slope_variance[1] > s.short_slope_variance[1]);
         assert_eq!(s.short_slope_variance[0], 0.0);
-    }
-
-    #[test]
-    fn the_caustics_hessian_keeps_what_its_mip_level_and_differences_keep() {
-        // Done by hand: a wave 37 texels long at 30° to x (texels 0.5 m apart), its slopes
-        // sampled on 512² texels, averaged over blocks of 2^l² (level l), its Laplacian taken
-        // by central differences ±1 texel of level l; the RMS of that over the true one's
-        // (k²/√2) is the gain at level l (to 0.5 %: the grid holds no whole number of waves).
-        let (t, n) = (0.5, 512usize);
-        let k = std::f64::consts::TAU / (37.0 * t);
-        let (kx, kz) = (k * 30f64.to_radians().cos(), k * 30f64.to_radians().sin());
-        let wave = Component {
-            energy: 1.0,
-            omega: 1.0,
-            k: [kx, kz],
-            layer: 0,
-        };
-        let gains = curvature_mip_gains([wave].into_iter(), [t; 4]);
-        for (l, row) in gains.iter().enumerate().take(5) {
-            let (m, side) = (1usize << l, n >> l);
-            // Level l's mean slope (x or z) over its block at (i, j).
-            let slope = |i: usize, j: usize, along_x: bool| {
-                let mut sum = 0.0;
-                for a in i * m..(i + 1) * m {
-                    for b in j * m..(j + 1) * m {
-                        let phase = kx * a as f64 * t + kz * b as f64 * t;
-                        sum -= if along_x { kx } else { kz } * phase.sin();
-                    }
-                }
-                sum / (m * m) as f64
-            };
-            let w = m as f64 * t;
-            let mut square = 0.0;
-            let mut count = 0.0;
-            for i in 1..side - 1 {
-                for j in 1..side - 1 {
-                    let lap = (slope(i + 1, j, true) - slope(i - 1, j, true)
-                        + slope(i, j + 1, false)
-                        - slope(i, j - 1, false))
-                        / (2.0 * w);
-                    square += lap * lap;
-                    count += 1.0;
-                }
-            }
-            let by_hand = (square / count).sqrt() / (k * k / 2f64.sqrt());
-            let g = row[0];
-            assert!(
-                (g / by_hand - 1.0).abs() < 0.005,
-                "level {l}: {g} against {by_hand}"
-            );
-        }
-        // Two waves along x weigh by k⁴E: one of half the length and a sixteenth the energy
-        // weighs as much as the first.
-        let along = |theta: f64, energy: f64| Component {
-            energy,
-            omega: 1.0,
-            k: [theta / t, 0.0],
-            layer: 1,
-        };
-        let theta = std::f64::consts::TAU / 37.0;
-        let one = curvature_mip_gains([along(theta, 1.0)].into_iter(), [t; 4]);
-        let half = curvature_mip_gains([along(2.0 * theta, 1.0)].into_iter(), [t; 4]);
-        let both = curvature_mip_gains(
-            [along(theta, 1.0), along(2.0 * theta, 1.0 / 16.0)].into_iter(),
-            [t; 4],
-        );
-        for l in 0..MIP_LEVELS {
-            let mean = ((one[l][1].powi(2) + half[l][1].powi(2)) / 2.0).sqrt();
-            assert!((both[l][1] - mean).abs() < 1e-12, "level {l}");
-        }
-        // Level 0's differences see nothing of a wave two texels long (sin π = 0); a layer
-        // without waves keeps everything.
-        let nyquist = curvature_mip_gains([along(std::f64::consts::PI, 1.0)].into_iter(), [t; 4]);
-        assert!(nyquist[0][1] < 1e-12);
-        assert_eq!(one[0][2], 1.0);
     }
 
     #[test]

@@ -187,7 +187,6 @@ mod tests {
             curvature_variance: [0.0; 4],
             short_slope_variance: [0.0; 4],
             slope_mip_gain: [[1.0; 4]; crate::ocean::moments::MIP_LEVELS],
-            curvature_mip_gain: [[1.0; 4]; crate::ocean::moments::MIP_LEVELS],
         }
     }
 
@@ -333,7 +332,6 @@ mod tests {
             curvature_variance: [0.0; 4],
             short_slope_variance: [0.0; 4],
             slope_mip_gain: [[1.0; 4]; crate::ocean::moments::MIP_LEVELS],
-            curvature_mip_gain: [[1.0; 4]; crate::ocean::moments::MIP_LEVELS],
         };
         assert!((shoaling(&sea, 12.0) - 1.0).abs() < 1e-12);
         assert!((shore_waves(&sea, 12.0).scale - 1.0).abs() < 1e-12);

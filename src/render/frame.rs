@@ -14,6 +14,8 @@
 //!  graphics 2  waits for the compute timeline at the frame's value (vertex, tessellation
 //!              evaluation and fragment stages), signals the frame timeline (and the
 //!              swapchain's `ready` semaphore); a window's image waits for `acquired`
+//!    caustic means  the first frame with caustics, and when the sun, the waves or the focal
+//!                length change: the caustics' mean over the floor   writes the means image
 //!    light shafts  from under the water or at the waterline (caustics on): the caustics'
 //!                means along the camera's rays at 256x144   writes the light shafts image
 //!    refraction  island + objects below the water, with the caustics (they sample the
@@ -221,7 +223,24 @@ pub fn record_frame(
         let rec = frame.recorder(ctx, Submission::Ocean);
         rec.begin_label(&format!("frame {} (graphics 2)", frame.index));
         profiler.resume(&rec, GRAPHICS_OCEAN);
+        // Where the near plane lies against the water: under it, or split at the waterline,
+        // the main view draws the terrain with the caustics and the shafts are needed.
+        let side = inputs.water_side(r.camera(), output.aspect());
+        let underwater = side != WaterSide::Above;
+        // The caustics' means, before anything draws the caustics: on the first frame that
+        // does, and when the sun, the waves or the focal length have changed and held since.
+        let caustics = r.settings.caustics && (underwater || r.settings.refraction_caustics);
+        let measure = caustics && r.caustic_means.due();
+        let r = &*r;
         let set = [r.frame_set(frame.slot)];
+        if measure {
+            let target = [Target::new(&r.caustic_means.image, Load::DontCare)];
+            let draw = r.caustic_means.draw(&set);
+            let scope = rec.rendering(names::CAUSTIC_MEANS, &target, None, &[draw]);
+            profiler.pass(&rec, names::CAUSTIC_MEANS, || {
+                scope.record(|| r.caustic_means.record(&rec, &set))
+            });
+        }
         // The water's sets: the frame set, its textures (reflection, refraction, DU/DV) and
         // the clipmap's tile list.
         let water_sets = r.water.sets(set[0], frame.slot);
@@ -229,10 +248,6 @@ pub fn record_frame(
         let t = &r.targets;
         // The refraction and the scene: their terrain is lit by the caustics, which sample the
         // simulation's images (terrain_caustics.frag; the scene's only from under the water).
-        // Where the near plane lies against the water: under it, or split at the waterline,
-        // the main view draws the terrain with the caustics and the shafts are needed.
-        let side = inputs.water_side(r.camera(), output.aspect());
-        let underwater = side != WaterSide::Above;
         let deep = Load::Clear(vk::ClearValue {
             color: vk::ClearColorValue {
                 float32: DEEP_WATER,

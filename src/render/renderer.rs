@@ -10,11 +10,12 @@ use ash::vk;
 
 use super::atmosphere::Sky;
 use super::camera::Camera;
+use super::passes::caustic_means::CausticKey;
 use super::passes::output::OutputPass;
 use super::passes::water::{TileView, WaterKind, WaterSamplers};
 use super::passes::{
-    AntiAliasingPass, ReflectionDistancePass, ShaftsPass, SkyCube, SkyPass, SprayPass, TerrainPass,
-    TexturesViewPass, WaterPass,
+    AntiAliasingPass, CausticMeansPass, ReflectionDistancePass, ShaftsPass, SkyCube, SkyPass,
+    SprayPass, TerrainPass, TexturesViewPass, WaterPass,
 };
 use super::scene::{dudv_size, generate_dudv, load_dudv, DUDV_SIDE};
 use super::targets::Targets;
@@ -172,6 +173,8 @@ pub struct Renderer {
     pub(super) reflection_distance: ReflectionDistancePass,
     /// The light shafts' means, drawn before the scene when the camera is under the water.
     pub(super) shafts: ShaftsPass,
+    /// The caustics' measured means, drawn when what they depend on changes.
+    pub(super) caustic_means: CausticMeansPass,
     /// The ocean (tessellated or clipmap) and its textures set.
     pub(super) water: WaterPass,
     /// The spray's puffs over the main view (`--spray on`, FFT waves).
@@ -218,7 +221,7 @@ impl Renderer {
         let sampled = vk::DescriptorType::COMBINED_IMAGE_SAMPLER;
         let frame_set_layout = DescriptorSetLayout::new(
             ctx,
-            "frame set layout (uniforms, ocean images, sky cube, foam, light shafts, bodies, wake)",
+            "frame set layout (uniforms, ocean images, sky cube, foam, shafts, bodies, wake, means)",
             &[
                 (0, vk::DescriptorType::UNIFORM_BUFFER, graphics),
                 (1, sampled, graphics),
@@ -228,6 +231,7 @@ impl Renderer {
                 (5, sampled, graphics),
                 (6, vk::DescriptorType::UNIFORM_BUFFER, graphics),
                 (7, sampled, graphics),
+                (8, sampled, graphics),
             ],
         )?;
         let repeat = vk::SamplerAddressMode::REPEAT;
@@ -275,7 +279,8 @@ impl Renderer {
             )?
         };
         let shafts = ShaftsPass::new(ctx, &frame_set_layout, water_kind)?;
-        let shafts_sampler = Sampler::linear(ctx, "light shafts sampler (clamp)", clamp)?;
+        let caustic_means = CausticMeansPass::new(ctx, &frame_set_layout, water_kind)?;
+        let means_sampler = Sampler::linear(ctx, "shafts and caustic means sampler", clamp)?;
         let sky_cube = match &settings.skybox {
             Some(dir) => SkyCube::load(ctx, dir)?,
             None => SkyCube::analytic(ctx)?,
@@ -299,12 +304,13 @@ impl Renderer {
             )?;
             // The ocean images are written on the compute queue and read through the
             // compute timeline's wait (graphics 2's submission must carry it: `Frames::submit`
-            // checks); the sky cube is tracked on this queue (its readers wait
-            // for its last rendering at the stages that sample it).
+            // checks); the sky cube, the light shafts and the caustics' means are tracked on
+            // this queue (their readers wait for their last rendering where they sample them).
             let wait = Order::Wait {
                 by: "compute timeline",
                 stages: ocean.wait_stages,
             };
+            let tracked = Order::Tracked;
             let set = BoundSet::new(
                 ctx,
                 &frame_set_layout,
@@ -316,17 +322,15 @@ impl Renderer {
                         Bind::Sampled(&ocean.displacement[slot], &ocean_sampler, wait),
                     ),
                     (2, Bind::Sampled(&ocean.normals[slot], &ocean_sampler, wait)),
-                    (
-                        3,
-                        Bind::Sampled(&sky_cube.image, &sky_sampler, Order::Tracked),
-                    ),
+                    (3, Bind::Sampled(&sky_cube.image, &sky_sampler, tracked)),
                     (4, Bind::Sampled(&ocean.foam[slot], &foam_sampler, wait)),
-                    (
-                        5,
-                        Bind::Sampled(&shafts.image, &shafts_sampler, Order::Tracked),
-                    ),
+                    (5, Bind::Sampled(&shafts.image, &means_sampler, tracked)),
                     (6, Bind::Uniform(&bodies)),
                     (7, Bind::Sampled(&ocean.wake[slot], &wake_sampler, wait)),
+                    (
+                        8,
+                        Bind::Sampled(&caustic_means.image, &means_sampler, tracked),
+                    ),
                 ],
             )?;
             frame_uniforms.push((buffer, set));
@@ -460,6 +464,7 @@ impl Renderer {
             terrain,
             reflection_distance,
             shafts,
+            caustic_means,
             water,
             spray,
             textures_view,
@@ -494,6 +499,7 @@ impl Renderer {
             }
         }
         check_bindings(names::SHAFTS, &[self.shafts.draw(&frame)])?;
+        check_bindings(names::CAUSTIC_MEANS, &[self.caustic_means.draw(&frame)])?;
         let sets = self.reflection_distance.sets(frame[0]);
         check_bindings(names::REFLECTION, &[self.reflection_distance.draw(&sets)])?;
         let draws: Vec<Bindings> = self
@@ -641,6 +647,7 @@ impl Renderer {
         self.frame_uniforms[slot]
             .0
             .write(bytemuck::bytes_of(&uniforms));
+        self.caustic_means.want(CausticKey::of(&uniforms));
         if !self.bodies.is_empty() {
             self.body_uniforms[slot].write(bytemuck::cast_slice(&self.bodies));
         }

@@ -139,7 +139,6 @@ mod tests {
             curvature_variance: [0.0; 4],
             short_slope_variance: [0.0; 4],
             slope_mip_gain: [[1.0; 4]; crate::ocean::moments::MIP_LEVELS],
-            curvature_mip_gain: [[1.0; 4]; crate::ocean::moments::MIP_LEVELS],
         };
         let scale = shore_scale(layout, sea);
         let [x, z] = layout.island_xz;

@@ -311,9 +311,6 @@ pub struct FrameUniforms {
     /// What mip level l of the normal images leaves of cascade c's slopes, [l][c]
     /// (`SeaMoments::slope_mip_gain`).
     pub slope_mips: [[f32; 4]; MIP_LEVELS],
-    /// What the caustics' Hessian at mip level l leaves of cascade c's curvature, [l][c]
-    /// (`SeaMoments::curvature_mip_gain`).
-    pub curvature_mips: [[f32; 4]; MIP_LEVELS],
 }
 
 /// Side of a DU/DV tile on the water (m).
@@ -567,7 +564,6 @@ impl FrameUniforms {
             gusts,
             slope_variance: p.ocean.sea_moments.slope_variance.map(|v| v as f32),
             slope_mips: rows_f32(p.ocean.sea_moments.slope_mip_gain),
-            curvature_mips: rows_f32(p.ocean.sea_moments.curvature_mip_gain),
             curvature_variance: p.ocean.sea_moments.curvature_variance.map(|v| v as f32),
             slope_anisotropy: [0, 1]
                 .map(|i| p.ocean.sea_moments.slope_anisotropy.map(|c| c[i] as f32)),

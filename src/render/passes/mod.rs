@@ -11,6 +11,7 @@
 //! main view (a set of its own: the particles).
 
 pub mod anti_aliasing;
+pub mod caustic_means;
 pub mod output;
 pub mod reflection_distance;
 pub mod shafts;
@@ -25,6 +26,7 @@ use std::sync::Arc;
 use ash::vk;
 
 pub use anti_aliasing::AntiAliasingPass;
+pub use caustic_means::CausticMeansPass;
 pub use reflection_distance::ReflectionDistancePass;
 pub use shafts::ShaftsPass;
 pub use sky::{SkyCube, SkyPass};
