@@ -17,13 +17,10 @@ use std::sync::Arc;
 use ash::vk;
 
 use super::water::WaterKind;
-use super::{bind_scene, scene_layout, scene_pipeline, Depth, SceneTarget};
-use crate::gpu::oneshot::run_once;
+use super::{bind_scene, frame_set_image};
 use crate::gpu::{
-    Bindings, BoundSet, Context, DescriptorSetLayout, GpuResult, GraphicsDesc, Image, ImageDesc,
-    Load, Pipeline, Recorder, Target,
+    Bindings, BoundSet, Context, DescriptorSetLayout, GpuResult, Image, Pipeline, Recorder,
 };
-use crate::render::targets::HDR_FORMAT;
 use crate::render::uniforms::{FrameUniforms, ViewIndex};
 use crate::shaders;
 use crate::shared::{CAUSTIC_MEAN_DEPTHS, CAUSTIC_MEAN_PIXELS};
@@ -91,63 +88,26 @@ impl CausticMeansPass {
         frame_layout: &DescriptorSetLayout,
         ocean: WaterKind,
     ) -> GpuResult<CausticMeansPass> {
-        let image = Image::new(
+        let extent = vk::Extent2D {
+            width: CAUSTIC_MEAN_DEPTHS,
+            height: CAUSTIC_MEAN_PIXELS,
+        };
+        let (image, pipeline) = frame_set_image(
             ctx,
-            &ImageDesc {
-                name: "caustic means",
-                extent: vk::Extent2D {
-                    width: CAUSTIC_MEAN_DEPTHS,
-                    height: CAUSTIC_MEAN_PIXELS,
-                },
-                format: HDR_FORMAT,
-                usage: vk::ImageUsageFlags::COLOR_ATTACHMENT | vk::ImageUsageFlags::SAMPLED,
-                layers: 1,
-                array_view: false,
-                shared: false,
-                cube: false,
-                levels: 1,
-            },
+            frame_layout,
+            "caustic means",
+            extent,
+            shaders::UNDERWATER_CAUSTIC_MEANS_FRAG,
+            &[
+                ocean.cascades,
+                ocean.manual_filter as u32,
+                0,
+                0,
+                0,
+                0,
+                ocean.slope_mips as u32,
+            ],
         )?;
-        let layout = scene_layout(ctx, "caustic means layout", frame_layout, &[])?;
-        let pipeline = scene_pipeline(
-            ctx,
-            &layout,
-            GraphicsDesc {
-                name: "caustic means",
-                stages: &[
-                    (
-                        vk::ShaderStageFlags::VERTEX,
-                        shaders::COMMON_FULLSCREEN_VERT,
-                    ),
-                    (
-                        vk::ShaderStageFlags::FRAGMENT,
-                        shaders::UNDERWATER_CAUSTIC_MEANS_FRAG,
-                    ),
-                ],
-                // As the light shafts': common/water.glsl's CASCADES and OCEAN_MANUAL_FILTER
-                // (ids 0, 1), SLOPE_MIPS (id 6).
-                constants: &[
-                    ocean.cascades,
-                    ocean.manual_filter as u32,
-                    0,
-                    0,
-                    0,
-                    0,
-                    ocean.slope_mips as u32,
-                ],
-                ..Default::default()
-            },
-            Depth::None,
-            SceneTarget::Hdr,
-        )?;
-        let level = Load::Clear(vk::ClearValue {
-            color: vk::ClearColorValue { float32: [1.0; 4] },
-        });
-        run_once(ctx, "caustic means cleared", |rec| {
-            let target = [Target::new(&image, level)];
-            rec.rendering("caustic means cleared", &target, None, &[])
-                .record(|| {});
-        })?;
         Ok(CausticMeansPass {
             image,
             pipeline,

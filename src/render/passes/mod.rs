@@ -35,13 +35,14 @@ pub use terrain::TerrainPass;
 pub use textures_view::TexturesViewPass;
 pub use water::WaterPass;
 
-use crate::gpu::oneshot::upload_then;
+use crate::gpu::oneshot::{run_once, upload_then};
 use crate::gpu::{
-    Bindings, Buffer, Context, DescriptorSetLayout, GpuResult, GraphicsDesc, MemoryLocation,
-    Pipeline, PipelineLayout, Recorder, Use,
+    Bindings, Buffer, Context, DescriptorSetLayout, GpuResult, GraphicsDesc, Image, ImageDesc,
+    Load, MemoryLocation, Pipeline, PipelineLayout, Recorder, Target, Use,
 };
 use crate::render::targets::{DEPTH_FORMAT, HDR_FORMAT};
 use crate::render::uniforms::ViewIndex;
+use crate::shaders;
 
 /// Push constants of the scene shaders (`Pass` in shaders/common/frame.glsl).
 #[repr(C)]
@@ -253,4 +254,58 @@ pub(super) fn lattice_triangles(quads: u32, step: u32) -> Vec<u32> {
         }
     }
     list
+}
+
+/// A small HDR image of its own that a full-screen draw over the frame set fills (the light
+/// shafts, the caustics' means) and the scene's shaders sample through the frame set, cleared
+/// to 1 (a level sea's ratio) when made so what samples it is never undefined; and the
+/// pipeline that draws it: common/fullscreen.vert and `fragment`, specialized with
+/// `constants` (the caustics': common/water.glsl's CASCADES, OCEAN_MANUAL_FILTER and
+/// SLOPE_MIPS at ids 0, 1 and 6).
+pub fn frame_set_image(
+    ctx: &Arc<Context>,
+    frame_layout: &DescriptorSetLayout,
+    name: &str,
+    extent: vk::Extent2D,
+    fragment: &[u8],
+    constants: &[u32],
+) -> GpuResult<(Image, Pipeline)> {
+    let image = Image::new(
+        ctx,
+        &ImageDesc {
+            name,
+            extent,
+            format: HDR_FORMAT,
+            usage: vk::ImageUsageFlags::COLOR_ATTACHMENT | vk::ImageUsageFlags::SAMPLED,
+            layers: 1,
+            array_view: false,
+            shared: false,
+            cube: false,
+            levels: 1,
+        },
+    )?;
+    let layout = scene_layout(ctx, &format!("{name} layout"), frame_layout, &[])?;
+    let stages = [
+        (
+            vk::ShaderStageFlags::VERTEX,
+            shaders::COMMON_FULLSCREEN_VERT,
+        ),
+        (vk::ShaderStageFlags::FRAGMENT, fragment),
+    ];
+    let desc = GraphicsDesc {
+        name,
+        stages: &stages,
+        constants,
+        ..Default::default()
+    };
+    let pipeline = scene_pipeline(ctx, &layout, desc, Depth::None, SceneTarget::Hdr)?;
+    let level = Load::Clear(vk::ClearValue {
+        color: vk::ClearColorValue { float32: [1.0; 4] },
+    });
+    let cleared = format!("{name} cleared");
+    run_once(ctx, &cleared, |rec| {
+        let target = [Target::new(&image, level)];
+        rec.rendering(&cleared, &target, None, &[]).record(|| {});
+    })?;
+    Ok((image, pipeline))
 }

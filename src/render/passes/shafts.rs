@@ -14,13 +14,10 @@ use std::sync::Arc;
 use ash::vk;
 
 use super::water::WaterKind;
-use super::{bind_scene, scene_layout, scene_pipeline, Depth, SceneTarget};
-use crate::gpu::oneshot::run_once;
+use super::{bind_scene, frame_set_image};
 use crate::gpu::{
-    Bindings, BoundSet, Context, DescriptorSetLayout, GpuResult, GraphicsDesc, Image, ImageDesc,
-    Load, Pipeline, Recorder, Target,
+    Bindings, BoundSet, Context, DescriptorSetLayout, GpuResult, Image, Pipeline, Recorder,
 };
-use crate::render::targets::HDR_FORMAT;
 use crate::render::uniforms::ViewIndex;
 use crate::shaders;
 
@@ -45,61 +42,23 @@ impl ShaftsPass {
         frame_layout: &DescriptorSetLayout,
         ocean: WaterKind,
     ) -> GpuResult<ShaftsPass> {
-        let image = Image::new(
+        // common/shadow.glsl's SHADOWS (id 4) besides the caustics' constants.
+        let (image, pipeline) = frame_set_image(
             ctx,
-            &ImageDesc {
-                name: "light shafts",
-                extent: SHAFTS_EXTENT,
-                format: HDR_FORMAT,
-                usage: vk::ImageUsageFlags::COLOR_ATTACHMENT | vk::ImageUsageFlags::SAMPLED,
-                layers: 1,
-                array_view: false,
-                shared: false,
-                cube: false,
-                levels: 1,
-            },
+            frame_layout,
+            "light shafts",
+            SHAFTS_EXTENT,
+            shaders::UNDERWATER_SHAFTS_FRAG,
+            &[
+                ocean.cascades,
+                ocean.manual_filter as u32,
+                0,
+                0,
+                ocean.shadows as u32,
+                0,
+                ocean.slope_mips as u32,
+            ],
         )?;
-        let layout = scene_layout(ctx, "light shafts layout", frame_layout, &[])?;
-        let pipeline = scene_pipeline(
-            ctx,
-            &layout,
-            GraphicsDesc {
-                name: "light shafts",
-                stages: &[
-                    (
-                        vk::ShaderStageFlags::VERTEX,
-                        shaders::COMMON_FULLSCREEN_VERT,
-                    ),
-                    (
-                        vk::ShaderStageFlags::FRAGMENT,
-                        shaders::UNDERWATER_SHAFTS_FRAG,
-                    ),
-                ],
-                // common/water.glsl's CASCADES and OCEAN_MANUAL_FILTER; ids 2 and 3 are not
-                // this shader's; common/shadow.glsl's SHADOWS (id 4); (5 unused);
-                // common/water.glsl's SLOPE_MIPS (id 6: the caustics' low-pass).
-                constants: &[
-                    ocean.cascades,
-                    ocean.manual_filter as u32,
-                    0,
-                    0,
-                    ocean.shadows as u32,
-                    0,
-                    ocean.slope_mips as u32,
-                ],
-                ..Default::default()
-            },
-            Depth::None,
-            SceneTarget::Hdr,
-        )?;
-        let level = Load::Clear(vk::ClearValue {
-            color: vk::ClearColorValue { float32: [1.0; 4] },
-        });
-        run_once(ctx, "light shafts cleared", |rec| {
-            let target = [Target::new(&image, level)];
-            rec.rendering("light shafts cleared", &target, None, &[])
-                .record(|| {});
-        })?;
         Ok(ShaftsPass { image, pipeline })
     }
 
