@@ -315,46 +315,7 @@ float henyey_greenstein(float mu, float g) {
     return (1.0 - g * g) / (4.0 * PI * pow(1.0 + g * g - 2.0 * g * mu, 1.5));
 }
 
-// Light through the crests: a thin crest between the eye and the sun glows turquoise (the
-// signature of Sea of Thieves and Atlas, Grenier 2019). Sunlight enters the back of the crest,
-// scatters in it and leaves through the face toward the eye. Through a flat surface that
-// cannot happen: the sun's refracted ray and the eye's both dive about 40° into the water, so
-// they meet at about 80° where the water's forward-peaked phase function has almost nothing;
-// only a crest, high (`h` over the local Hs `hs`) and sharp (`compression`, Σ (1 − J)), is
-// thin enough for the light to cross it near its own direction. What crosses is the sunlight
-// times the water's transmission over the path, e^(−c·d): red absorbed first, so turquoise
-// against the deep water's blue; the path shortens as the crest thins (CREST_PATH_M down to
-// half of it). The lobe about the sun's direction is Henyey–Greenstein with g = 0.7, broader
-// than the water's own single scattering (g ≈ 0.92 is usually fitted to Petzold's measured
-// ocean phase function): the term stands in for the light a crest's surface, bubbles and
-// repeated scattering spread out, so its strength CREST_GLOW (22 times the water's 0.04/m
-// scattering) is our choice, set so a backlit moderate sea's crests are 1.23 times as bright
-// as its troughs at equal normal, in radiance (tests/sky.rs, which also bounds it from above),
-// without a swell's broad crests turning turquoise. (It was 1.4, set when the troughs were
-// brighter: the reflection's later changes dimmed them, and the crests stood at 1.43 times.) With g = 0.9 and the strength the test asks for at its 25–50° from the sun, the
-// crests toward a sun on the horizon outshone its glitter (27 px a row far out over the row's
-// median + 60, where the glitter path is 7–8 px wide; tests/render.rs).
-const float CREST_PATH_M = 4.0;
-const float CREST_PHASE_G = 0.7;
-const float CREST_GLOW = 0.9;        // per metre of path
-const float CREST_HEIGHT = 0.3;      // of the local Hs: fully high from there up
-const float CREST_COMPRESSION = 0.3; // Σ (1 − J): fully sharp from there up
-const float CREST_FACE_SLOPE = 0.577; // tan 30°: the faces of Stokes' sharpest crest (120°)
-vec3 crest_light(vec3 v, vec3 l, vec3 sunlight, float h, float hs, float compression) {
-    // The eye's ray must cross the crest sideways, out through its back: one that dips more
-    // steeply than the crest's faces slope enters its top and goes on into the wave's body,
-    // where the sun's refracted light meets it at about 80° again. Stokes' limiting wave has a
-    // 120° crest, so no crest is crossed by a ray dipping 30° or more; the fade to there
-    // stands in for the crests' spread of steepness.
-    float dip = v.y / max(length(v.xz), 1e-3);
-    float across = 1.0 - smoothstep(0.0, CREST_FACE_SLOPE, dip);
-    float thin = smoothstep(0.0, CREST_HEIGHT, h / max(hs, 0.05))
-               * smoothstep(0.0, CREST_COMPRESSION, compression) * across;
-    float d = CREST_PATH_M * (1.0 - 0.5 * thin);
-    vec3 extinction = ABSORPTION_PER_M + UNDERWATER_SCATTERING_PER_M;
-    float lobe = henyey_greenstein(dot(-l, v), CREST_PHASE_G);
-    return thin * sunlight * (1.0 - F0) * CREST_GLOW * lobe * d * exp(-extinction * d);
-}
+#include "common/crest_light.glsl"
 
 // The light foam sends toward the eye (v) at normal n, under the sun (direction l, light
 // `sunlight`) and the sky: a bright scattering medium, not a flat wall. A thick layer of bubbles
@@ -599,9 +560,9 @@ void main() {
     // 1e-3, the correlation at most 0.95. They blur and lean what the water reflects
     // (common/reflection.glsl), widen the glitter and lower the Fresnel reflectance.
     vec3 clean = gust_slopes(in_patches.y);
-    vec3 unresolved = slope_covariance(mix(clean.x, frame.slicks.x, in_patches.x),
-                                       mix(clean.yz, frame.slicks.yz, in_patches.x), along)
-                      - resolved;
+    vec3 sea_slopes = vec3(mix(clean.x, frame.slicks.x, in_patches.x),
+                           mix(clean.yz, frame.slicks.yz, in_patches.x));
+    vec3 unresolved = slope_covariance(sea_slopes.x, sea_slopes.yz, along) - resolved;
     unresolved.xy = max(unresolved.xy, 1e-3);
     float correlated = 0.95 * sqrt(unresolved.x * unresolved.y);
     unresolved.z = clamp(unresolved.z, -correlated, correlated);
@@ -645,7 +606,9 @@ void main() {
     vec3 deep = WATER_COLOUR * frame.sky_light.rgb * (1.0 - sun_share * (1.0 - sun_here));
     vec3 transmitted = mix(deep, c_refract, exp(-thickness * ABSORPTION_PER_M));
     // The light through the crests (crest_light), scaled as the shallows scale the waves.
-    transmitted += crest_light(v, sun, sunlight, in_displacement.y, shore.z, compression * shore.x);
+    vec3 glow = crest_light(v, sun, sunlight, in_displacement.y, shore.z, compression * shore.x,
+                            sea_slopes);
+    transmitted += glow;
 
     float cos_theta = clamp(dot(n, v), 0.0, 1.0);
     // The unresolved slopes' spread along the view.
@@ -683,5 +646,9 @@ void main() {
     colour += sunlight * glitter;
 
     vec3 haze = aerial_haze(dist);
+    if (view == VIEW_CRESTS) {
+        out_colour = target_colour(glow * (1.0 - f) * (1.0 - opacity) * (1.0 - haze));
+        return;
+    }
     out_colour = target_colour(from_under ? under_colour : mix(colour, in_horizon, haze));
 }

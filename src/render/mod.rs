@@ -48,6 +48,9 @@ pub enum ViewMode {
     Dudv = shared::VIEW_DUDV,
     /// The water's triangles as lines over the scene.
     Wireframe = shared::VIEW_WIREFRAME,
+    /// The light through the crests alone, as it reaches the picture (after the surface's
+    /// Fresnel, the foam and the haze).
+    Crests = shared::VIEW_CRESTS,
 }
 
 /// `--fresnel`: how the water weighs reflection against refraction.

@@ -456,7 +456,11 @@ impl WaterPass {
     fn debug_view(view: ViewMode) -> bool {
         matches!(
             view,
-            ViewMode::Displacement | ViewMode::Normals | ViewMode::Foam | ViewMode::Wireframe
+            ViewMode::Displacement
+                | ViewMode::Normals
+                | ViewMode::Foam
+                | ViewMode::Wireframe
+                | ViewMode::Crests
         )
     }
 
