@@ -15,7 +15,8 @@
 //!              evaluation and fragment stages), signals the frame timeline (and the
 //!              swapchain's `ready` semaphore); a window's image waits for `acquired`
 //!    caustic means  the first frame with caustics, and when the sun, the waves or the focal
-//!                length change: the caustics' mean over the floor   writes the means image
+//!                length have changed and held for two frames: the caustics' mean over the
+//!                floor   writes the means image
 //!    light shafts  from under the water or at the waterline (caustics on): the caustics'
 //!                means along the camera's rays at 256x144   writes the light shafts image
 //!    refraction  island + objects below the water, with the caustics (they sample the
