@@ -70,6 +70,7 @@ fn every_view_is_a_picture_and_the_views_differ() {
         "foam",
         "dudv",
         "wireframe",
+        "crests",
     ];
     let pictures: Vec<(&str, Vec<u8>)> = views
         .iter()
