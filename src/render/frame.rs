@@ -235,11 +235,11 @@ pub fn record_frame(
         let r = &*r;
         let set = [r.frame_set(frame.slot)];
         if measure {
-            let target = [Target::new(&r.caustic_means.image, Load::DontCare)];
-            let draw = r.caustic_means.draw(&set);
+            let target = [Target::new(&r.caustic_means.fill.image, Load::DontCare)];
+            let draw = r.caustic_means.fill.draw(&set);
             let scope = rec.rendering(names::CAUSTIC_MEANS, &target, None, &[draw]);
             profiler.pass(&rec, names::CAUSTIC_MEANS, || {
-                scope.record(|| r.caustic_means.record(&rec, &set))
+                scope.record(|| r.caustic_means.fill.record(&rec, &set))
             });
         }
         // The water's sets: the frame set, its textures (reflection, refraction, DU/DV) and

@@ -14,8 +14,8 @@ use super::passes::caustic_means::CausticKey;
 use super::passes::output::OutputPass;
 use super::passes::water::{TileView, WaterKind, WaterSamplers};
 use super::passes::{
-    AntiAliasingPass, CausticMeansPass, ReflectionDistancePass, ShaftsPass, SkyCube, SkyPass,
-    SprayPass, TerrainPass, TexturesViewPass, WaterPass,
+    shafts_pass, AntiAliasingPass, CausticMeansPass, ReflectionDistancePass, ShaftsPass, SkyCube,
+    SkyPass, SprayPass, TerrainPass, TexturesViewPass, WaterPass,
 };
 use super::scene::{dudv_size, generate_dudv, load_dudv, DUDV_SIDE};
 use super::targets::Targets;
@@ -278,7 +278,7 @@ impl Renderer {
                 clamp,
             )?
         };
-        let shafts = ShaftsPass::new(ctx, &frame_set_layout, water_kind)?;
+        let shafts = shafts_pass(ctx, &frame_set_layout, water_kind)?;
         let caustic_means = CausticMeansPass::new(ctx, &frame_set_layout, water_kind)?;
         let means_sampler = Sampler::linear(ctx, "shafts and caustic means sampler", clamp)?;
         let sky_cube = match &settings.skybox {
@@ -329,7 +329,7 @@ impl Renderer {
                     (7, Bind::Sampled(&ocean.wake[slot], &wake_sampler, wait)),
                     (
                         8,
-                        Bind::Sampled(&caustic_means.image, &means_sampler, tracked),
+                        Bind::Sampled(&caustic_means.fill.image, &means_sampler, tracked),
                     ),
                 ],
             )?;
@@ -499,7 +499,8 @@ impl Renderer {
             }
         }
         check_bindings(names::SHAFTS, &[self.shafts.draw(&frame)])?;
-        check_bindings(names::CAUSTIC_MEANS, &[self.caustic_means.draw(&frame)])?;
+        let means = &self.caustic_means.fill;
+        check_bindings(names::CAUSTIC_MEANS, &[means.draw(&frame)])?;
         let sets = self.reflection_distance.sets(frame[0]);
         check_bindings(names::REFLECTION, &[self.reflection_distance.draw(&sets)])?;
         let draws: Vec<Bindings> = self

@@ -17,11 +17,9 @@ use std::sync::Arc;
 use ash::vk;
 
 use super::water::WaterKind;
-use super::{bind_scene, frame_set_image};
-use crate::gpu::{
-    Bindings, BoundSet, Context, DescriptorSetLayout, GpuResult, Image, Pipeline, Recorder,
-};
-use crate::render::uniforms::{FrameUniforms, ViewIndex};
+use super::FrameSetImage;
+use crate::gpu::{Context, DescriptorSetLayout, GpuResult};
+use crate::render::uniforms::FrameUniforms;
 use crate::shaders;
 use crate::shared::{CAUSTIC_MEAN_DEPTHS, CAUSTIC_MEAN_PIXELS};
 
@@ -47,10 +45,9 @@ impl CausticKey {
 }
 
 pub struct CausticMeansPass {
-    /// Per texel: the mean area ratio with one fixed-point step (r) and with none (g)
-    /// (RGBA16F; the frame set's binding 8).
-    pub image: Image,
-    pipeline: Pipeline,
+    /// Its image holds, per texel, the mean area ratio with one fixed-point step (r) and with
+    /// none (g) (RGBA16F; the frame set's binding 8).
+    pub fill: FrameSetImage,
     /// When to measure.
     schedule: Schedule,
 }
@@ -92,7 +89,7 @@ impl CausticMeansPass {
             width: CAUSTIC_MEAN_DEPTHS,
             height: CAUSTIC_MEAN_PIXELS,
         };
-        let (image, pipeline) = frame_set_image(
+        let fill = FrameSetImage::new(
             ctx,
             frame_layout,
             "caustic means",
@@ -109,8 +106,7 @@ impl CausticMeansPass {
             ],
         )?;
         Ok(CausticMeansPass {
-            image,
-            pipeline,
+            fill,
             schedule: Schedule::default(),
         })
     }
@@ -127,20 +123,6 @@ impl CausticMeansPass {
     /// measurement takes lavapipe a quarter to half a second).
     pub fn due(&mut self) -> bool {
         self.schedule.due()
-    }
-
-    /// What `record` binds: the pipeline with `sets` (the frame set).
-    pub fn draw<'a>(&'a self, sets: &'a [&'a BoundSet]) -> Bindings<'a> {
-        Bindings {
-            pipeline: &self.pipeline,
-            sets,
-        }
-    }
-
-    /// Draws the means, inside a rendering scope into `image` that declared `draw(sets)`.
-    pub fn record(&self, rec: &Recorder, sets: &[&BoundSet]) {
-        bind_scene(rec, &self.draw(sets), ViewIndex::Main);
-        rec.draw(3, 1);
     }
 }
 

@@ -28,7 +28,7 @@ use ash::vk;
 pub use anti_aliasing::AntiAliasingPass;
 pub use caustic_means::CausticMeansPass;
 pub use reflection_distance::ReflectionDistancePass;
-pub use shafts::ShaftsPass;
+pub use shafts::{shafts_pass, ShaftsPass};
 pub use sky::{SkyCube, SkyPass};
 pub use spray::SprayPass;
 pub use terrain::TerrainPass;
@@ -37,8 +37,8 @@ pub use water::WaterPass;
 
 use crate::gpu::oneshot::{run_once, upload_then};
 use crate::gpu::{
-    Bindings, Buffer, Context, DescriptorSetLayout, GpuResult, GraphicsDesc, Image, ImageDesc,
-    Load, MemoryLocation, Pipeline, PipelineLayout, Recorder, Target, Use,
+    Bindings, BoundSet, Buffer, Context, DescriptorSetLayout, GpuResult, GraphicsDesc, Image,
+    ImageDesc, Load, MemoryLocation, Pipeline, PipelineLayout, Recorder, Target, Use,
 };
 use crate::render::targets::{DEPTH_FORMAT, HDR_FORMAT};
 use crate::render::uniforms::ViewIndex;
@@ -257,55 +257,77 @@ pub(super) fn lattice_triangles(quads: u32, step: u32) -> Vec<u32> {
 }
 
 /// A small HDR image of its own that a full-screen draw over the frame set fills (the light
-/// shafts, the caustics' means) and the scene's shaders sample through the frame set, cleared
-/// to 1 (a level sea's ratio) when made so what samples it is never undefined; and the
-/// pipeline that draws it: common/fullscreen.vert and `fragment`, specialized with
-/// `constants` (the caustics': common/water.glsl's CASCADES, OCEAN_MANUAL_FILTER and
-/// SLOPE_MIPS at ids 0, 1 and 6).
-pub fn frame_set_image(
-    ctx: &Arc<Context>,
-    frame_layout: &DescriptorSetLayout,
-    name: &str,
-    extent: vk::Extent2D,
-    fragment: &[u8],
-    constants: &[u32],
-) -> GpuResult<(Image, Pipeline)> {
-    let image = Image::new(
-        ctx,
-        &ImageDesc {
+/// shafts, the caustics' means) and the scene's shaders sample through the frame set, and the
+/// pipeline that draws it.
+pub struct FrameSetImage {
+    pub image: Image,
+    pipeline: Pipeline,
+}
+
+impl FrameSetImage {
+    /// The image, cleared to 1 (a level sea's ratio) when made so what samples it is never
+    /// undefined, and its pipeline: common/fullscreen.vert and `fragment`, specialized with
+    /// `constants` (the caustics': common/water.glsl's CASCADES, OCEAN_MANUAL_FILTER and
+    /// SLOPE_MIPS at ids 0, 1 and 6).
+    pub fn new(
+        ctx: &Arc<Context>,
+        frame_layout: &DescriptorSetLayout,
+        name: &str,
+        extent: vk::Extent2D,
+        fragment: &[u8],
+        constants: &[u32],
+    ) -> GpuResult<FrameSetImage> {
+        let image = Image::new(
+            ctx,
+            &ImageDesc {
+                name,
+                extent,
+                format: HDR_FORMAT,
+                usage: vk::ImageUsageFlags::COLOR_ATTACHMENT | vk::ImageUsageFlags::SAMPLED,
+                layers: 1,
+                array_view: false,
+                shared: false,
+                cube: false,
+                levels: 1,
+            },
+        )?;
+        let layout = scene_layout(ctx, &format!("{name} layout"), frame_layout, &[])?;
+        let stages = [
+            (
+                vk::ShaderStageFlags::VERTEX,
+                shaders::COMMON_FULLSCREEN_VERT,
+            ),
+            (vk::ShaderStageFlags::FRAGMENT, fragment),
+        ];
+        let desc = GraphicsDesc {
             name,
-            extent,
-            format: HDR_FORMAT,
-            usage: vk::ImageUsageFlags::COLOR_ATTACHMENT | vk::ImageUsageFlags::SAMPLED,
-            layers: 1,
-            array_view: false,
-            shared: false,
-            cube: false,
-            levels: 1,
-        },
-    )?;
-    let layout = scene_layout(ctx, &format!("{name} layout"), frame_layout, &[])?;
-    let stages = [
-        (
-            vk::ShaderStageFlags::VERTEX,
-            shaders::COMMON_FULLSCREEN_VERT,
-        ),
-        (vk::ShaderStageFlags::FRAGMENT, fragment),
-    ];
-    let desc = GraphicsDesc {
-        name,
-        stages: &stages,
-        constants,
-        ..Default::default()
-    };
-    let pipeline = scene_pipeline(ctx, &layout, desc, Depth::None, SceneTarget::Hdr)?;
-    let level = Load::Clear(vk::ClearValue {
-        color: vk::ClearColorValue { float32: [1.0; 4] },
-    });
-    let cleared = format!("{name} cleared");
-    run_once(ctx, &cleared, |rec| {
-        let target = [Target::new(&image, level)];
-        rec.rendering(&cleared, &target, None, &[]).record(|| {});
-    })?;
-    Ok((image, pipeline))
+            stages: &stages,
+            constants,
+            ..Default::default()
+        };
+        let pipeline = scene_pipeline(ctx, &layout, desc, Depth::None, SceneTarget::Hdr)?;
+        let level = Load::Clear(vk::ClearValue {
+            color: vk::ClearColorValue { float32: [1.0; 4] },
+        });
+        let cleared = format!("{name} cleared");
+        run_once(ctx, &cleared, |rec| {
+            let target = [Target::new(&image, level)];
+            rec.rendering(&cleared, &target, None, &[]).record(|| {});
+        })?;
+        Ok(FrameSetImage { image, pipeline })
+    }
+
+    /// What `record` binds: the pipeline with `sets` (the frame set).
+    pub fn draw<'a>(&'a self, sets: &'a [&'a BoundSet]) -> Bindings<'a> {
+        Bindings {
+            pipeline: &self.pipeline,
+            sets,
+        }
+    }
+
+    /// Draws the image, inside a rendering scope into `image` that declared `draw(sets)`.
+    pub fn record(&self, rec: &Recorder, sets: &[&BoundSet]) {
+        bind_scene(rec, &self.draw(sets), ViewIndex::Main);
+        rec.draw(3, 1);
+    }
 }

@@ -14,11 +14,8 @@ use std::sync::Arc;
 use ash::vk;
 
 use super::water::WaterKind;
-use super::{bind_scene, frame_set_image};
-use crate::gpu::{
-    Bindings, BoundSet, Context, DescriptorSetLayout, GpuResult, Image, Pipeline, Recorder,
-};
-use crate::render::uniforms::ViewIndex;
+use super::FrameSetImage;
+use crate::gpu::{Context, DescriptorSetLayout, GpuResult};
 use crate::shaders;
 
 /// The shaft image's size (texels), whatever the window's: the shafts are soft, and at
@@ -28,51 +25,31 @@ pub const SHAFTS_EXTENT: vk::Extent2D = vk::Extent2D {
     height: 144,
 };
 
-pub struct ShaftsPass {
-    /// Per texel: the caustics' mean area ratio over the first quarter, half, three quarters
-    /// and all of the march (RGBA16F; the frame set's binding 5).
-    pub image: Image,
-    pipeline: Pipeline,
-}
+/// The pass: its image holds, per texel, the caustics' mean area ratio over the first quarter,
+/// half, three quarters and all of the march (RGBA16F; the frame set's binding 5).
+pub type ShaftsPass = FrameSetImage;
 
-impl ShaftsPass {
-    /// `ocean`: how the shader samples the ocean images (as the terrain's caustics do).
-    pub fn new(
-        ctx: &Arc<Context>,
-        frame_layout: &DescriptorSetLayout,
-        ocean: WaterKind,
-    ) -> GpuResult<ShaftsPass> {
-        // common/shadow.glsl's SHADOWS (id 4) besides the caustics' constants.
-        let (image, pipeline) = frame_set_image(
-            ctx,
-            frame_layout,
-            "light shafts",
-            SHAFTS_EXTENT,
-            shaders::UNDERWATER_SHAFTS_FRAG,
-            &[
-                ocean.cascades,
-                ocean.manual_filter as u32,
-                0,
-                0,
-                ocean.shadows as u32,
-                0,
-                ocean.slope_mips as u32,
-            ],
-        )?;
-        Ok(ShaftsPass { image, pipeline })
-    }
-
-    /// What `record` binds: the pipeline with `sets` (the frame set).
-    pub fn draw<'a>(&'a self, sets: &'a [&'a BoundSet]) -> Bindings<'a> {
-        Bindings {
-            pipeline: &self.pipeline,
-            sets,
-        }
-    }
-
-    /// Draws the means, inside a rendering scope into `image` that declared `draw(sets)`.
-    pub fn record(&self, rec: &Recorder, sets: &[&BoundSet]) {
-        bind_scene(rec, &self.draw(sets), ViewIndex::Main);
-        rec.draw(3, 1);
-    }
+/// `ocean`: how the shader samples the ocean images (as the terrain's caustics do).
+pub fn shafts_pass(
+    ctx: &Arc<Context>,
+    frame_layout: &DescriptorSetLayout,
+    ocean: WaterKind,
+) -> GpuResult<ShaftsPass> {
+    // common/shadow.glsl's SHADOWS (id 4) besides the caustics' constants.
+    FrameSetImage::new(
+        ctx,
+        frame_layout,
+        "light shafts",
+        SHAFTS_EXTENT,
+        shaders::UNDERWATER_SHAFTS_FRAG,
+        &[
+            ocean.cascades,
+            ocean.manual_filter as u32,
+            0,
+            0,
+            ocean.shadows as u32,
+            0,
+            ocean.slope_mips as u32,
+        ],
+    )
 }
