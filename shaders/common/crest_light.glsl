@@ -9,19 +9,20 @@
 // only a crest, high (`h` over the local Hs `hs`) and sharp (`compression`, Σ (1 − J)), is
 // thin enough for the light to cross it. The crest is taken as Stokes' sharpest, a 120° wedge
 // (faces sloping 30°, one toward the eye, one away): the sunlight enters the far face (its
-// Fresnel transmission; the beam narrowed by cos θi / cos θt), refracts, and is scattered into
-// the eye's ray as the near face refracts it, by the phase function at the angle between the
-// two in the water. Both rays bend toward the faces' normals, so that angle stays near 45°
-// wherever the sun stands ahead; taken between the rays in the air, the lobe peaked as the
-// view neared a low sun, and the crests toward a setting sun painted the sea lime (tests/sky.rs
-// measures it). What crosses is the sunlight times the water's transmission over the path,
-// e^(−c·d): red absorbed first, so turquoise against the deep water's blue (yellow-green under
-// an orange sun); the path shortens as the crest thins (CREST_PATH_M down to half of it). The
-// phase function is Henyey–Greenstein with g = 0.7, broader than the water's own (g ≈ 0.92 is
-// usually fitted to Petzold's measured ocean phase function): the term stands in for the light
-// a crest's surface, bubbles and repeated scattering spread out, so its strength CREST_GLOW (70
-// times the water's 0.04/m scattering) is our choice, set so a backlit moderate sea's crests
-// are 1.24 times as bright as its troughs at equal normal, in radiance (tests/sky.rs).
+// Fresnel transmission; the refracted beam wider, its irradiance × cos θi / cos θt), refracts,
+// and is scattered into the eye's ray as the near face refracts it, by the phase function at
+// the angle between the two in the water. Both rays bend toward the faces' normals, so for a
+// level view toward a sun ahead that angle is 39° with the sun on the horizon, 44° at 10°, 57°
+// at 30°; taken between the rays in the air, the lobe peaked as the view neared a low sun, and
+// the crests toward a setting sun painted the sea lime (tests/sky.rs measures it). What
+// crosses is the sunlight times the water's transmission over the path, e^(−c·d): red absorbed
+// first, so turquoise against the deep water's blue (yellow-green under an orange sun); the
+// path shortens as the crest thins (CREST_PATH_M down to half of it). The phase function is
+// Henyey–Greenstein with g = 0.7, broader than the water's own (g ≈ 0.92 is usually fitted to
+// Petzold's measured ocean phase function): the term stands in for the light a crest's
+// surface, bubbles and repeated scattering spread out, so its strength CREST_GLOW (70 times the
+// water's 0.04/m scattering) is our choice, set so a backlit moderate sea's crests are 1.24
+// times as bright as its troughs at equal normal, in radiance (tests/sky.rs).
 const float CREST_PATH_M = 4.0;
 const float CREST_PHASE_G = 0.7;
 const float CREST_GLOW = 2.8;        // per metre of path
@@ -57,7 +58,10 @@ vec3 crest_light(vec3 v, vec3 l, vec3 sunlight, float h, float hs, float compres
     vec2 to_sun = length(l.xz) > 1e-5 ? normalize(l.xz) : away;
     float toward = slope_covariance(sea_slopes.x, sea_slopes.yz, to_sun).x;
     float lambda = 1.0 / smith_g1(max(l.y, 1e-3), max(toward, 1e-4)) - 1.0;
-    // Φ(x) ≈ 1 / (1 + e^(−1.702 x)), the logistic fit to the normal distribution (error < 0.01).
-    float lit = pow(1.0 / (1.0 + exp(-1.702 * 4.0 * h / max(hs, 0.05))), lambda);
+    // Φ(x) ≈ 1 / (1 + e^(−1.702 x)), the logistic fit to the normal distribution (error < 0.01);
+    // x clamped so the exponential cannot overflow (pow(0, 0) is undefined) by the shore, where
+    // h and the local Hs are taken at different places.
+    float x = clamp(4.0 * h / max(hs, 0.05), -8.0, 8.0);
+    float lit = pow(1.0 / (1.0 + exp(-1.702 * x)), max(lambda, 0.0));
     return thin * lit * sunlight * entering * CREST_GLOW * lobe * d * exp(-extinction * d);
 }

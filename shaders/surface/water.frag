@@ -646,8 +646,9 @@ void main() {
     colour += sunlight * glitter;
 
     vec3 haze = aerial_haze(dist);
-    if (view == VIEW_CRESTS) {
-        out_colour = target_colour(glow * (1.0 - f) * (1.0 - opacity) * (1.0 - haze));
+    if (view == VIEW_CRESTS) { // the debug pipeline sees from above: none from below
+        out_colour = target_colour(glow * (1.0 - f) * (1.0 - opacity) * (1.0 - haze)
+                                   * step(0.0, v.y));
         return;
     }
     out_colour = target_colour(from_under ? under_colour : mix(colour, in_horizon, haze));

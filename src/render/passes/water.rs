@@ -137,9 +137,9 @@ pub struct WaterPass {
     from_below: Pipeline,
     /// The surface from either side, pixel by pixel, when it crosses the near plane.
     waterline: Pipeline,
-    /// The debug views that show the water's data (`--view displacement`, `normals`, `foam`;
-    /// `wireframe` where the device draws no lines): water.frag's DEBUG_VIEWS (constant 3),
-    /// whose branches the three above leave out.
+    /// The debug views that show the water's data (`--view displacement`, `normals`, `foam`,
+    /// `crests`; `wireframe` where the device draws no lines): water.frag's DEBUG_VIEWS
+    /// (constant 3), whose branches the three above leave out.
     debug: Pipeline,
     /// Line rendering (`--view wireframe`), when the device has fillModeNonSolid.
     wireframe: Option<Pipeline>,
@@ -471,7 +471,8 @@ impl WaterPass {
 
     /// What `record` binds: the pipeline for `view` (lines for `ViewMode::Wireframe` where the
     /// device draws lines; the debug views' for the views of the water's data, from either
-    /// side, as they return before the side matters; else filled, as seen from the camera's
+    /// side, as they return before the side matters (`crests` draws none from below, where
+    /// the final picture has none); else filled, as seen from the camera's
     /// `side`) with `sets` ([`WaterPass::sets`]).
     pub fn draw<'a>(
         &'a self,
