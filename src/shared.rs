@@ -188,6 +188,7 @@ shared_constants! {
     VIEW_FOAM: u32 = 6;
     VIEW_WIREFRAME: u32 = 7;
     VIEW_CRESTS: u32 = 8;
+    VIEW_TRIANGLES: u32 = 9;
     /// The caustics' measured means (src/render/passes/caustic_means.rs, `caustic_mean` in
     /// shaders/common/caustics.glsl): texel (i, j) holds the mean area ratio over a floor
     /// CAUSTIC_MEAN_DEPTH0_M · 2^(i/2) under the mean level, seen in pixels

@@ -71,6 +71,7 @@ fn every_view_is_a_picture_and_the_views_differ() {
         "dudv",
         "wireframe",
         "crests",
+        "triangles",
     ];
     let pictures: Vec<(&str, Vec<u8>)> = views
         .iter()
@@ -598,6 +599,91 @@ fn the_clipmap_shades_fewer_fragments_per_covered_pixel_than_the_tessellation() 
         assert!(coarse.per_pixel < clipmap.per_pixel);
     } else {
         assert!(coarse.per_pixel <= clipmap.per_pixel * 1.001);
+    }
+}
+
+/// Distinct colours per `block`×`block` block among the `water` pixels of `p` (RGBA), times the
+/// block's pixels, over the water pixels: the fragment invocations per covered pixel of a
+/// rasterizer that shades whole blocks, for a `--view triangles` picture (a colour per
+/// triangle) of the triangles it shows.
+fn block_invocations(p: &[u8], water: &[bool], (w, h): (usize, usize), block: usize) -> f64 {
+    let mut shaded = 0;
+    for by in 0..h / block {
+        for bx in 0..w / block {
+            let mut seen: Vec<&[u8]> = Vec::new();
+            for y in by * block..(by + 1) * block {
+                for x in bx * block..(bx + 1) * block {
+                    let i = y * w + x;
+                    let c = &p[4 * i..4 * i + 3];
+                    if water[i] && !seen.contains(&c) {
+                        seen.push(c);
+                    }
+                }
+            }
+            shaded += seen.len() * block * block;
+        }
+    }
+    shaded as f64 / water.iter().filter(|&&b| b).count().max(1) as f64
+}
+
+#[test]
+fn a_gpu_s_quads_shade_the_clipmap_at_about_one_and_a_half_invocations_per_pixel() {
+    // What a GPU shades is 2x2 quads (a quad's lanes without a covered pixel centre run as
+    // helper invocations), which no counter here shows: Mesa 22.3's lavapipe counts its own
+    // 4x4 blocks, Mesa 25.0's the covered pixels. --view triangles colours each triangle its
+    // own, so counting the triangles that show in each block gives both, for the triangles
+    // the depth test keeps (the counter also counts those it rejects). The water's pixels are
+    // the exactly grey ones of --view foam over a magenta sky. Measured (2026-12-06): 1.45 in
+    // 2x2 quads and 2.46 in 4x4 blocks, where Mesa 22.3's counter says 2.59; issue 32 asks
+    // for 1.5 at most.
+    let size = (1280, 720);
+    let picture = |view: &str| {
+        common::shot(
+            &format!("quads-{view}"),
+            size,
+            &[
+                "--quality",
+                "high",
+                "--geometry",
+                "clipmap",
+                "--fft-size",
+                "64",
+                "--foam-sim",
+                "off",
+                "--background",
+                "1,0,1",
+                "--view",
+                view,
+            ],
+            &[],
+        )
+    };
+    let (triangles, foam) = (picture("triangles"), picture("foam"));
+    let water: Vec<bool> = foam
+        .chunks(4)
+        .map(|c| c[0] == c[1] && c[1] == c[2])
+        .collect();
+    let share = water.iter().filter(|&&b| b).count() as f64 / water.len() as f64;
+    assert!(
+        (0.4..0.7).contains(&share),
+        "{share} of the picture is water"
+    );
+    let wh = (size.0 as usize, size.1 as usize);
+    let quads = block_invocations(&triangles, &water, wh, 2);
+    let blocks = block_invocations(&triangles, &water, wh, 4);
+    eprintln!("per covered pixel: {quads:.3} in 2x2 quads, {blocks:.3} in 4x4 blocks");
+    assert!(
+        (1.0..=1.5).contains(&quads),
+        "{quads:.3} per covered pixel in 2x2 quads"
+    );
+    // The counting checked against the counter where it counts blocks: the visible triangles'
+    // blocks are most of them (within 10 %).
+    let counter = draw_counts("clipmap", "16", "1280x720").per_pixel;
+    if counter > 1.2 {
+        assert!(
+            blocks <= counter && counter < 1.1 * blocks,
+            "4x4 blocks: {blocks:.3} from the picture, {counter:.3} counted"
+        );
     }
 }
 

@@ -40,6 +40,12 @@ layout(location = 8) out vec3 out_horizon;
 // the pixels take it between the vertices (a cube lookup and the turn's trigonometry a pixel
 // had cost the water pass 0.5 ms a frame at `low` on lavapipe).
 layout(location = 9) out vec3 out_edge_sky;
+// Which triangle a pixel belongs to, for `--view triangles` (water.frag's `triangle_id`): the
+// tile or patch (flat), and the point's coordinates on its lattice of cells (interpolated: the
+// pixel's cell is their floor, its triangle the side of the cell's diagonal). The tessellated
+// patches give none (the tessellator's triangles lie on no lattice): the view colours patches.
+layout(location = 10) flat out uint out_tile;
+layout(location = 11) out vec2 out_lattice;
 
 // `out_edge_sky` for the point at `rel` (eye-relative, m) in a slick of share `slick`, under
 // the local wind's excess `gust`.
@@ -59,7 +65,10 @@ vec3 edge_sky(vec3 rel, float slick, float gust) {
     return sky_lookup(ray * vec3(1.0, -1.0, 1.0));
 }
 
-void emit_water_vertex(vec2 xz) {
+// The vertex at `xz` (grid-relative, m), point `lattice` of tile or patch `tile`.
+void emit_water_vertex(vec2 xz, uint tile, vec2 lattice) {
+    out_tile = tile;
+    out_lattice = lattice;
     vec3 eye = water_eye();
     vec2 offset = xz - eye.xz;
     // The camera's world xz plus the offset: the terrain is placed in world coordinates.

@@ -34,6 +34,8 @@ layout(location = 6) in vec4 in_surf; // water_vertex.glsl: the bores' phase, sh
 layout(location = 7) in vec2 in_patches; // water_vertex.glsl: a slick's share, a gust's g here
 layout(location = 8) in vec3 in_horizon; // water_vertex.glsl: the sky at the horizon behind P
 layout(location = 9) in vec3 in_edge_sky; // and the sky past the reflection's edge
+layout(location = 10) flat in uint in_tile; // water_vertex.glsl: the tile or patch
+layout(location = 11) in vec2 in_lattice; // and the point on its lattice of cells
 layout(location = 0) out vec4 out_colour;
 
 // Which side the main view sees the surface from (src/render/passes/water.rs, `WaterSide`):
@@ -511,6 +513,22 @@ void main() {
         float detail;
         float lace = foam_lace(uv, pixel_m, detail);
         out_colour = target_value(vec3(foam_opacity(foam, lace, detail)));
+        return;
+    }
+    if (view == VIEW_TRIANGLES) {
+        // A colour per triangle: a hash (MurmurHash3's 32-bit finalizer, Appleby 2011) of the
+        // tile, the cell its lattice coordinates fall in and the side of the cell's diagonal
+        // (passes::lattice_triangles splits a cell along (0,0)–(1,1)); per patch, tessellated.
+        vec2 cell = max(floor(in_lattice), 0.0);
+        vec2 f = in_lattice - cell;
+        uint h = in_tile * 0x9E3779B1u ^ uint(cell.x) * 0x85EBCA77u ^ uint(cell.y) * 0xC2B2AE3Du;
+        h ^= uint(f.x > f.y);
+        h ^= h >> 16u;
+        h *= 0x85EBCA6Bu;
+        h ^= h >> 13u;
+        h *= 0xC2B2AE35u;
+        h ^= h >> 16u;
+        out_colour = target_value(vec3(uvec3(h, h >> 8u, h >> 16u) & 255u) / 255.0);
         return;
     }
     if (view == VIEW_WIREFRAME) {

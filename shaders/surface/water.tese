@@ -14,5 +14,6 @@ layout(location = 0) in vec2 in_xz[];
 void main() {
     vec2 uv = gl_TessCoord.xy;
     emit_water_vertex(lerp2(lerp2(in_xz[0], in_xz[1], uv.x),
-                            lerp2(in_xz[3], in_xz[2], uv.x), uv.y));
+                            lerp2(in_xz[3], in_xz[2], uv.x), uv.y),
+                      uint(gl_PrimitiveID), vec2(0.0));
 }

@@ -39,5 +39,5 @@ void main() {
     float k = clamp((dist - m.x) * m.y, 0.0, 1.0);
     // Odd by world index: the tile's own index plus its corner's parity.
     uvec2 odd = (ij + uvec2(packed >> 6u, packed >> 7u)) & 1u;
-    emit_water_vertex(xz - vec2(odd) * (t.z * k));
+    emit_water_vertex(xz - vec2(odd) * (t.z * k), uint(gl_InstanceIndex), vec2(ij));
 }

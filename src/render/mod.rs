@@ -51,6 +51,9 @@ pub enum ViewMode {
     /// The light through the crests alone, as it reaches the picture (after the surface's
     /// Fresnel, the foam and the haze).
     Crests = shared::VIEW_CRESTS,
+    /// The water's triangles, each in a colour of its own (tessellated: its patches), as the
+    /// rasterizer shades them.
+    Triangles = shared::VIEW_TRIANGLES,
 }
 
 /// `--fresnel`: how the water weighs reflection against refraction.

@@ -138,8 +138,8 @@ pub struct WaterPass {
     /// The surface from either side, pixel by pixel, when it crosses the near plane.
     waterline: Pipeline,
     /// The debug views that show the water's data (`--view displacement`, `normals`, `foam`,
-    /// `crests`; `wireframe` where the device draws no lines): water.frag's DEBUG_VIEWS
-    /// (constant 3), whose branches the three above leave out.
+    /// `crests`, `triangles`; `wireframe` where the device draws no lines): water.frag's
+    /// DEBUG_VIEWS (constant 3), whose branches the three above leave out.
     debug: Pipeline,
     /// Line rendering (`--view wireframe`), when the device has fillModeNonSolid.
     wireframe: Option<Pipeline>,
@@ -461,6 +461,7 @@ impl WaterPass {
                 | ViewMode::Foam
                 | ViewMode::Wireframe
                 | ViewMode::Crests
+                | ViewMode::Triangles
         )
     }
 
