@@ -608,11 +608,11 @@ fn the_clipmap_shades_fewer_fragments_per_covered_pixel_than_the_tessellation() 
 /// triangle) of the triangles it shows.
 fn block_invocations(p: &[u8], water: &[bool], (w, h): (usize, usize), block: usize) -> f64 {
     let mut shaded = 0;
-    for by in 0..h / block {
-        for bx in 0..w / block {
+    for by in 0..h.div_ceil(block) {
+        for bx in 0..w.div_ceil(block) {
             let mut seen: Vec<&[u8]> = Vec::new();
-            for y in by * block..(by + 1) * block {
-                for x in bx * block..(bx + 1) * block {
+            for y in by * block..((by + 1) * block).min(h) {
+                for x in bx * block..((bx + 1) * block).min(w) {
                     let i = y * w + x;
                     let c = &p[4 * i..4 * i + 3];
                     if water[i] && !seen.contains(&c) {
@@ -632,10 +632,12 @@ fn a_gpu_s_quads_shade_the_clipmap_at_about_one_and_a_half_invocations_per_pixel
     // helper invocations), which no counter here shows: Mesa 22.3's lavapipe counts its own
     // 4x4 blocks, Mesa 25.0's the covered pixels. --view triangles colours each triangle its
     // own, so counting the triangles that show in each block gives both, for the triangles
-    // the depth test keeps (the counter also counts those it rejects). The water's pixels are
-    // the exactly grey ones of --view foam over a magenta sky. Measured (2026-12-06): 1.45 in
-    // 2x2 quads and 2.46 in 4x4 blocks, where Mesa 22.3's counter says 2.59; issue 32 asks
-    // for 1.5 at most.
+    // the depth test keeps (the counter also counts the fragments it rejects: about 5 % more
+    // in 4x4 blocks, so a GPU that shaded every hidden fragment too would shade about 1.52).
+    // The water's pixels: exactly grey in --view foam over a magenta sky, and of another
+    // colour in --view triangles (the rest of the scene is the same in both). Measured
+    // (2026-12-06): 1.45 in 2x2 quads and 2.47 in 4x4 blocks, where Mesa 22.3's counter
+    // says 2.6; issue 32 asks for 1.5 at most.
     let size = (1280, 720);
     let picture = |view: &str| {
         common::shot(
@@ -661,7 +663,8 @@ fn a_gpu_s_quads_shade_the_clipmap_at_about_one_and_a_half_invocations_per_pixel
     let (triangles, foam) = (picture("triangles"), picture("foam"));
     let water: Vec<bool> = foam
         .chunks(4)
-        .map(|c| c[0] == c[1] && c[1] == c[2])
+        .zip(triangles.chunks(4))
+        .map(|(f, t)| f[0] == f[1] && f[1] == f[2] && f[..3] != t[..3])
         .collect();
     let share = water.iter().filter(|&&b| b).count() as f64 / water.len() as f64;
     assert!(
@@ -672,14 +675,12 @@ fn a_gpu_s_quads_shade_the_clipmap_at_about_one_and_a_half_invocations_per_pixel
     let quads = block_invocations(&triangles, &water, wh, 2);
     let blocks = block_invocations(&triangles, &water, wh, 4);
     eprintln!("per covered pixel: {quads:.3} in 2x2 quads, {blocks:.3} in 4x4 blocks");
-    assert!(
-        (1.0..=1.5).contains(&quads),
-        "{quads:.3} per covered pixel in 2x2 quads"
-    );
-    // The counting checked against the counter where it counts blocks: the visible triangles'
-    // blocks are most of them (within 10 %).
+    assert!(quads <= 1.5, "{quads:.3} per covered pixel in 2x2 quads");
+    // The counting checked against the counter where it counts 4x4 blocks (another run: 7
+    // frames' median, its pixels counted once per fragment that passes the depth test): the
+    // visible triangles' blocks are most of them, within 10 %.
     let counter = draw_counts("clipmap", "16", "1280x720").per_pixel;
-    if counter > 1.2 {
+    if counter > (quads + blocks) / 2.0 {
         assert!(
             blocks <= counter && counter < 1.1 * blocks,
             "4x4 blocks: {blocks:.3} from the picture, {counter:.3} counted"

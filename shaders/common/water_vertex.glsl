@@ -40,7 +40,7 @@ layout(location = 8) out vec3 out_horizon;
 // the pixels take it between the vertices (a cube lookup and the turn's trigonometry a pixel
 // had cost the water pass 0.5 ms a frame at `low` on lavapipe).
 layout(location = 9) out vec3 out_edge_sky;
-// Which triangle a pixel belongs to, for `--view triangles` (water.frag's `triangle_id`): the
+// Which triangle a pixel belongs to, for `--view triangles` (water.frag's VIEW_TRIANGLES): the
 // tile or patch (flat), and the point's coordinates on its lattice of cells (interpolated: the
 // pixel's cell is their floor, its triangle the side of the cell's diagonal). The tessellated
 // patches give none (the tessellator's triangles lie on no lattice): the view colours patches.

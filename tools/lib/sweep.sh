@@ -15,7 +15,8 @@
 sweep_runs() {
     local fn=$1 view waves geometry
     local small=(--headless --size 160x90 --frames 3)
-    for view in final reflection refraction displacement normals foam dudv wireframe crests triangles; do
+    for view in final reflection refraction displacement normals foam dudv wireframe crests \
+        triangles; do
         "$fn" "${small[@]}" --view "$view"
     done
     for waves in fft gerstner; do

@@ -181,14 +181,22 @@ fn the_model_reproduces_the_measured_clipmap_counts() {
 #[test]
 fn block_counts_ask_for_triangles_too_tall_for_the_relief() {
     let free = |_: f64| f64::INFINITY;
+    // Each layout's count in blocks, reported with its count in a GPU's 2×2 quads (README).
+    let count = |name: &str, triangles: Vec<[[f64; 2]; 3]>| {
+        let blocks = invocations_per_pixel(&triangles);
+        report(name, &blocks);
+        report(
+            &format!("{name}, 2×2 quads"),
+            &invocations_per_pixel_in(2, &triangles),
+        );
+        blocks
+    };
     // Even cells square on screen everywhere stay above 1.5 at 16 px: a 16 px cell's two
     // triangles touch about 1.7 times their area in blocks.
-    let fine = invocations_per_pixel(&screen_uniform(16.0, free));
-    report("screen-uniform, 16 px", &fine);
+    let fine = count("screen-uniform, 16 px", screen_uniform(16.0, free));
     assert!(fine.0 > 1.6, "{}", fine.0);
     // At 32 px they get under 1.5, with radial steps of 43 m at 100 m and 390 m at 300 m.
-    let coarse = invocations_per_pixel(&screen_uniform(32.0, free));
-    report("screen-uniform, 32 px", &coarse);
+    let coarse = count("screen-uniform, 32 px", screen_uniform(32.0, free));
     assert!(coarse.0 < 1.45, "{}", coarse.0);
     // Drawing the relief of the default sea (U10 = 10 m/s over 100 km: JONSWAP's peak
     // ω_p = 22 (g²/(U F))^⅓ = 1.01 rad/s, λ_p = 2πg/ω_p² = 60 m; Hs = 1.6·10⁻³ (gF/U²)^½ U²/g
@@ -206,13 +214,12 @@ fn block_counts_ask_for_triangles_too_tall_for_the_relief() {
             f64::INFINITY
         }
     };
-    let drawn = invocations_per_pixel(&screen_uniform(32.0, relief));
-    report(
+    let drawn = count(
         &format!(
             "screen-uniform, 32 px, radial steps ≤ {:.0} m to {visible_m:.0} m",
             wavelength / 4.0
         ),
-        &drawn,
+        screen_uniform(32.0, relief),
     );
     assert!(drawn.0 > 1.55, "{}", drawn.0);
 }
@@ -238,9 +245,12 @@ fn a_gpu_s_quads_shade_the_clipmap_at_about_one_and_a_half_per_pixel() {
         quads.0,
         blocks.0
     );
-    // Cells square on screen everywhere would need 16 px at most to stay near one (1.23).
+    report(
+        "clipmap, 32 px cells, 2×2 quads",
+        &invocations_per_pixel_in(2, &clipmap(32.0)),
+    );
+    // Cells square on screen at 16 px: 1.23 in 2×2 quads, less than the clipmap's slivers.
     let free = |_: f64| f64::INFINITY;
     let ideal = invocations_per_pixel_in(2, &screen_uniform(16.0, free));
-    report("screen-uniform, 16 px, 2×2 quads", &ideal);
     assert!(ideal.0 < quads.0, "{:.2} against {:.2}", ideal.0, quads.0);
 }
