@@ -261,7 +261,7 @@ pub(super) fn lattice_triangles(quads: u32, step: u32) -> Vec<u32> {
 /// pipeline that draws it.
 pub struct FrameSetImage {
     pub image: Image,
-    pipeline: Pipeline,
+    fill: FullscreenDraw,
 }
 
 impl FrameSetImage {
@@ -292,6 +292,45 @@ impl FrameSetImage {
             },
         )?;
         let layout = scene_layout(ctx, &format!("{name} layout"), frame_layout, &[])?;
+        let fill = FullscreenDraw::new(ctx, &layout, name, fragment, constants, SceneTarget::Hdr)?;
+        let level = Load::Clear(vk::ClearValue {
+            color: vk::ClearColorValue { float32: [1.0; 4] },
+        });
+        let cleared = format!("{name} cleared");
+        run_once(ctx, &cleared, |rec| {
+            let target = [Target::new(&image, level)];
+            rec.rendering(&cleared, &target, None, &[]).record(|| {});
+        })?;
+        Ok(FrameSetImage { image, fill })
+    }
+
+    /// What `record` binds: the pipeline with `sets` (the frame set).
+    pub fn draw<'a>(&'a self, sets: &'a [&'a BoundSet]) -> Bindings<'a> {
+        self.fill.draw(sets)
+    }
+
+    /// Draws the image, inside a rendering scope into `image` that declared `draw(sets)`.
+    pub fn record(&self, rec: &Recorder, sets: &[&BoundSet]) {
+        self.fill.record(rec, sets);
+    }
+}
+
+/// A pipeline that draws one triangle over its whole target (common/fullscreen.vert and a
+/// fragment shader: the light shafts, the caustics' means, the textures view).
+pub struct FullscreenDraw {
+    pipeline: Pipeline,
+}
+
+impl FullscreenDraw {
+    /// `fragment` specialized with `constants`, drawing into `target` with `layout`'s sets.
+    pub fn new(
+        ctx: &Arc<Context>,
+        layout: &PipelineLayout,
+        name: &str,
+        fragment: &[u8],
+        constants: &[u32],
+        target: SceneTarget,
+    ) -> GpuResult<FullscreenDraw> {
         let stages = [
             (
                 vk::ShaderStageFlags::VERTEX,
@@ -305,19 +344,11 @@ impl FrameSetImage {
             constants,
             ..Default::default()
         };
-        let pipeline = scene_pipeline(ctx, &layout, desc, Depth::None, SceneTarget::Hdr)?;
-        let level = Load::Clear(vk::ClearValue {
-            color: vk::ClearColorValue { float32: [1.0; 4] },
-        });
-        let cleared = format!("{name} cleared");
-        run_once(ctx, &cleared, |rec| {
-            let target = [Target::new(&image, level)];
-            rec.rendering(&cleared, &target, None, &[]).record(|| {});
-        })?;
-        Ok(FrameSetImage { image, pipeline })
+        let pipeline = scene_pipeline(ctx, layout, desc, Depth::None, target)?;
+        Ok(FullscreenDraw { pipeline })
     }
 
-    /// What `record` binds: the pipeline with `sets` (the frame set).
+    /// What `record` binds: the pipeline with `sets`.
     pub fn draw<'a>(&'a self, sets: &'a [&'a BoundSet]) -> Bindings<'a> {
         Bindings {
             pipeline: &self.pipeline,
@@ -325,7 +356,7 @@ impl FrameSetImage {
         }
     }
 
-    /// Draws the image, inside a rendering scope into `image` that declared `draw(sets)`.
+    /// Draws, inside a rendering scope into its target that declared `draw(sets)`.
     pub fn record(&self, rec: &Recorder, sets: &[&BoundSet]) {
         bind_scene(rec, &self.draw(sets), ViewIndex::Main);
         rec.draw(3, 1);

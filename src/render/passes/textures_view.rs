@@ -7,16 +7,13 @@ use std::sync::Arc;
 use ash::vk;
 
 use super::water::WaterTextures;
-use super::{bind_scene, scene_layout, scene_pipeline, Depth, SceneTarget};
-use crate::gpu::{
-    Bindings, BoundSet, Context, DescriptorSetLayout, GpuResult, GraphicsDesc, Pipeline, Recorder,
-};
-use crate::render::uniforms::ViewIndex;
+use super::{scene_layout, FullscreenDraw, SceneTarget};
+use crate::gpu::{Bindings, BoundSet, Context, DescriptorSetLayout, GpuResult, Recorder};
 use crate::render::ViewMode;
 use crate::shaders;
 
 pub struct TexturesViewPass {
-    pipeline: Pipeline,
+    fill: FullscreenDraw,
 }
 
 impl TexturesViewPass {
@@ -33,24 +30,15 @@ impl TexturesViewPass {
             frame_layout,
             &[&textures.layout],
         )?;
-        let pipeline = scene_pipeline(
+        let fill = FullscreenDraw::new(
             ctx,
             &layout,
-            GraphicsDesc {
-                name: "textures view",
-                stages: &[
-                    (
-                        vk::ShaderStageFlags::VERTEX,
-                        shaders::COMMON_FULLSCREEN_VERT,
-                    ),
-                    (vk::ShaderStageFlags::FRAGMENT, shaders::POST_TEXTURES_FRAG),
-                ],
-                ..Default::default()
-            },
-            Depth::None,
+            "textures view",
+            shaders::POST_TEXTURES_FRAG,
+            &[],
             SceneTarget::Display(display_format),
         )?;
-        Ok(TexturesViewPass { pipeline })
+        Ok(TexturesViewPass { fill })
     }
 
     /// Whether `view` is one this pass draws.
@@ -63,16 +51,12 @@ impl TexturesViewPass {
 
     /// What `record` binds: its pipeline with `sets` (the frame set, the water's textures).
     pub fn draw<'a>(&'a self, sets: &'a [&'a BoundSet]) -> Bindings<'a> {
-        Bindings {
-            pipeline: &self.pipeline,
-            sets,
-        }
+        self.fill.draw(sets)
     }
 
     /// Draws the texture `--view` names over the whole main target, inside a rendering scope
     /// with the main colour attachment only that declared `draw(sets)`.
     pub fn record(&self, rec: &Recorder, sets: &[&BoundSet]) {
-        bind_scene(rec, &self.draw(sets), ViewIndex::Main);
-        rec.draw(3, 1);
+        self.fill.record(rec, sets);
     }
 }
