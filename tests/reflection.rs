@@ -29,20 +29,19 @@ fn each_layer_averages_the_rows_of_the_one_before_in_pairs() {
     let image = Image::new(
         &ctx,
         &ImageDesc {
-            name: "blurred layers",
-            extent: vk::Extent2D {
-                width: W as u32,
-                height: H as u32,
-            },
-            format,
-            usage: vk::ImageUsageFlags::SAMPLED
-                | vk::ImageUsageFlags::TRANSFER_SRC
-                | vk::ImageUsageFlags::TRANSFER_DST,
             layers: LAYERS as u32,
             array_view: true,
-            shared: false,
-            cube: false,
-            levels: 1,
+            ..ImageDesc::new(
+                "blurred layers",
+                vk::Extent2D {
+                    width: W as u32,
+                    height: H as u32,
+                },
+                format,
+                vk::ImageUsageFlags::SAMPLED
+                    | vk::ImageUsageFlags::TRANSFER_SRC
+                    | vk::ImageUsageFlags::TRANSFER_DST,
+            )
         },
     )
     .unwrap();

@@ -231,20 +231,15 @@ impl Offscreen {
         };
         let image = Image::new(
             ctx,
-            &ImageDesc {
-                name: "headless output",
+            &ImageDesc::new(
+                "headless output",
                 extent,
                 format,
                 // Colour attachment: the overlay draws into it (--overlay).
-                usage: vk::ImageUsageFlags::TRANSFER_DST
+                vk::ImageUsageFlags::TRANSFER_DST
                     | vk::ImageUsageFlags::TRANSFER_SRC
                     | vk::ImageUsageFlags::COLOR_ATTACHMENT,
-                layers: 1,
-                array_view: false,
-                shared: false,
-                cube: false,
-                levels: 1,
-            },
+            ),
         )?;
         Ok(Offscreen {
             image,

@@ -39,6 +39,29 @@ pub struct ImageDesc<'a> {
     pub levels: u32,
 }
 
+impl<'a> ImageDesc<'a> {
+    /// A plain 2D image: one layer, one level, used by one queue family. The others set the
+    /// fields that differ over it (`ImageDesc { layers: 6, cube: true, ..ImageDesc::new(…) }`).
+    pub fn new(
+        name: &'a str,
+        extent: vk::Extent2D,
+        format: vk::Format,
+        usage: vk::ImageUsageFlags,
+    ) -> ImageDesc<'a> {
+        ImageDesc {
+            name,
+            extent,
+            format,
+            usage,
+            layers: 1,
+            array_view: false,
+            shared: false,
+            cube: false,
+            levels: 1,
+        }
+    }
+}
+
 /// A 2D (array) image in device memory with a view of all its layers (none for an image with
 /// transfer usage only). A shared handle: a clone is the same image (descriptor sets hold one,
 /// so an image lives as long as a set that binds it), destroyed through the deletion queue when

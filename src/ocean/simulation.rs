@@ -319,6 +319,15 @@ fn require_image_formats(ctx: &Context) -> GpuResult<()> {
     ])
 }
 
+/// The simulation's images: storage for the compute passes, sampled by the water, and transfer
+/// source and destination (as `require_image_formats` asks of their formats).
+const IMAGE_USAGE: vk::ImageUsageFlags = vk::ImageUsageFlags::from_raw(
+    vk::ImageUsageFlags::STORAGE.as_raw()
+        | vk::ImageUsageFlags::SAMPLED.as_raw()
+        | vk::ImageUsageFlags::TRANSFER_SRC.as_raw()
+        | vk::ImageUsageFlags::TRANSFER_DST.as_raw(),
+);
+
 impl Simulation {
     pub fn new(ctx: &Arc<Context>, settings: &OceanSettings) -> anyhow::Result<Simulation> {
         let n = settings.fft_size;
@@ -335,21 +344,19 @@ impl Simulation {
             Image::new(
                 ctx,
                 &ImageDesc {
-                    name: &name,
-                    extent: vk::Extent2D {
-                        width: side as u32,
-                        height: side as u32,
-                    },
-                    format,
-                    usage: vk::ImageUsageFlags::STORAGE
-                        | vk::ImageUsageFlags::SAMPLED
-                        | vk::ImageUsageFlags::TRANSFER_SRC
-                        | vk::ImageUsageFlags::TRANSFER_DST,
                     layers,
                     array_view: true,
                     shared: true,
-                    cube: false,
                     levels,
+                    ..ImageDesc::new(
+                        &name,
+                        vk::Extent2D {
+                            width: side as u32,
+                            height: side as u32,
+                        },
+                        format,
+                        IMAGE_USAGE,
+                    )
                 },
             )
         };

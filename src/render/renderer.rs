@@ -343,20 +343,15 @@ impl Renderer {
         };
         let dudv = Image::new(
             ctx,
-            &ImageDesc {
-                name: "dudv map",
-                extent: vk::Extent2D {
+            &ImageDesc::new(
+                "dudv map",
+                vk::Extent2D {
                     width: w,
                     height: h,
                 },
-                format: vk::Format::R8G8B8A8_UNORM,
-                usage: vk::ImageUsageFlags::SAMPLED | vk::ImageUsageFlags::TRANSFER_DST,
-                layers: 1,
-                array_view: false,
-                shared: false,
-                cube: false,
-                levels: 1,
-            },
+                vk::Format::R8G8B8A8_UNORM,
+                vk::ImageUsageFlags::SAMPLED | vk::ImageUsageFlags::TRANSFER_DST,
+            ),
         )?;
         let len = w as usize * h as usize * 4;
         upload_image_with(ctx, &dudv, len, |out| -> anyhow::Result<()> {

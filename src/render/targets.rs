@@ -73,15 +73,8 @@ fn plain_image(
     Image::new(
         ctx,
         &ImageDesc {
-            name,
-            extent,
-            format,
-            usage,
             layers,
-            array_view: false,
-            shared: false,
-            cube: false,
-            levels: 1,
+            ..ImageDesc::new(name, extent, format, usage)
         },
     )
 }

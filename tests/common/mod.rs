@@ -173,20 +173,15 @@ pub fn test_image(
     use vkocean::gpu::vk;
     vkocean::gpu::Image::new(
         ctx,
-        &vkocean::gpu::ImageDesc {
+        &vkocean::gpu::ImageDesc::new(
             name,
-            extent: vk::Extent2D {
+            vk::Extent2D {
                 width: 16,
                 height: 16,
             },
-            format: vk::Format::R8G8B8A8_UNORM,
+            vk::Format::R8G8B8A8_UNORM,
             usage,
-            layers: 1,
-            array_view: false,
-            shared: false,
-            cube: false,
-            levels: 1,
-        },
+        ),
     )
     .expect("a 16x16 test image")
 }

@@ -279,17 +279,12 @@ impl FrameSetImage {
     ) -> GpuResult<FrameSetImage> {
         let image = Image::new(
             ctx,
-            &ImageDesc {
+            &ImageDesc::new(
                 name,
                 extent,
-                format: HDR_FORMAT,
-                usage: vk::ImageUsageFlags::COLOR_ATTACHMENT | vk::ImageUsageFlags::SAMPLED,
-                layers: 1,
-                array_view: false,
-                shared: false,
-                cube: false,
-                levels: 1,
-            },
+                HDR_FORMAT,
+                vk::ImageUsageFlags::COLOR_ATTACHMENT | vk::ImageUsageFlags::SAMPLED,
+            ),
         )?;
         let layout = scene_layout(ctx, &format!("{name} layout"), frame_layout, &[])?;
         let fill = FullscreenDraw::new(ctx, &layout, name, fragment, constants, SceneTarget::Hdr)?;

@@ -278,20 +278,15 @@ fn multiple_scattering_table(ctx: &Arc<Context>) -> GpuResult<(DescriptorSetLayo
     let side = multiple_scattering::SIDE as u32;
     let table = Image::new(
         ctx,
-        &ImageDesc {
-            name: "sky multiple scattering",
-            extent: vk::Extent2D {
+        &ImageDesc::new(
+            "sky multiple scattering",
+            vk::Extent2D {
                 width: side,
                 height: side,
             },
-            format: vk::Format::R16G16B16A16_SFLOAT,
-            usage: vk::ImageUsageFlags::SAMPLED | vk::ImageUsageFlags::TRANSFER_DST,
-            layers: 1,
-            array_view: false,
-            shared: false,
-            cube: false,
-            levels: 1,
-        },
+            vk::Format::R16G16B16A16_SFLOAT,
+            vk::ImageUsageFlags::SAMPLED | vk::ImageUsageFlags::TRANSFER_DST,
+        ),
     )?;
     upload_image(ctx, &table, &multiple_scattering::lut_rgba16f())?;
     let sampler = Sampler::linear(
@@ -332,18 +327,17 @@ fn cube_image(
     Image::new(
         ctx,
         &ImageDesc {
-            name,
-            extent: vk::Extent2D {
-                width: side,
-                height: side,
-            },
-            format,
-            usage: vk::ImageUsageFlags::SAMPLED | filled_by,
             layers: 6,
-            array_view: false,
-            shared: false,
             cube: true,
-            levels: 1,
+            ..ImageDesc::new(
+                name,
+                vk::Extent2D {
+                    width: side,
+                    height: side,
+                },
+                format,
+                vk::ImageUsageFlags::SAMPLED | filled_by,
+            )
         },
     )
 }
